@@ -1,0 +1,16 @@
+//! Types shared by every implementation and by the harness: the Float316
+//! triple, the outcome of a computation, Jack's 16-bit integer semantics,
+//! the names of the Float316 operations and the image constants.
+//!
+//! Dependency direction: `harness -> impls/* -> common`. Nothing here knows
+//! about any particular implementation.
+
+pub mod f316;
+pub mod image_consts;
+pub mod jack_int;
+pub mod op;
+pub mod outcome;
+
+pub use f316::F316;
+pub use op::Op;
+pub use outcome::Outcome;
