@@ -10,7 +10,9 @@ pub mod image_consts;
 pub mod jack_int;
 pub mod op;
 pub mod outcome;
+pub mod trace;
 
 pub use f316::F316;
 pub use op::Op;
-pub use outcome::Outcome;
+pub use outcome::{Outcome, OutcomeKind};
+pub use trace::{OpValue, TraceRecord};

@@ -1,0 +1,1 @@
+//! jack-compiler
