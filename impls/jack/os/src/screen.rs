@@ -1,0 +1,125 @@
+//! `Screen` (spec section 3.6). The web IDE's bounds test accepts x = 512
+//! and y = 256; a pixel is then dropped only if its word address 32y + x/16
+//! is past the screen, so (512, y) paints (0, y+1). The desktop profile
+//! tightens only `Screen.drawPixel` (spec section 0); the other drawing
+//! functions and Output share the web rules.
+
+use crate::context::Ctx;
+use crate::math::isqrt;
+use crate::Profile;
+
+/// Words of screen memory.
+const SCREEN_WORDS: i32 = 8192;
+/// Largest radius drawCircle accepts.
+const MAX_RADIUS: i32 = 181;
+
+/// The web IDE's (off by one) bounds test.
+fn out_of_bounds(x: i32, y: i32) -> bool {
+    !(0..=512).contains(&x) || !(0..=256).contains(&y)
+}
+
+impl Ctx<'_> {
+    /// Set (black) or clear bit x%16 of screen word 32y + x/16, if that word
+    /// is on the screen. Coordinates have passed a bounds test.
+    pub fn plot(&mut self, x: i32, y: i32, black: bool) {
+        let word = y * 32 + x.div_euclid(16);
+        if !(0..SCREEN_WORDS).contains(&word) {
+            return;
+        }
+        let addr = crate::SCREEN as i32 + word;
+        let bit = 1i16 << x.rem_euclid(16);
+        let old = self.ram.read(addr);
+        self.ram
+            .write(addr, if black { old | bit } else { old & !bit });
+    }
+
+    /// `Screen.drawPixel(x, y)` in the current colour: ERR7 out of bounds
+    /// (`desktop`: 0 <= x < 512, 0 <= y < 256; `web`: the off-by-one test).
+    pub fn draw_pixel(&mut self, x: i32, y: i32) {
+        let bad = match self.profile() {
+            Profile::Desktop => !(0..512).contains(&x) || !(0..256).contains(&y),
+            Profile::Web => out_of_bounds(x, y),
+        };
+        if bad {
+            self.error(7);
+            return;
+        }
+        self.plot(x, y, self.os.color);
+    }
+
+    /// `Screen.drawLine`: ERR8 if an end is out of bounds. Vertical and
+    /// horizontal runs are inclusive; otherwise a 4-connected staircase of
+    /// dx+dy+1 pixels whose first move is vertical.
+    pub fn draw_line(&mut self, x1: i32, y1: i32, x2: i32, y2: i32, black: bool) {
+        if out_of_bounds(x1, y1) || out_of_bounds(x2, y2) {
+            self.error(8);
+            return;
+        }
+        if x1 == x2 {
+            for y in y1.min(y2)..=y1.max(y2) {
+                self.plot(x1, y, black);
+            }
+        } else if y1 == y2 {
+            for x in x1.min(x2)..=x1.max(x2) {
+                self.plot(x, y1, black);
+            }
+        } else {
+            let (dx, dy) = ((x2 - x1).abs(), (y2 - y1).abs());
+            let (sx, sy) = ((x2 - x1).signum(), (y2 - y1).signum());
+            let (mut a, mut b, mut diff) = (0, 0, 0);
+            while a <= dx && b <= dy {
+                self.plot(x1 + sx * a, y1 + sy * b, black);
+                if diff < 0 {
+                    a += 1;
+                    diff += dy;
+                } else {
+                    b += 1;
+                    diff -= dx;
+                }
+            }
+        }
+    }
+
+    /// `Screen.drawRectangle` (and Output's cell drawing): ERR9 if a corner
+    /// is out of bounds; fills x1..=x2 by y1..=y2, nothing if inverted.
+    pub fn draw_rect(&mut self, x1: i32, y1: i32, x2: i32, y2: i32, black: bool) {
+        if out_of_bounds(x1, y1) || out_of_bounds(x2, y2) {
+            self.error(9);
+            return;
+        }
+        for x in x1..=x2 {
+            for y in y1..=y2 {
+                self.plot(x, y, black);
+            }
+        }
+    }
+
+    /// `Screen.drawCircle(x, y, r)`: ERR12 for a centre out of bounds, ERR13
+    /// for r > 181, nothing for r < 0. One horizontal line per row dy in
+    /// -r..=r; each off-screen row raises ERR8 and the others are drawn.
+    pub fn draw_circle(&mut self, x: i32, y: i32, r: i32) {
+        if out_of_bounds(x, y) {
+            self.error(12);
+            return;
+        }
+        if r > MAX_RADIUS {
+            self.error(13);
+            return;
+        }
+        let black = self.os.color;
+        for dy in -r..=r {
+            let h = isqrt(r * r - dy * dy);
+            self.draw_line(x - h, y + dy, x + h, y + dy, black);
+        }
+    }
+
+    /// `Screen.clearScreen()`: `desktop` zeroes the screen 16384..=24575;
+    /// `web` zeroes 8192..=24576 (upper heap and keyboard word included).
+    pub fn clear_screen(&mut self) {
+        let range = match self.profile() {
+            Profile::Desktop => crate::SCREEN..crate::KBD,
+            Profile::Web => 8192..crate::RAM_SIZE,
+        };
+        self.ram.words_mut()[range].fill(0);
+    }
+}
