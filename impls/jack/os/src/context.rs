@@ -67,7 +67,7 @@ impl Ctx<'_> {
         self.stop.is_some()
     }
 
-    /// `Sys.error(code)`: print "ERR<code>" at the cursor and stop with that
+    /// `Sys.error(code)`: print `"ERR<code>"` at the cursor and stop with that
     /// exit code. The caller carries on to the end of its built-in. As in the
     /// web IDE, a later error in the same call replaces the exit code.
     pub fn error(&mut self, code: i16) {

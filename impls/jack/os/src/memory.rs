@@ -49,7 +49,7 @@ impl Ctx<'_> {
         0
     }
 
-    /// `Memory.deAlloc(p)`: RAM[p-2] = 0, then the block is appended after
+    /// `Memory.deAlloc(p)`: `RAM[p-2] = 0`, then the block is appended after
     /// the first free block whose next is 0. No validation, no merging.
     pub fn dealloc(&mut self, p: i32) {
         let freed = p - 2;

@@ -9,7 +9,7 @@ pub enum Stop {
     /// `Sys.halt()`: exit code 0.
     Halt,
     /// `Sys.error(code)`, called by the program or raised by a built-in;
-    /// "ERR<code>" has been printed at the cursor.
+    /// `"ERR<code>"` has been printed at the cursor.
     SysError(i16),
     /// The official tool throws (e.g. web `Output.moveCursor(i, 64)`:
     /// "Maximum call stack size exceeded"), or the call itself is malformed.
@@ -46,8 +46,8 @@ impl Os {
         }
     }
 
-    /// Section 1 reset: RAM all 0, SP = 256, heap header RAM[2048] = 0,
-    /// RAM[2049] = 14334; free-list head 2048, cursor (0,0), colour black.
+    /// Section 1 reset: RAM all 0, SP = 256, heap header `RAM[2048] = 0`,
+    /// `RAM[2049] = 14334`; free-list head 2048, cursor (0,0), colour black.
     pub fn reset(&mut self, ram: &mut Ram) {
         self.state = OsState::new(self.state.profile, self.state.keys.clone());
         ram.words_mut().fill(0);

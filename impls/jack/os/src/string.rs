@@ -1,5 +1,6 @@
-//! `String` (spec section 3.4). Layout: s = alloc(n+3); RAM[s] = maxLength,
-//! RAM[s+1] = length, RAM[s+2] = the char array alloc(n): 2n+7 heap words.
+//! `String` (spec section 3.4). Layout: `s = alloc(n+3)`; `RAM[s]` =
+//! maxLength, `RAM[s+1]` = length, `RAM[s+2]` = the char array `alloc(n)`:
+//! 2n+7 heap words.
 
 use crate::context::{decimal, Ctx};
 use crate::Profile;

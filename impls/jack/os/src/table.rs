@@ -152,11 +152,16 @@ impl Builtin {
         self.info().full_name
     }
 
-    /// Whether a call can wait for keyboard input (advances the clock).
+    /// Whether the web IDE blocks in this built-in (`Sys.wait` and the
+    /// Keyboard reads), which costs an extra VM step to deliver the result
+    /// (spec 2.7). Only the Keyboard reads advance the clock here.
     pub fn blocks(self) -> bool {
         matches!(
             self,
-            Builtin::KeyboardReadChar | Builtin::KeyboardReadLine | Builtin::KeyboardReadInt
+            Builtin::SysWait
+                | Builtin::KeyboardReadChar
+                | Builtin::KeyboardReadLine
+                | Builtin::KeyboardReadInt
         )
     }
 }
