@@ -37,16 +37,17 @@ impl Ctx<'_> {
             self.error(20);
             return;
         }
-        self.os.row = i;
-        self.os.col = j;
         if j == COLUMNS {
-            // clearChar at column 64 is ERR9, whose "ERR9" is printed at
-            // column 64 again, and so on.
+            // In the IDE, clearChar at column 64 is ERR9, whose "ERR9" is
+            // printed at column 64 again, and so on. The cursor stays where
+            // it was, so that no later call can recurse here.
             self.fatal(Stop::RuntimeError(
                 "Maximum call stack size exceeded".into(),
             ));
             return;
         }
+        self.os.row = i;
+        self.os.col = j;
         self.draw_cursor();
     }
 

@@ -5,13 +5,27 @@ mod support;
 use jack_os::{subroutines, KeyScript, Os, Profile, Ram};
 use proptest::prelude::*;
 
+/// Any word, with small values and the boundary values of the spec favoured.
+fn arg() -> impl Strategy<Value = i16> {
+    prop_oneof![
+        any::<i16>(),
+        -3i16..300,
+        2048i16..2100,
+        Just(64),
+        Just(181),
+        Just(182),
+        Just(256),
+        Just(512),
+    ]
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(256))]
 
     #[test]
     fn any_call_sequence_completes(
         calls in proptest::collection::vec(
-            (0..subroutines().len(), proptest::collection::vec(any::<i16>(), 4)),
+            (0..subroutines().len(), proptest::collection::vec(arg(), 4)),
             1..12,
         ),
         web in any::<bool>(),

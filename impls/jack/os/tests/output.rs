@@ -137,6 +137,9 @@ fn move_cursor_errors() {
             "Maximum call stack size exceeded".into()
         ))
     );
+    // Calls after the crash (which a VM should not make) still return.
+    assert_eq!(w.os.cursor(), (0, 0));
+    w.ok("Output.printChar", &[65]);
 }
 
 #[test]
