@@ -1,1 +1,28 @@
-//! reference
+//! The Rust reference of the seed scene: Float316 arithmetic bit-exact with
+//! the Jack program (`ref-f316`), and the float formulation in f64 and f32
+//! (`ref-f64`, `ref-f32`), all from one scene pipeline generic over the
+//! number type. Also: run-time precision variants and injected faults, and
+//! an op tracer for Float316.
+//!
+//! Entry points: [`Reference`] (an implementation with a scene: `sdf`,
+//! `pixel`, `render`, `trace_pixel`, `trace_sdf`), [`op`] and [`trace_op`]
+//! (one Float316 operation), [`Scene`] (the parameters, serde), [`Settings`]
+//! and [`Variant`] (variants and faults by name).
+
+mod api;
+mod consts;
+mod engine;
+mod float;
+mod float316;
+mod pipeline;
+mod scene;
+mod settings;
+mod tracer;
+mod vec3;
+
+pub use api::{
+    op, trace_op, PixelValue, RefImpl, Reference, RenderedImage, RequestError, Scalar, SdfValue,
+    Trace, UnknownImpl,
+};
+pub use scene::{Camera, Floor, March, Scene, SceneError, Shading, Sphere, Torus};
+pub use settings::{Arith, Settings, UnknownVariant, Variant, VariantKind};

@@ -1,0 +1,169 @@
+//! The float formulation of the scene (spec section 7) in IEEE f64 or f32:
+//! native operations, correctly rounded `sqrt`, libm `floor` and `pow`.
+
+use crate::consts::Consts;
+use crate::engine::{Engine, R};
+use crate::vec3::{self, V3};
+use common::F316;
+use std::fmt::Debug;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// The IEEE float types the float engine runs on.
+pub trait IeeeFloat:
+    Copy
+    + Debug
+    + Send
+    + Sync
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// The nearest value to `x` (`None` when not finite in this type).
+    fn from_f64(x: f64) -> Option<Self>;
+    /// The exact value as f64.
+    fn to_f64(self) -> f64;
+    fn sqrt(self) -> Self;
+    fn floor(self) -> Self;
+    fn powf(self, p: Self) -> Self;
+    fn rem_euclid(self, r: Self) -> Self;
+    fn is_sign_negative(self) -> bool;
+}
+
+macro_rules! ieee_float {
+    ($t:ty) => {
+        impl IeeeFloat for $t {
+            fn from_f64(x: f64) -> Option<Self> {
+                let v = x as $t;
+                v.is_finite().then_some(v)
+            }
+            fn to_f64(self) -> f64 {
+                f64::from(self)
+            }
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            fn floor(self) -> Self {
+                <$t>::floor(self)
+            }
+            fn powf(self, p: Self) -> Self {
+                <$t>::powf(self, p)
+            }
+            fn rem_euclid(self, r: Self) -> Self {
+                <$t>::rem_euclid(self, r)
+            }
+            fn is_sign_negative(self) -> bool {
+                <$t>::is_sign_negative(self)
+            }
+        }
+    };
+}
+
+ieee_float!(f64);
+ieee_float!(f32);
+
+/// The float engine: stateless, never traps, does not trace.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FloatEngine<T>(std::marker::PhantomData<T>);
+
+impl<T> FloatEngine<T> {
+    /// A float engine.
+    pub fn new() -> Self {
+        FloatEngine(std::marker::PhantomData)
+    }
+}
+
+fn lit<T: IeeeFloat>(x: f64) -> T {
+    T::from_f64(x).expect("a literal of the float formulation is finite")
+}
+
+impl<T: IeeeFloat> Engine for FloatEngine<T> {
+    type N = T;
+
+    fn constant(x: f64) -> Option<T> {
+        T::from_f64(x)
+    }
+
+    fn to_f64(v: T) -> f64 {
+        v.to_f64()
+    }
+
+    fn triple(_: T) -> Option<F316> {
+        None
+    }
+
+    fn from_triple(t: F316) -> T {
+        lit(t.to_f64())
+    }
+
+    fn gt(&mut self, a: T, b: T) -> R<bool> {
+        Ok(a > b)
+    }
+
+    fn add(&mut self, a: T, b: T) -> R<T> {
+        Ok(a + b)
+    }
+
+    fn sub(&mut self, a: T, b: T) -> R<T> {
+        Ok(a - b)
+    }
+
+    fn mul(&mut self, a: T, b: T) -> R<T> {
+        Ok(a * b)
+    }
+
+    fn div(&mut self, a: T, b: T) -> R<T> {
+        Ok(a / b)
+    }
+
+    fn sqrt(&mut self, a: T) -> R<T> {
+        Ok(a.sqrt())
+    }
+
+    fn floor(&mut self, a: T) -> R<T> {
+        Ok(a.floor())
+    }
+
+    fn mod2(&mut self, a: T) -> R<T> {
+        Ok(a.rem_euclid(lit(2.0)))
+    }
+
+    fn double(&mut self, a: T) -> R<T> {
+        Ok(lit::<T>(2.0) * a)
+    }
+
+    fn quarter(&mut self, a: T) -> R<T> {
+        Ok(a * lit(0.25))
+    }
+
+    fn negate(a: T) -> T {
+        -a
+    }
+
+    fn sign_bit(a: T) -> bool {
+        a.is_sign_negative()
+    }
+
+    fn normalize(&mut self, v: V3<T>) -> R<V3<T>> {
+        let l = vec3::length(self, v)?;
+        Ok(V3::new(v.x / l, v.y / l, v.z / l))
+    }
+
+    fn diffuse(&mut self, k: &Consts<T>, a: T) -> R<T> {
+        Ok((k.diffuse_k * a) * k.diffuse_i)
+    }
+
+    fn specular(&mut self, k: &Consts<T>, s: T) -> R<T> {
+        Ok((k.specular_k * s.powf(lit(4.0))) * k.specular_i)
+    }
+
+    fn ambient(&mut self, k: &Consts<T>) -> R<T> {
+        Ok(k.ambient_factor * k.background)
+    }
+
+    fn dither_value(&mut self, k: &Consts<T>, v: T, b: usize) -> R<T> {
+        Ok((v + k.bayer[b]) - k.half)
+    }
+}

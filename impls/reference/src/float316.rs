@@ -1,0 +1,424 @@
+//! Float316 arithmetic, bit-exact with the Jack program (spec section 2).
+//!
+//! Every integer operation goes through [`common::jack_int`], so any triple,
+//! normalised or not, wraps exactly as a Jack word does. Loops that never
+//! end in Jack are detected and reported as [`Trap::Hang`]; every loop here
+//! is bounded (a non-zero 16-bit word doubled reaches either a normalised
+//! value or 0 within 16 steps; halving reaches 0 within 16 steps).
+//!
+//! The engine optionally carries a [`Tracer`]; without one, tracing costs a
+//! single `Option` test per operation.
+
+use crate::consts::Consts;
+use crate::engine::{Engine, Trap, R};
+use crate::settings::Arith;
+use crate::tracer::Tracer;
+use crate::vec3::{self, V3};
+use common::jack_int as j;
+use common::{Op, OpValue, F316};
+
+/// -1.0, added by `floor` to a negative non-integer.
+const MINUS_ONE: F316 = F316::new(1, 127, 8192);
+/// 1.5, in `invSqrt`'s Newton step.
+const THREE_HALVES: F316 = F316::new(0, 127, 12288);
+/// Smallest normalised mantissa.
+const M_MIN: i16 = 8192;
+/// Largest normalised mantissa.
+const M_MAX: i16 = 16383;
+
+/// `2^i` for `i` in 0..=13 (Jack: a table of powers of two).
+fn pow2(i: i16) -> i16 {
+    debug_assert!((0..=13).contains(&i));
+    1 << i
+}
+
+/// A value an operation returns, as a trace records it.
+trait Traceable: Copy {
+    fn op_value(self) -> OpValue;
+}
+
+impl Traceable for F316 {
+    fn op_value(self) -> OpValue {
+        OpValue::Num(self)
+    }
+}
+
+impl Traceable for bool {
+    fn op_value(self) -> OpValue {
+        OpValue::Bool(self)
+    }
+}
+
+/// The Float316 engine: the spec's operations under an [`Arith`]
+/// configuration, with an optional tracer.
+pub struct F316Engine<'t> {
+    arith: Arith,
+    tracer: Option<&'t mut Tracer>,
+}
+
+impl<'t> F316Engine<'t> {
+    /// An engine that does not trace.
+    pub fn new(arith: Arith) -> Self {
+        F316Engine {
+            arith,
+            tracer: None,
+        }
+    }
+
+    /// An engine that records every operation into `tracer`.
+    pub fn with_tracer(arith: Arith, tracer: &'t mut Tracer) -> Self {
+        F316Engine {
+            arith,
+            tracer: Some(tracer),
+        }
+    }
+
+    /// Run `body` as the operation `op` on `args`, recording it when tracing.
+    #[inline(always)]
+    fn traced<T: Traceable>(
+        &mut self,
+        op: Op,
+        args: &[F316],
+        body: impl FnOnce(&mut Self) -> R<T>,
+    ) -> R<T> {
+        let Some(tracer) = self.tracer.as_deref_mut() else {
+            return body(self);
+        };
+        let index = tracer.open(op, args);
+        let result = body(self);
+        if let Some(tracer) = self.tracer.as_deref_mut() {
+            tracer.close(index, result.map(Traceable::op_value));
+        }
+        result
+    }
+
+    /// `halve(a)`: exponent minus 1 when `a.e > 0`.
+    pub fn halve(&mut self, a: F316) -> R<F316> {
+        self.traced(Op::Halve, &[a], |_| Ok(shift_exponent(a, -1)))
+    }
+
+    /// `invSqrt(x)`: Newton iterations from `(0, 190 - x.e/2, 8192)`.
+    pub fn inv_sqrt(&mut self, x: F316) -> R<F316> {
+        self.traced(Op::InvSqrt, &[x], |s| {
+            if x.s == 1 {
+                return Err(Trap::SysError(3));
+            }
+            let x2 = F316::new(0, j::sub(x.e, 1), x.m);
+            let mut y = F316::new(0, j::sub(190, j::halve(x.e)), M_MIN);
+            for _ in 0..s.arith.newton_steps {
+                let t = s.mul(x2, y)?;
+                let t = s.mul(t, y)?;
+                let t = s.sub(THREE_HALVES, t)?;
+                y = s.mul(y, t)?;
+            }
+            Ok(F316::new(0, y.e, y.m))
+        })
+    }
+
+    /// Any operation of the spec by name; `gt` gives a boolean.
+    /// `args` must hold `op.arity()` operands.
+    pub fn apply(&mut self, op: Op, args: &[F316]) -> R<OpValue> {
+        let a = args[0];
+        let b = || args[1];
+        let num = |r: R<F316>| r.map(OpValue::Num);
+        match op {
+            Op::Gt => self.gt(a, b()).map(OpValue::Bool),
+            Op::Add => num(self.add(a, b())),
+            Op::Sub => num(self.sub(a, b())),
+            Op::Mul => num(self.mul(a, b())),
+            Op::Div => num(self.div(a, b())),
+            Op::Floor => num(self.floor(a)),
+            Op::Mod2 => num(self.mod2(a)),
+            Op::Sqrt => num(self.sqrt(a)),
+            Op::InvSqrt => num(self.inv_sqrt(a)),
+            Op::Halve => num(self.halve(a)),
+            Op::Double => num(self.double(a)),
+            Op::Quarter => num(self.quarter(a)),
+        }
+    }
+}
+
+/// `a > b` (spec: signs first, then exponent, then mantissa).
+fn gt(a: F316, b: F316) -> bool {
+    if a.s != b.s {
+        return a.s == 0 && b.s == 1;
+    }
+    let magnitude_gt = |p: F316, q: F316| p.e > q.e || (p.e == q.e && p.m > q.m);
+    if a.s == 0 {
+        magnitude_gt(a, b)
+    } else {
+        magnitude_gt(b, a)
+    }
+}
+
+/// `add(a, b)` without tracing (it calls no other operation).
+fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
+    let (big, small) = if b.e > a.e || (b.e == a.e && b.m > a.m) {
+        (b, a)
+    } else {
+        (a, b)
+    };
+    if small.is_zero() {
+        return Ok(big);
+    }
+    if big.s != small.s && big.e == small.e && big.m == small.m {
+        return Ok(F316::ZERO);
+    }
+    let mut shift = j::sub(big.e, small.e);
+    if arith.add_alignment_off_by_one && shift > 0 {
+        shift = j::add(shift, 1);
+    }
+    let mut sm = small.m;
+    let mut done: i16 = 0;
+    // Once sm is 0 further halvings change nothing: stop early.
+    while done < shift && sm != 0 {
+        sm = j::halve(sm);
+        done += 1;
+    }
+    let mut e = big.e;
+    let mut m;
+    if big.s == small.s {
+        m = j::add(big.m, sm);
+        if m > M_MAX {
+            m = j::halve(m);
+            e = j::add(e, 1);
+        }
+    } else {
+        m = j::sub(big.m, sm);
+        while m < M_MIN {
+            if m == 0 {
+                return Err(Trap::Hang);
+            }
+            m = j::mul(m, 2);
+            e = j::sub(e, 1);
+        }
+    }
+    Ok(F316::new(big.s, e, m))
+}
+
+/// `mul(a, b)`: the product of the 7-bit halves, low*low dropped unless
+/// the configuration keeps it.
+fn mul(arith: &Arith, a: F316, b: F316) -> F316 {
+    let sign = j::and(j::add(a.s, b.s), 1);
+    if a.is_zero() || b.is_zero() {
+        return F316::new(sign, 0, 0);
+    }
+    let mut e = j::sub(j::add(a.e, b.e), 126);
+    let split = |m: i16| (j::div(m, 128).unwrap_or(0), j::and(m, 127));
+    let (ah, al) = split(a.m);
+    let (bh, bl) = split(b.m);
+    let mut mid = j::add(j::mul(ah, bl), j::mul(al, bh));
+    if arith.mul_keeps_low_product {
+        mid = j::add(mid, j::div(j::mul(al, bl), 128).unwrap_or(0));
+    }
+    let mut m = j::add(j::mul(ah, bh), j::div(mid, 128).unwrap_or(0));
+    if m > 0 {
+        while m < M_MIN {
+            m = j::mul(m, 2);
+            e = j::sub(e, 1);
+        }
+    }
+    F316::new(sign, e, m)
+}
+
+/// `div(a, b)`: long division with a shrinking divisor.
+fn div(a: F316, b: F316) -> R<F316> {
+    let sign = j::and(j::add(a.s, b.s), 1);
+    if a.is_zero() {
+        return Ok(F316::new(sign, 0, 0));
+    }
+    if b.is_zero() {
+        return Err(Trap::SysError(1));
+    }
+    let mut e = j::sub(j::add(a.e, 127), b.e);
+    let (mut r, mut d, mut q) = (a.m, b.m, 0i16);
+    for i in (0..=13).rev() {
+        if r >= d {
+            q = j::add(q, pow2(i));
+            r = j::sub(r, d);
+        }
+        d = j::halve(d);
+    }
+    while q < M_MIN {
+        if q == 0 {
+            return Err(Trap::Hang);
+        }
+        q = j::mul(q, 2);
+        e = j::sub(e, 1);
+    }
+    Ok(F316::new(sign, e, q))
+}
+
+/// `halve`, `double`, `quarter`: add `delta` to the exponent when `a.e > 0`.
+fn shift_exponent(a: F316, delta: i16) -> F316 {
+    if a.e > 0 {
+        F316::new(a.s, j::add(a.e, delta), a.m)
+    } else {
+        a
+    }
+}
+
+/// `mod2(a)` for an integral `a`: 1.0 when the units bit is set.
+fn mod2(a: F316) -> R<F316> {
+    if a.m == 0 {
+        return Ok(F316::ZERO);
+    }
+    let i = j::sub(a.e, 127);
+    if !(0..=13).contains(&i) {
+        return Err(Trap::OutOfDomain);
+    }
+    if j::and(a.m, pow2(13 - i)) != 0 {
+        Ok(F316::ONE)
+    } else {
+        Ok(F316::ZERO)
+    }
+}
+
+/// sqrt's start value: `(0, x.e/2 + 64, x.m)` for odd `x.e`, else
+/// `(0, x.e/2 + 63, x.m)`; or the floor-division fault.
+fn sqrt_guess(arith: &Arith, x: F316) -> F316 {
+    let e = if arith.sqrt_guess_floor_division {
+        let half = j::div_floor(j::sub(x.e, 127), 2).unwrap_or(0);
+        j::add(half, 127)
+    } else if j::and(x.e, 1) == 1 {
+        j::add(j::halve(x.e), 64)
+    } else {
+        j::add(j::halve(x.e), 63)
+    };
+    F316::new(0, e, x.m)
+}
+
+impl Engine for F316Engine<'_> {
+    type N = F316;
+
+    fn constant(x: f64) -> Option<F316> {
+        F316::from_f64_truncating(x)
+    }
+
+    fn to_f64(v: F316) -> f64 {
+        v.to_f64()
+    }
+
+    fn triple(v: F316) -> Option<F316> {
+        Some(v)
+    }
+
+    fn from_triple(t: F316) -> F316 {
+        t
+    }
+
+    fn gt(&mut self, a: F316, b: F316) -> R<bool> {
+        self.traced(Op::Gt, &[a, b], |_| Ok(gt(a, b)))
+    }
+
+    fn add(&mut self, a: F316, b: F316) -> R<F316> {
+        self.traced(Op::Add, &[a, b], |s| add(&s.arith, a, b))
+    }
+
+    fn sub(&mut self, a: F316, b: F316) -> R<F316> {
+        self.traced(Op::Sub, &[a, b], |s| s.add(a, b.negated()))
+    }
+
+    fn mul(&mut self, a: F316, b: F316) -> R<F316> {
+        self.traced(Op::Mul, &[a, b], |s| Ok(mul(&s.arith, a, b)))
+    }
+
+    fn div(&mut self, a: F316, b: F316) -> R<F316> {
+        self.traced(Op::Div, &[a, b], |_| div(a, b))
+    }
+
+    fn sqrt(&mut self, x: F316) -> R<F316> {
+        self.traced(Op::Sqrt, &[x], |s| {
+            if x.s == 1 {
+                return Err(Trap::SysError(2));
+            }
+            let mut g = sqrt_guess(&s.arith, x);
+            for _ in 0..s.arith.newton_steps {
+                let t = s.div(x, g)?;
+                g = s.add(g, t)?;
+                g = s.halve(g)?;
+            }
+            Ok(F316::new(0, g.e, g.m))
+        })
+    }
+
+    fn floor(&mut self, a: F316) -> R<F316> {
+        self.traced(Op::Floor, &[a], |s| {
+            if a.e < 127 {
+                return Ok(if a.s == 0 { F316::ZERO } else { MINUS_ONE });
+            }
+            let i = j::sub(a.e, 127);
+            if i > 13 {
+                return Err(Trap::OutOfDomain);
+            }
+            let kept = j::and(a.m, !j::sub(pow2(13 - i), 1));
+            let r = F316::new(a.s, a.e, kept);
+            if a.s == 1 && kept != a.m {
+                s.add(r, MINUS_ONE)
+            } else {
+                Ok(r)
+            }
+        })
+    }
+
+    fn mod2(&mut self, a: F316) -> R<F316> {
+        self.traced(Op::Mod2, &[a], |_| mod2(a))
+    }
+
+    fn double(&mut self, a: F316) -> R<F316> {
+        self.traced(Op::Double, &[a], |_| Ok(shift_exponent(a, 1)))
+    }
+
+    fn quarter(&mut self, a: F316) -> R<F316> {
+        self.traced(Op::Quarter, &[a], |_| Ok(shift_exponent(a, -2)))
+    }
+
+    fn negate(a: F316) -> F316 {
+        a.negated()
+    }
+
+    fn sign_bit(a: F316) -> bool {
+        a.s == 1
+    }
+
+    #[inline(always)]
+    fn frame<T>(
+        &mut self,
+        name: impl FnOnce() -> String,
+        f: impl FnOnce(&mut Self) -> R<T>,
+    ) -> R<T> {
+        let Some(tracer) = self.tracer.as_deref_mut() else {
+            return f(self);
+        };
+        tracer.push(name());
+        let r = f(self);
+        if let Some(tracer) = self.tracer.as_deref_mut() {
+            tracer.pop();
+        }
+        r
+    }
+
+    fn normalize(&mut self, v: V3<F316>) -> R<V3<F316>> {
+        let d = vec3::dot(self, v, v)?;
+        let k = self.inv_sqrt(d)?;
+        vec3::scale(self, v, k)
+    }
+
+    fn diffuse(&mut self, k: &Consts<F316>, a: F316) -> R<F316> {
+        self.mul(k.diffuse_ki, a)
+    }
+
+    fn specular(&mut self, k: &Consts<F316>, s: F316) -> R<F316> {
+        let s = self.mul(s, s)?;
+        let s = self.mul(s, s)?;
+        self.mul(s, k.specular_ki)
+    }
+
+    fn ambient(&mut self, k: &Consts<F316>) -> R<F316> {
+        Ok(k.ambient)
+    }
+
+    fn dither_value(&mut self, k: &Consts<F316>, v: F316, b: usize) -> R<F316> {
+        self.add(v, k.bayer_centred[b])
+    }
+}

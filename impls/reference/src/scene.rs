@@ -1,0 +1,229 @@
+//! The scene's parameters as a serde struct. `Scene::default()` is the seed
+//! scene of the spec; a JSON file may override any subset of the fields
+//! (`harness render --scene FILE`). Unknown fields are rejected by name.
+
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// A scene file could not be used.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file could not be read.
+    #[error("cannot read scene file {path}: {source}")]
+    Read {
+        path: String,
+        source: std::io::Error,
+    },
+    /// The JSON is malformed or a field has the wrong type or name (serde's
+    /// message names the field and the line).
+    #[error("malformed scene file {path}: {source}")]
+    Parse {
+        path: String,
+        source: serde_json::Error,
+    },
+    /// A field's value cannot be used by an implementation.
+    #[error("scene field `{field}` = {value}: {reason}")]
+    Field {
+        field: String,
+        value: f64,
+        reason: &'static str,
+    },
+    /// Evaluating the camera basis (done once per image) trapped.
+    #[error("the camera basis cannot be computed: {0}")]
+    Camera(String),
+}
+
+/// A sphere.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Sphere {
+    pub centre: [f64; 3],
+    pub radius: f64,
+    /// Its colour (the shade factor).
+    pub colour: f64,
+}
+
+/// A torus whose axis is the y axis.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Torus {
+    pub centre: [f64; 3],
+    /// Distance from the centre to the middle of the tube.
+    pub ring_radius: f64,
+    pub tube_radius: f64,
+    pub colour: f64,
+}
+
+/// The checkered floor, a plane `y = height`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Floor {
+    pub height: f64,
+    /// Colour of the even squares.
+    pub colour: f64,
+    /// Added to the colour of the odd squares.
+    pub checker: f64,
+}
+
+/// Ray-marching constants.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct March {
+    /// A ray hits when the distance falls below this.
+    pub precision: f64,
+    /// A ray misses when its depth exceeds this.
+    pub max_distance: f64,
+    pub view_steps: u32,
+    pub shadow_steps: u32,
+    /// The offset `h` of the normal estimate.
+    pub normal_h: f64,
+}
+
+/// Light and shading factors (a pixel in shadow is quartered). Float316 uses the truncated products
+/// `diffuse_k * diffuse_i` (0.63), `specular_k * specular_i` (0.35) and
+/// `ambient * background` (0.167); the float formulation multiplies them
+/// in its own order.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Shading {
+    pub light: [f64; 3],
+    pub diffuse_k: f64,
+    pub diffuse_i: f64,
+    pub specular_k: f64,
+    pub specular_i: f64,
+    pub ambient: f64,
+    /// Shade of a ray that hits nothing.
+    pub background: f64,
+}
+
+/// The camera.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Camera {
+    pub position: [f64; 3],
+    pub look_at: [f64; 3],
+    pub up: [f64; 3],
+}
+
+/// Every parameter of the scene. The default is the seed scene.
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scene {
+    pub camera: Camera,
+    pub sphere: Sphere,
+    pub torus: Torus,
+    pub floor: Floor,
+    pub march: March,
+    pub shading: Shading,
+}
+
+impl Default for Sphere {
+    fn default() -> Self {
+        Sphere {
+            centre: [-1.5, 0.0, 0.0],
+            radius: 1.0,
+            colour: 0.7,
+        }
+    }
+}
+
+impl Default for Torus {
+    fn default() -> Self {
+        Torus {
+            centre: [1.5, 0.0, 0.0],
+            ring_radius: 1.0,
+            tube_radius: 0.25,
+            colour: 0.7,
+        }
+    }
+}
+
+impl Default for Floor {
+    fn default() -> Self {
+        Floor {
+            height: -1.0,
+            colour: 1.0,
+            checker: 0.7,
+        }
+    }
+}
+
+impl Default for March {
+    fn default() -> Self {
+        March {
+            precision: 0.01,
+            max_distance: 12.0,
+            view_steps: 64,
+            shadow_steps: 32,
+            normal_h: 0.005,
+        }
+    }
+}
+
+impl Default for Shading {
+    fn default() -> Self {
+        Shading {
+            light: [2.0, 5.0, -1.0],
+            diffuse_k: 0.9,
+            diffuse_i: 0.7,
+            specular_k: 0.7,
+            specular_i: 0.5,
+            ambient: 0.2,
+            background: 0.835,
+        }
+    }
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Camera {
+            position: [0.0, 1.5, 4.0],
+            look_at: [0.0, 0.0, 0.0],
+            up: [0.0, 1.0, 0.0],
+        }
+    }
+}
+
+impl Scene {
+    /// Read a scene from a JSON file; fields left out keep the seed scene's
+    /// values.
+    pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
+        let shown = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            path: shown.clone(),
+            source,
+        })?;
+        serde_json::from_str(&text).map_err(|source| SceneError::Parse {
+            path: shown,
+            source,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn partial_file_keeps_the_seed_values() {
+        let s: Scene = serde_json::from_str(r#"{"torus": {"tube_radius": 0.5}}"#).unwrap();
+        assert_eq!(s.torus.tube_radius, 0.5);
+        assert_eq!(s.torus.ring_radius, 1.0);
+        assert_eq!(s.camera, Camera::default());
+    }
+
+    #[test]
+    fn unknown_and_mistyped_fields_are_named() {
+        let err = serde_json::from_str::<Scene>(r#"{"torus": {"tube": 0.5}}"#).unwrap_err();
+        assert!(err.to_string().contains("unknown field `tube`"), "{err}");
+        let err = serde_json::from_str::<Scene>(r#"{"march": {"view_steps": -3}}"#).unwrap_err();
+        assert!(err.to_string().contains("-3"), "{err}");
+    }
+
+    #[test]
+    fn round_trips_through_json() {
+        let s = Scene::default();
+        let text = serde_json::to_string_pretty(&s).unwrap();
+        assert_eq!(serde_json::from_str::<Scene>(&text).unwrap(), s);
+    }
+}

@@ -1,0 +1,153 @@
+//! Run-time variants of the reference: precision variants (used by the
+//! speed-against-error report) and injected faults (used by the harness's
+//! self-test to prove it detects and localizes them). The default settings
+//! are the spec, and cost nothing: a variant is a field test at the point
+//! where it changes the algorithm.
+
+use std::fmt;
+use std::str::FromStr;
+
+/// How the Float316 operations compute. `Arith::default()` is the spec.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Arith {
+    /// Newton steps in `sqrt` and `invSqrt` (spec: 2).
+    pub newton_steps: u8,
+    /// `mul` keeps the low*low partial product instead of dropping it.
+    pub mul_keeps_low_product: bool,
+    /// `sqrt`'s start exponent computed as `(e - 127) // 2 + 127` with a
+    /// floor division (the original Python port's formula).
+    pub sqrt_guess_floor_division: bool,
+    /// `add` halves the smaller mantissa once more than the exponent
+    /// difference (when the exponents differ).
+    pub add_alignment_off_by_one: bool,
+}
+
+impl Default for Arith {
+    fn default() -> Self {
+        Arith {
+            newton_steps: 2,
+            mul_keeps_low_product: false,
+            sqrt_guess_floor_division: false,
+            add_alignment_off_by_one: false,
+        }
+    }
+}
+
+/// The arithmetic plus scene-level faults.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Settings {
+    pub arith: Arith,
+    /// A pixel is white when its dithered value is not below 0.5 (spec:
+    /// strictly above 0.5).
+    pub dither_threshold: bool,
+}
+
+/// Whether a variant is a precision trade-off or a deliberate fault.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VariantKind {
+    Precision,
+    Fault,
+}
+
+/// A named variant, as given to `--variant NAME`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Variant {
+    /// `mul-low-product`: mul keeps the low*low product (more precise).
+    MulLowProduct,
+    /// `newton-1`: one Newton step in sqrt and invSqrt.
+    Newton1,
+    /// `newton-3`: three Newton steps.
+    Newton3,
+    /// `sqrt-floor-div` (fault): sqrt's start exponent by floor division.
+    SqrtFloorDiv,
+    /// `add-align-off-by-one` (fault): add over-shifts the smaller operand.
+    AddAlignOffByOne,
+    /// `mul-keep-low` (fault): the arithmetic of `mul-low-product`, used as
+    /// an injected fault against the spec.
+    MulKeepLow,
+    /// `dither-threshold` (fault): `>=` instead of `>` against 0.5.
+    DitherThreshold,
+}
+
+impl Variant {
+    /// Every variant.
+    pub const ALL: [Variant; 7] = [
+        Variant::MulLowProduct,
+        Variant::Newton1,
+        Variant::Newton3,
+        Variant::SqrtFloorDiv,
+        Variant::AddAlignOffByOne,
+        Variant::MulKeepLow,
+        Variant::DitherThreshold,
+    ];
+
+    /// The command-line name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Variant::MulLowProduct => "mul-low-product",
+            Variant::Newton1 => "newton-1",
+            Variant::Newton3 => "newton-3",
+            Variant::SqrtFloorDiv => "sqrt-floor-div",
+            Variant::AddAlignOffByOne => "add-align-off-by-one",
+            Variant::MulKeepLow => "mul-keep-low",
+            Variant::DitherThreshold => "dither-threshold",
+        }
+    }
+
+    /// Precision variant or fault.
+    pub const fn kind(self) -> VariantKind {
+        match self {
+            Variant::MulLowProduct | Variant::Newton1 | Variant::Newton3 => VariantKind::Precision,
+            _ => VariantKind::Fault,
+        }
+    }
+
+    /// The settings with this variant applied on top of `base`.
+    pub fn apply(self, base: Settings) -> Settings {
+        let mut s = base;
+        match self {
+            Variant::MulLowProduct | Variant::MulKeepLow => s.arith.mul_keeps_low_product = true,
+            Variant::Newton1 => s.arith.newton_steps = 1,
+            Variant::Newton3 => s.arith.newton_steps = 3,
+            Variant::SqrtFloorDiv => s.arith.sqrt_guess_floor_division = true,
+            Variant::AddAlignOffByOne => s.arith.add_alignment_off_by_one = true,
+            Variant::DitherThreshold => s.dither_threshold = true,
+        }
+        s
+    }
+}
+
+impl fmt::Display for Variant {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// An unknown variant name.
+#[derive(Debug, thiserror::Error)]
+#[error("unknown variant `{0}` (expected one of mul-low-product, newton-1, newton-3, sqrt-floor-div, add-align-off-by-one, mul-keep-low, dither-threshold)")]
+pub struct UnknownVariant(pub String);
+
+impl FromStr for Variant {
+    type Err = UnknownVariant;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Variant::ALL
+            .into_iter()
+            .find(|v| v.name() == s)
+            .ok_or_else(|| UnknownVariant(s.to_string()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_each_changes_the_settings() {
+        for v in Variant::ALL {
+            assert_eq!(v.name().parse::<Variant>().unwrap(), v);
+            assert_ne!(v.apply(Settings::default()), Settings::default(), "{v}");
+        }
+        assert!("newton-7".parse::<Variant>().is_err());
+    }
+}

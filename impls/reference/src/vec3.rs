@@ -1,0 +1,109 @@
+//! Vector helpers of spec section 3, generic over the engine. They are not
+//! operations of their own: in a trace they appear as frames of the path.
+
+use crate::engine::{Engine, R};
+
+/// A 3-vector of engine numbers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct V3<N> {
+    pub x: N,
+    pub y: N,
+    pub z: N,
+}
+
+impl<N> V3<N> {
+    /// Build a vector from its components.
+    pub const fn new(x: N, y: N, z: N) -> Self {
+        V3 { x, y, z }
+    }
+}
+
+/// Component-wise `a + b`.
+pub fn add<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>) -> R<V3<E::N>> {
+    Ok(V3::new(
+        e.add(a.x, b.x)?,
+        e.add(a.y, b.y)?,
+        e.add(a.z, b.z)?,
+    ))
+}
+
+/// Component-wise `a - b`.
+pub fn sub<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>) -> R<V3<E::N>> {
+    Ok(V3::new(
+        e.sub(a.x, b.x)?,
+        e.sub(a.y, b.y)?,
+        e.sub(a.z, b.z)?,
+    ))
+}
+
+/// Each component times the scalar `k` (`mul(component, k)`).
+pub fn scale<E: Engine>(e: &mut E, a: V3<E::N>, k: E::N) -> R<V3<E::N>> {
+    Ok(V3::new(e.mul(a.x, k)?, e.mul(a.y, k)?, e.mul(a.z, k)?))
+}
+
+/// `add(add(mul(ax,bx), mul(ay,by)), mul(az,bz))`.
+pub fn dot<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>) -> R<E::N> {
+    e.frame(
+        || "dot".into(),
+        |e| {
+            let xx = e.mul(a.x, b.x)?;
+            let yy = e.mul(a.y, b.y)?;
+            let s = e.add(xx, yy)?;
+            let zz = e.mul(a.z, b.z)?;
+            e.add(s, zz)
+        },
+    )
+}
+
+/// `sqrt(dot(v, v))`.
+pub fn length<E: Engine>(e: &mut E, v: V3<E::N>) -> R<E::N> {
+    e.frame(
+        || "length".into(),
+        |e| {
+            let d = dot(e, v, v)?;
+            e.sqrt(d)
+        },
+    )
+}
+
+/// `(ay*bz - by*az, az*bx - bz*ax, ax*by - bx*ay)`, each as `sub(mul, mul)`.
+pub fn cross<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>) -> R<V3<E::N>> {
+    e.frame(
+        || "cross".into(),
+        |e| {
+            let mut c = |p: E::N, q: E::N, r: E::N, s: E::N| -> R<E::N> {
+                let m1 = e.mul(p, q)?;
+                let m2 = e.mul(r, s)?;
+                e.sub(m1, m2)
+            };
+            Ok(V3::new(
+                c(a.y, b.z, b.y, a.z)?,
+                c(a.z, b.x, b.z, a.x)?,
+                c(a.x, b.y, b.x, a.y)?,
+            ))
+        },
+    )
+}
+
+/// `normalize(v)`, as the engine's formulation defines it.
+pub fn normalize<E: Engine>(e: &mut E, v: V3<E::N>) -> R<V3<E::N>> {
+    e.frame(|| "normalize".into(), |e| e.normalize(v))
+}
+
+/// `dot(a, b)` clamped to [0, 1]: 0 when its sign bit is set (also -0),
+/// 1 when it is greater than 1.
+pub fn angle<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>, one: E::N, zero: E::N) -> R<E::N> {
+    e.frame(
+        || "angle".into(),
+        |e| {
+            let d = dot(e, a, b)?;
+            if E::sign_bit(d) {
+                Ok(zero)
+            } else if e.gt(d, one)? {
+                Ok(one)
+            } else {
+                Ok(d)
+            }
+        },
+    )
+}
