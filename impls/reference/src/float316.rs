@@ -275,11 +275,12 @@ fn mod2(a: F316) -> R<F316> {
 }
 
 /// sqrt's start value: `(0, x.e/2 + 64, x.m)` for odd `x.e`, else
-/// `(0, x.e/2 + 63, x.m)`; or the floor-division fault.
+/// `(0, x.e/2 + 63, x.m)`. The fault computes the exponent as
+/// `(x.e - 127)/2 + 127` instead, which differs exactly when `x.e < 127`
+/// and `x.e - 127` is odd.
 fn sqrt_guess(arith: &Arith, x: F316) -> F316 {
-    let e = if arith.sqrt_guess_floor_division {
-        let half = j::div_floor(j::sub(x.e, 127), 2).unwrap_or(0);
-        j::add(half, 127)
+    let e = if arith.sqrt_guess_from_biased_difference {
+        j::add(j::halve(j::sub(x.e, 127)), 127)
     } else if j::and(x.e, 1) == 1 {
         j::add(j::halve(x.e), 64)
     } else {

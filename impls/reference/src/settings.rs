@@ -14,9 +14,12 @@ pub struct Arith {
     pub newton_steps: u8,
     /// `mul` keeps the low*low partial product instead of dropping it.
     pub mul_keeps_low_product: bool,
-    /// `sqrt`'s start exponent computed as `(e - 127) // 2 + 127` with a
-    /// floor division (the original Python port's formula).
-    pub sqrt_guess_floor_division: bool,
+    /// `sqrt`'s start exponent computed as `(e - 127)/2 + 127` (the
+    /// original Python port's formula) in Jack's truncating division. It
+    /// differs from the spec exactly when `e < 127` and `e - 127` is odd.
+    /// (With a floor division that formula equals the spec's for every
+    /// `e >= -1`, so the fault that shows is the truncating one.)
+    pub sqrt_guess_from_biased_difference: bool,
     /// `add` halves the smaller mantissa once more than the exponent
     /// difference (when the exponents differ).
     pub add_alignment_off_by_one: bool,
@@ -27,7 +30,7 @@ impl Default for Arith {
         Arith {
             newton_steps: 2,
             mul_keeps_low_product: false,
-            sqrt_guess_floor_division: false,
+            sqrt_guess_from_biased_difference: false,
             add_alignment_off_by_one: false,
         }
     }
@@ -58,7 +61,8 @@ pub enum Variant {
     Newton1,
     /// `newton-3`: three Newton steps.
     Newton3,
-    /// `sqrt-floor-div` (fault): sqrt's start exponent by floor division.
+    /// `sqrt-floor-div` (fault): sqrt's start exponent by the Python
+    /// port's `(e - 127)/2 + 127` (see [`Arith`]).
     SqrtFloorDiv,
     /// `add-align-off-by-one` (fault): add over-shifts the smaller operand.
     AddAlignOffByOne,
@@ -109,7 +113,7 @@ impl Variant {
             Variant::MulLowProduct | Variant::MulKeepLow => s.arith.mul_keeps_low_product = true,
             Variant::Newton1 => s.arith.newton_steps = 1,
             Variant::Newton3 => s.arith.newton_steps = 3,
-            Variant::SqrtFloorDiv => s.arith.sqrt_guess_floor_division = true,
+            Variant::SqrtFloorDiv => s.arith.sqrt_guess_from_biased_difference = true,
             Variant::AddAlignOffByOne => s.arith.add_alignment_off_by_one = true,
             Variant::DitherThreshold => s.dither_threshold = true,
         }
