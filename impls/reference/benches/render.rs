@@ -8,7 +8,9 @@ use std::time::Duration;
 
 fn render(c: &mut Criterion) {
     let mut group = c.benchmark_group("render 512x256");
-    group.sample_size(10).measurement_time(Duration::from_secs(10));
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(10));
     for imp in RefImpl::ALL {
         let r = Reference::seed(imp);
         group.bench_function(imp.name(), |b| b.iter(|| black_box(r.render())));

@@ -8,10 +8,12 @@ use std::fmt::Write;
 /// Operands that exercise signs, zeros, the non-canonical sqrt(0), carries,
 /// cancellation and the domain limits.
 fn operands() -> Vec<F316> {
-    let mut v: Vec<F316> = [1.0, -1.0, 1.5, 0.5, 12.0, -25.75, 0.01, 0.835, 0.167, 124.0, 16383.5]
-        .iter()
-        .map(|&x| F316::from_f64_truncating(x).unwrap())
-        .collect();
+    let mut v: Vec<F316> = [
+        1.0, -1.0, 1.5, 0.5, 12.0, -25.75, 0.01, 0.835, 0.167, 124.0, 16383.5,
+    ]
+    .iter()
+    .map(|&x| F316::from_f64_truncating(x).unwrap())
+    .collect();
     v.extend([
         F316::ZERO,
         F316::NEG_ZERO,
@@ -47,7 +49,9 @@ fn op_table() {
 
 /// FNV-1a over the 8-bit samples.
 fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
 }
 
 #[test]
