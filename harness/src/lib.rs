@@ -2,6 +2,15 @@
 //! Rust reference, the Jack program on the Hack VM emulator and the GPU
 //! kernels, compares them under the right policy and says where they
 //! diverge. See ARCHITECTURE.md for the map.
+//!
+//! Library entry points: [`implementation::Implementation`] (the trait),
+//! [`runner::diff_set`] (run and compare a set), [`compare`] (policies and
+//! the result types).
 
 pub mod cli;
 pub mod commands;
+pub mod compare;
+pub mod implementation;
+pub mod runner;
+pub mod localize;
+pub mod text;

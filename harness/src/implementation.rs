@@ -1,0 +1,233 @@
+//! The one abstraction every implementation is seen through: an
+//! [`Implementation`] evaluates batches of [`Vector`]s of any level it
+//! supports and answers each with an `Outcome<Answer>` (a value, a
+//! `Sys.error` code, a hang or out of domain: a trap is an answer to
+//! compare, never a crash). Float316 implementations can also record an op
+//! trace for one input. One adapter module per implementation lives in
+//! `impls/`.
+
+use common::{Outcome, TraceRecord, F316};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+use vectors::{Level, Vector};
+
+/// The six implementations of the design, as named on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum ImplName {
+    #[serde(rename = "ref-f64")]
+    RefF64,
+    #[serde(rename = "ref-f32")]
+    RefF32,
+    #[serde(rename = "ref-f316")]
+    RefF316,
+    #[serde(rename = "jack")]
+    Jack,
+    #[serde(rename = "gpu-f32")]
+    GpuF32,
+    #[serde(rename = "gpu-f316")]
+    GpuF316,
+}
+
+impl ImplName {
+    /// Every implementation, in the design's order.
+    pub const ALL: [ImplName; 6] = [
+        ImplName::RefF64,
+        ImplName::RefF32,
+        ImplName::RefF316,
+        ImplName::Jack,
+        ImplName::GpuF32,
+        ImplName::GpuF316,
+    ];
+
+    /// The command-line name.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            ImplName::RefF64 => "ref-f64",
+            ImplName::RefF32 => "ref-f32",
+            ImplName::RefF316 => "ref-f316",
+            ImplName::Jack => "jack",
+            ImplName::GpuF32 => "gpu-f32",
+            ImplName::GpuF316 => "gpu-f316",
+        }
+    }
+
+    /// The kind of numbers it computes with.
+    pub const fn numbers(self) -> Numbers {
+        match self {
+            ImplName::RefF64 => Numbers::F64,
+            ImplName::RefF32 | ImplName::GpuF32 => Numbers::F32,
+            ImplName::RefF316 | ImplName::Jack | ImplName::GpuF316 => Numbers::Float316,
+        }
+    }
+}
+
+impl fmt::Display for ImplName {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// An implementation name that is not one of the six.
+#[derive(Debug, thiserror::Error)]
+#[error("unknown implementation `{0}` (expected one of ref-f64, ref-f32, ref-f316, jack, gpu-f32, gpu-f316)")]
+pub struct UnknownImpl(pub String);
+
+impl FromStr for ImplName {
+    type Err = UnknownImpl;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        ImplName::ALL
+            .into_iter()
+            .find(|n| n.as_str() == s)
+            .ok_or_else(|| UnknownImpl(s.to_string()))
+    }
+}
+
+/// The number format an implementation computes with; it decides the
+/// comparison policy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Numbers {
+    /// Float316 triples: compared bit for bit.
+    Float316,
+    /// IEEE f64: the oracle of the error figures.
+    F64,
+    /// IEEE f32.
+    F32,
+}
+
+/// A number as an implementation produced it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Num {
+    /// A Float316 triple.
+    F316(F316),
+    /// An f64.
+    F64(f64),
+    /// An f32.
+    F32(f32),
+}
+
+impl Num {
+    /// The exact real value as f64 (exact for all three kinds).
+    pub fn to_f64(self) -> f64 {
+        match self {
+            Num::F316(v) => v.to_f64(),
+            Num::F64(v) => v,
+            Num::F32(v) => f64::from(v),
+        }
+    }
+}
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Num::F316(v) => write!(f, "{v}"),
+            Num::F64(v) => write!(f, "{v:e}"),
+            Num::F32(v) => write!(f, "{v:e}f32"),
+        }
+    }
+}
+
+/// The whole dithered image: `white[y * width + x]`.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Bitmap {
+    pub width: usize,
+    pub height: usize,
+    pub white: Vec<bool>,
+}
+
+/// What an implementation answers for one vector (wrapped in an
+/// [`Outcome`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum Answer {
+    /// `gt`.
+    Bool { value: bool },
+    /// Every other operation.
+    Num { value: Num },
+    /// A scene query: signed distance and colour.
+    Sdf { sd: Num, col: Num },
+    /// A pixel: the shade before dithering (after the clamp to [0, 1]) and
+    /// whether the dithered pixel is white.
+    Pixel { shade: Num, white: bool },
+    /// The whole image.
+    Image { bitmap: Bitmap },
+    /// One pixel of an image answer, as divergences of the `image` level
+    /// report it (the image carries no shades).
+    Dot { white: bool },
+}
+
+impl fmt::Display for Answer {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Answer::Bool { value } => write!(f, "{value}"),
+            Answer::Num { value } => write!(f, "{value}"),
+            Answer::Sdf { sd, col } => write!(f, "sd {sd}, col {col}"),
+            Answer::Pixel { shade, white } => {
+                write!(f, "shade {shade}, {}", if *white { "white" } else { "black" })
+            }
+            Answer::Image { bitmap } => {
+                let n = bitmap.white.iter().filter(|w| **w).count();
+                write!(f, "{}x{} image, {n} white pixels", bitmap.width, bitmap.height)
+            }
+            Answer::Dot { white } => f.write_str(if *white { "white" } else { "black" }),
+        }
+    }
+}
+
+/// Why an implementation gave no answers at all.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, thiserror::Error)]
+#[serde(tag = "kind", content = "reason", rename_all = "snake_case")]
+pub enum ImplError {
+    /// The implementation cannot run here (no GPU adapter, missing
+    /// snapshot, ...); the reason says why. It is reported, never faked.
+    #[error("unavailable: {0}")]
+    Unavailable(String),
+    /// It has no entry point for this level or cannot trace.
+    #[error("does not support {0}")]
+    Unsupported(String),
+    /// It ran and failed in a way that is not an answer (an internal error).
+    #[error("failed: {0}")]
+    Failed(String),
+}
+
+/// One implementation, as the runner and the localizer see it.
+pub trait Implementation: Send + Sync {
+    /// The name printed in reports: the command-line name, with
+    /// `+FAULT` when a fault is injected (`ref-f316+sqrt-floor-div`).
+    fn label(&self) -> String;
+
+    /// Which of the six it is.
+    fn name(&self) -> ImplName;
+
+    /// The numbers it computes with (decides the comparison policy).
+    fn numbers(&self) -> Numbers {
+        self.name().numbers()
+    }
+
+    /// Whether it answers vectors of `level`.
+    fn supports(&self, level: Level) -> bool;
+
+    /// How many vectors of `level` one [`Implementation::eval`] call should
+    /// get: the runner splits work into batches of this size and runs the
+    /// batches in parallel.
+    fn batch_size(&self, level: Level) -> usize {
+        match level {
+            Level::Ops => 4096,
+            Level::Sdf => 256,
+            Level::Pixels => 4,
+            Level::Image => 1,
+        }
+    }
+
+    /// Answer every vector of `batch` (all of one level), in order.
+    fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError>;
+
+    /// The op trace of one input (see `common::trace` for the convention),
+    /// or `Unsupported` when the implementation cannot trace.
+    fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {
+        let _ = input;
+        Err(ImplError::Unsupported(format!("{}: op traces", self.label())))
+    }
+}

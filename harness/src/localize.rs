@@ -1,0 +1,300 @@
+//! Localization: given two implementations and one input on which they
+//! differ, find the first Float316 operation that differs. Both op traces
+//! are diffed record by record (operation, operands, result; paths are
+//! informative); the answer is the first divergent record with the last
+//! matching one before it (Gameboy-Doctor style), and its *origin*: the
+//! innermost operation that was given identical operands and still
+//! produced a different result (the operation at fault).
+//!
+//! An implementation that cannot trace (gpu-f316) is localized by replay:
+//! after checking against `ref-f316` which side differs, every operation of
+//! ref-f316's trace is run through it alone, and the first one whose result
+//! differs from the trace is the divergent operation.
+
+use crate::implementation::{Answer, ImplError, Implementation};
+use common::{Op, OpValue, Outcome, TraceRecord};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use vectors::{OpVector, Vector};
+
+/// The first point where two traces part.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FirstDivergence {
+    /// Index of the first differing record.
+    pub index: usize,
+    /// The last record on which both agree, for context.
+    pub previous: Option<TraceRecord>,
+    /// A's record there (`None`: A's trace ended).
+    pub a: Option<TraceRecord>,
+    /// B's record there (`None`: B's trace ended).
+    pub b: Option<TraceRecord>,
+}
+
+/// The operation at fault: identical operands, different results.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Origin {
+    /// Index of its record.
+    pub index: usize,
+    pub op: Op,
+    pub args: Vec<common::F316>,
+    /// A's result.
+    pub a: Outcome<OpValue>,
+    /// B's result.
+    pub b: Outcome<OpValue>,
+    /// Its call path (from the trace that has one).
+    pub path: Vec<String>,
+}
+
+/// The answer of `harness localize`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Localization {
+    pub input: Vector,
+    pub a: String,
+    pub b: String,
+    /// A's and B's answers to the input.
+    pub a_answer: Outcome<Answer>,
+    pub b_answer: Outcome<Answer>,
+    /// How the traces were obtained and compared.
+    pub method: String,
+    /// Lengths of the two traces compared.
+    pub trace_lengths: (usize, usize),
+    /// Where the traces part (`None`: they agree throughout).
+    pub first: Option<FirstDivergence>,
+    /// The operation at fault, when one has identical operands.
+    pub origin: Option<Origin>,
+}
+
+impl Localization {
+    /// Whether the two answers differ at all.
+    pub fn differs(&self) -> bool {
+        self.a_answer != self.b_answer
+    }
+
+    /// The operation the divergence is blamed on: the origin, else the
+    /// first divergent record's operation.
+    pub fn blamed_op(&self) -> Option<Op> {
+        self.origin.as_ref().map(|o| o.op).or_else(|| {
+            self.first
+                .as_ref()
+                .and_then(|f| f.a.as_ref().or(f.b.as_ref()).map(|r| r.op))
+        })
+    }
+}
+
+/// Why localization could not be done.
+#[derive(Debug, thiserror::Error)]
+pub enum LocalizeError {
+    #[error("{0}: {1}")]
+    Impl(String, ImplError),
+    #[error("{0}")]
+    Unsupported(String),
+}
+
+fn nested(outer: &TraceRecord, inner: &TraceRecord) -> bool {
+    inner.path.len() > outer.path.len() && inner.path.starts_with(&outer.path)
+}
+
+/// Diff two traces: the first divergent record and the origin.
+pub fn diff_traces(a: &[TraceRecord], b: &[TraceRecord]) -> (Option<FirstDivergence>, Option<Origin>) {
+    let Some(index) = (0..a.len().max(b.len())).find(|&i| match (a.get(i), b.get(i)) {
+        (Some(x), Some(y)) => !x.same_computation(y),
+        _ => true,
+    }) else {
+        return (None, None);
+    };
+    let first = FirstDivergence {
+        index,
+        previous: index.checked_sub(1).map(|i| a[i].clone()),
+        a: a.get(index).cloned(),
+        b: b.get(index).cloned(),
+    };
+    let same_args_different_result = |i: usize| match (a.get(i), b.get(i)) {
+        (Some(x), Some(y)) => x.op == y.op && x.args == y.args && x.result != y.result,
+        _ => false,
+    };
+    // The first record given identical operands that differs, at or after
+    // the first divergence while the traces still line up.
+    let start = (index..a.len().min(b.len()))
+        .take_while(|&i| a[i].op == b[i].op)
+        .find(|&i| same_args_different_result(i));
+    let origin = start.map(|mut at| {
+        // Descend into the operations it calls (they follow it in
+        // pre-order) while one of them is also at fault.
+        loop {
+            let deeper = (at + 1..a.len().min(b.len()))
+                .take_while(|&j| nested(&a[at], &a[j]) || nested(&b[at], &b[j]))
+                .find(|&j| same_args_different_result(j));
+            match deeper {
+                Some(j) => at = j,
+                None => break,
+            }
+        }
+        Origin {
+            index: at,
+            op: a[at].op,
+            args: a[at].args.clone(),
+            a: a[at].result,
+            b: b[at].result,
+            path: if a[at].path.is_empty() { b[at].path.clone() } else { a[at].path.clone() },
+        }
+    });
+    (Some(first), origin)
+}
+
+fn eval_one(imp: &dyn Implementation, input: &Vector) -> Result<Outcome<Answer>, LocalizeError> {
+    imp.eval(std::slice::from_ref(input))
+        .map_err(|e| LocalizeError::Impl(imp.label(), e))?
+        .pop()
+        .ok_or_else(|| LocalizeError::Impl(imp.label(), ImplError::Failed("no answer".into())))
+}
+
+fn to_op_answer(r: &Outcome<OpValue>) -> Outcome<Answer> {
+    r.map(|v| match v {
+        OpValue::Bool(value) => Answer::Bool { value },
+        OpValue::Num(t) => Answer::Num {
+            value: crate::implementation::Num::F316(t),
+        },
+    })
+}
+
+fn from_op_answer(r: Outcome<Answer>) -> Outcome<OpValue> {
+    match r {
+        Outcome::Value(Answer::Bool { value }) => Outcome::Value(OpValue::Bool(value)),
+        Outcome::Value(Answer::Num {
+            value: crate::implementation::Num::F316(t),
+        }) => Outcome::Value(OpValue::Num(t)),
+        // Any other kind of answer is out of place for an operation.
+        Outcome::Value(_) => Outcome::OutOfDomain,
+        Outcome::SysError(c) => Outcome::SysError(c),
+        Outcome::Hang => Outcome::Hang,
+        Outcome::OutOfDomain => Outcome::OutOfDomain,
+    }
+}
+
+/// Replay every operation of `trace` through `imp` (ops level) and build
+/// the trace `imp` would have produced with the same operands: the same
+/// records with `imp`'s results.
+pub fn replay(imp: &dyn Implementation, trace: &[TraceRecord]) -> Result<Vec<TraceRecord>, LocalizeError> {
+    let batch: Vec<Vector> = trace
+        .iter()
+        .map(|r| {
+            Vector::Op(OpVector {
+                category: "replay".into(),
+                op: r.op,
+                a: r.args[0],
+                b: r.args.get(1).copied(),
+            })
+        })
+        .collect();
+    let answers = imp.eval(&batch).map_err(|e| LocalizeError::Impl(imp.label(), e))?;
+    Ok(trace
+        .iter()
+        .zip(answers)
+        .map(|(r, answer)| TraceRecord {
+            result: from_op_answer(answer),
+            ..r.clone()
+        })
+        .collect())
+}
+
+/// Localize the difference between `a` and `b` at `input`. `tracer` is a
+/// clean Float316 implementation that traces (ref-f316), used when one side
+/// cannot trace.
+pub fn localize(
+    a: &dyn Implementation,
+    b: &dyn Implementation,
+    tracer: &dyn Implementation,
+    input: &Vector,
+) -> Result<Localization, LocalizeError> {
+    let a_answer = eval_one(a, input)?;
+    let b_answer = eval_one(b, input)?;
+    let trace_of = |imp: &dyn Implementation| match imp.trace(input) {
+        Ok(t) => Ok(Some(t)),
+        Err(ImplError::Unsupported(_)) => Ok(None),
+        Err(e) => Err(LocalizeError::Impl(imp.label(), e)),
+    };
+    let (ta, tb) = (trace_of(a)?, trace_of(b)?);
+    let (method, ta, tb) = match (ta, tb) {
+        (Some(ta), Some(tb)) => ("op traces of both".to_string(), ta, tb),
+        (ta, tb) => {
+            // One side (at least) cannot trace: find out which side differs
+            // from the clean tracer, and replay its trace through it.
+            let reference_trace = tracer
+                .trace(input)
+                .map_err(|e| LocalizeError::Impl(tracer.label(), e))?;
+            let reference_answer = eval_one(tracer, input)?;
+            let side = |imp: &dyn Implementation, own: Option<Vec<TraceRecord>>, answer: &Outcome<Answer>| {
+                match own {
+                    Some(t) => Ok::<_, LocalizeError>((t, "own trace".to_string())),
+                    None if *answer == reference_answer => {
+                        Ok((reference_trace.clone(), format!("agrees with {}: its trace", tracer.label())))
+                    }
+                    None => Ok((
+                        replay(imp, &reference_trace)?,
+                        format!("{}'s trace replayed op by op", tracer.label()),
+                    )),
+                }
+            };
+            let (ta, ma) = side(a, ta, &a_answer)?;
+            let (tb, mb) = side(b, tb, &b_answer)?;
+            (format!("{}: {ma}; {}: {mb}", a.label(), b.label()), ta, tb)
+        }
+    };
+    let (first, origin) = diff_traces(&ta, &tb);
+    Ok(Localization {
+        input: input.clone(),
+        a: a.label(),
+        b: b.label(),
+        a_answer,
+        b_answer,
+        method,
+        trace_lengths: (ta.len(), tb.len()),
+        first,
+        origin,
+    })
+}
+
+/// The answer of an operation record as an `Answer`, for printing.
+pub fn record_answer(r: &TraceRecord) -> Outcome<Answer> {
+    to_op_answer(&r.result)
+}
+
+impl fmt::Display for Localization {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let w = self.a.len().max(self.b.len());
+        writeln!(f, "input: {}", self.input)?;
+        writeln!(f, "  {:w$}  {}", self.a, self.a_answer)?;
+        writeln!(f, "  {:w$}  {}", self.b, self.b_answer)?;
+        writeln!(f, "traces: {} ({} and {} records)", self.method, self.trace_lengths.0, self.trace_lengths.1)?;
+        let Some(first) = &self.first else {
+            return writeln!(f, "the traces agree on every operation");
+        };
+        writeln!(f, "first divergent operation: record {}", first.index)?;
+        match &first.previous {
+            Some(p) => writeln!(f, "  last match  {p}")?,
+            None => writeln!(f, "  (it is the first record)")?,
+        }
+        for (label, r) in [(&self.a, &first.a), (&self.b, &first.b)] {
+            match r {
+                Some(r) => writeln!(f, "  {label:w$}  {r}")?,
+                None => writeln!(f, "  {label:w$}  (trace ended)")?,
+            }
+        }
+        match &self.origin {
+            Some(o) => {
+                let args: Vec<String> = o.args.iter().map(ToString::to_string).collect();
+                writeln!(
+                    f,
+                    "origin: {}({}) at record {} [{}]",
+                    o.op,
+                    args.join(", "),
+                    o.index,
+                    o.path.join(" > ")
+                )?;
+                writeln!(f, "  {:w$}  = {}", self.a, o.a)?;
+                writeln!(f, "  {:w$}  = {}", self.b, o.b)
+            }
+            None => writeln!(f, "origin: no operation differs on identical operands (the operands differ first)"),
+        }
+    }
+}

@@ -1,0 +1,98 @@
+//! Plain-text rendering of runner results, as `harness diff` prints them.
+//! Deterministic: stable ordering and no timings, so that it can be
+//! snapshot-tested.
+
+use crate::compare::{Comparison, Divergence, Policy};
+use crate::runner::LevelReport;
+use std::fmt::{self, Write};
+
+/// Divergences printed per comparison (all of them are in the JSON report).
+pub const PRINTED: usize = 12;
+
+fn divergence(out: &mut String, c: &Comparison, d: &Divergence) -> fmt::Result {
+    let tolerated = if d.tolerated { ", within policy" } else { "" };
+    writeln!(out, "    #{} {} [{}] {}{tolerated}", d.index, d.input, d.input.category(), d.kind)?;
+    writeln!(out, "        {}: {}", c.a, d.a)?;
+    writeln!(out, "        {}: {}", c.b, d.b)?;
+    if let Some(e) = &d.error {
+        let ulps = e.ulps_f32.map(|u| format!(", {u:.1} ulps f32")).unwrap_or_default();
+        writeln!(out, "        error: abs {:.3e}, rel {:.3e}{ulps}", e.abs, e.rel)?;
+    }
+    if let Some(odd) = &d.odd_one_out {
+        writeln!(out, "        odd one out: {odd}")?;
+    }
+    if let Some(cmd) = &d.localize {
+        writeln!(out, "        localize: {cmd}")?;
+    }
+    if let Some(file) = &d.repro {
+        writeln!(out, "        repro: harness diff {} {} --vectors {file}", c.a, c.b)?;
+    }
+    Ok(())
+}
+
+/// One comparison, as text.
+pub fn comparison(c: &Comparison) -> String {
+    let mut out = String::new();
+    let _ = (|| -> fmt::Result {
+        let policy = match &c.policy {
+            Policy::Exact => "exact (bit-exact triples, same outcome kind)".to_string(),
+            Policy::Error { thresholds: t } => format!(
+                "error figures against {} (abs > {:e} and rel > {:e} diverge; flips over {}%)",
+                c.b,
+                t.max_abs,
+                t.max_rel,
+                100.0 * t.max_flip_fraction
+            ),
+        };
+        writeln!(out, "  {} vs {}: policy {policy}", c.a, c.b)?;
+        if let Some(s) = &c.stats {
+            let ulps = s.max_ulps_f32.map(|u| format!(", max {u:.1} ulps f32")).unwrap_or_default();
+            writeln!(
+                out,
+                "    figures: {} values, max abs {:.3e}, mean abs {:.3e}, max rel {:.3e}{ulps}; {} of {} pixels flip",
+                s.values, s.max_abs, s.mean_abs, s.max_rel, s.flips, s.pixels
+            )?;
+        }
+        for finding in &c.findings {
+            writeln!(out, "    FINDING: {finding}")?;
+        }
+        let total: usize = c.groups.iter().map(|g| g.count).sum();
+        if !c.diverged {
+            let note = if total > 0 { format!(" ({total} differences within policy)") } else { String::new() };
+            writeln!(out, "    no divergence on {} vectors{note}", c.vectors)?;
+        } else {
+            writeln!(out, "    DIVERGENCE: {total} differences on {} vectors", c.vectors)?;
+        }
+        if total == 0 {
+            return Ok(());
+        }
+        writeln!(out, "    groups:")?;
+        for g in &c.groups {
+            let op = g.op.map(|o| format!("{o} / ")).unwrap_or_default();
+            let tolerated = if g.tolerated { ", within policy" } else { "" };
+            writeln!(out, "      {op}{}: {} x{} (first #{}){tolerated}", g.category, g.kind, g.count, g.first)?;
+        }
+        writeln!(out, "    divergences:")?;
+        for d in c.divergences.iter().take(PRINTED) {
+            divergence(&mut out, c, d)?;
+        }
+        let more = total.saturating_sub(PRINTED.min(c.divergences.len()));
+        if more > 0 {
+            writeln!(out, "    ... and {more} more (see the JSON report)")?;
+        }
+        Ok(())
+    })();
+    out
+}
+
+/// A level's report, as text.
+pub fn level_report(r: &LevelReport) -> String {
+    let mut out = format!("level {}: set {} ({} vectors)\n", r.level, r.set, r.vectors);
+    for (label, err) in r.failures() {
+        out += &format!("  {label}: {err}\n");
+    }
+    for c in &r.comparisons {
+        out += &comparison(c);
+    }
+    out
+}
