@@ -237,7 +237,11 @@ fn point_error(subject: &[Num], oracle: &[Num], subject_numbers: Numbers) -> Opt
     let mut worst: Option<PointError> = None;
     for (s, o) in subject.iter().zip(oracle) {
         let (s, o) = (s.to_f64(), o.to_f64());
-        let abs = if s.is_nan() && o.is_nan() { 0.0 } else { (s - o).abs() };
+        let abs = if s.is_nan() && o.is_nan() {
+            0.0
+        } else {
+            (s - o).abs()
+        };
         let abs = if abs.is_nan() { f64::INFINITY } else { abs };
         let rel = if o == 0.0 { abs } else { abs / o.abs() };
         let ulps_f32 = (subject_numbers == Numbers::F32).then(|| ulps_f32(s, o));
@@ -316,9 +320,10 @@ fn exact(index: usize, input: &Vector, a: &Outcome<Answer>, b: &Outcome<Answer>)
         return found(kind);
     }
     match (a, b) {
-        (Outcome::Value(Answer::Image { bitmap: x }), Outcome::Value(Answer::Image { bitmap: y })) => {
-            image_differences(x, y, DiffKind::Value, false, None)
-        }
+        (
+            Outcome::Value(Answer::Image { bitmap: x }),
+            Outcome::Value(Answer::Image { bitmap: y }),
+        ) => image_differences(x, y, DiffKind::Value, false, None),
         _ if a != b => found(DiffKind::Value),
         _ => Vec::new(),
     }
@@ -397,7 +402,10 @@ fn exact_in_f32(answers: &[Outcome<Answer>]) -> (usize, usize) {
         .map(Num::to_f64)
         .filter(|v| v.is_finite())
         .collect();
-    let exact = values.iter().filter(|v| f64::from(**v as f32) == **v).count();
+    let exact = values
+        .iter()
+        .filter(|v| f64::from(**v as f32) == **v)
+        .count();
     (exact, values.len())
 }
 
@@ -421,7 +429,9 @@ pub fn compare(set: &vectors::VectorSet, sides: &Sides) -> Comparison {
         let (a, b) = (&sides.a[i], &sides.b[i]);
         found.extend(match &policy {
             Policy::Exact => exact(i, input, a, b),
-            Policy::Error { thresholds } => error(i, input, a, b, sides.a_numbers, thresholds, &mut stats),
+            Policy::Error { thresholds } => {
+                error(i, input, a, b, sides.a_numbers, thresholds, &mut stats)
+            }
         });
     }
     let mut findings = Vec::new();
@@ -550,10 +560,17 @@ mod tests {
     }
 
     fn num(t: F316) -> Outcome<Answer> {
-        Outcome::Value(Answer::Num { value: Num::F316(t) })
+        Outcome::Value(Answer::Num {
+            value: Num::F316(t),
+        })
     }
 
-    fn sides<'a>(a: &'a [Outcome<Answer>], b: &'a [Outcome<Answer>], na: Numbers, nb: Numbers) -> Sides<'a> {
+    fn sides<'a>(
+        a: &'a [Outcome<Answer>],
+        b: &'a [Outcome<Answer>],
+        na: Numbers,
+        nb: Numbers,
+    ) -> Sides<'a> {
         Sides {
             a_label: "A",
             a_numbers: na,
@@ -585,20 +602,30 @@ mod tests {
         ];
         let c = compare(&set, &sides(&a, &b, Numbers::Float316, Numbers::Float316));
         assert!(c.diverged);
-        let kinds: Vec<(usize, DiffKind)> = c.divergences.iter().map(|d| (d.index, d.kind)).collect();
+        let kinds: Vec<(usize, DiffKind)> =
+            c.divergences.iter().map(|d| (d.index, d.kind)).collect();
         assert_eq!(
             kinds,
-            [(1, DiffKind::Value), (2, DiffKind::ErrorCode), (3, DiffKind::OutcomeKind), (4, DiffKind::Hang)]
+            [
+                (1, DiffKind::Value),
+                (2, DiffKind::ErrorCode),
+                (3, DiffKind::OutcomeKind),
+                (4, DiffKind::Hang)
+            ]
         );
         // Groups: same op, category and kind together, in a stable order.
-        let g: Vec<(String, DiffKind, usize)> = c.groups.iter().map(|g| (g.category.clone(), g.kind, g.count)).collect();
+        let g: Vec<(String, DiffKind, usize)> = c
+            .groups
+            .iter()
+            .map(|g| (g.category.clone(), g.kind, g.count))
+            .collect();
         assert_eq!(
             g,
             [
-                ("even".to_string(), DiffKind::OutcomeKind, 1),
                 ("even".to_string(), DiffKind::ErrorCode, 1),
                 ("even".to_string(), DiffKind::Hang, 1),
                 ("odd".to_string(), DiffKind::Value, 1),
+                ("odd".to_string(), DiffKind::OutcomeKind, 1),
             ]
         );
         let same = compare(&set, &sides(&a, &a, Numbers::Float316, Numbers::Float316));
@@ -629,16 +656,27 @@ mod tests {
     fn an_f32_oracle_posing_as_f64_is_found() {
         let set = ops_set(20);
         let thirds: Vec<f64> = (0..20).map(|i| (i as f64 + 1.0) / 3.0).collect();
-        let f64s: Vec<_> = thirds.iter().map(|&x| Outcome::Value(Answer::Num { value: Num::F64(x) })).collect();
+        let f64s: Vec<_> = thirds
+            .iter()
+            .map(|&x| Outcome::Value(Answer::Num { value: Num::F64(x) }))
+            .collect();
         let f32s: Vec<_> = thirds
             .iter()
-            .map(|&x| Outcome::Value(Answer::Num { value: Num::F64(f64::from(x as f32)) }))
+            .map(|&x| {
+                Outcome::Value(Answer::Num {
+                    value: Num::F64(f64::from(x as f32)),
+                })
+            })
             .collect();
         let honest = compare(&set, &sides(&f32s, &f64s, Numbers::F32, Numbers::F64));
         assert!(honest.findings.is_empty());
         let fooled = compare(&set, &sides(&f64s, &f32s, Numbers::F32, Numbers::F64));
         assert!(fooled.diverged);
-        assert!(fooled.findings[0].contains("is not f64"), "{:?}", fooled.findings);
+        assert!(
+            fooled.findings[0].contains("is not f64"),
+            "{:?}",
+            fooled.findings
+        );
     }
 
     #[test]

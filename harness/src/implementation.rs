@@ -165,11 +165,19 @@ impl fmt::Display for Answer {
             Answer::Num { value } => write!(f, "{value}"),
             Answer::Sdf { sd, col } => write!(f, "sd {sd}, col {col}"),
             Answer::Pixel { shade, white } => {
-                write!(f, "shade {shade}, {}", if *white { "white" } else { "black" })
+                write!(
+                    f,
+                    "shade {shade}, {}",
+                    if *white { "white" } else { "black" }
+                )
             }
             Answer::Image { bitmap } => {
                 let n = bitmap.white.iter().filter(|w| **w).count();
-                write!(f, "{}x{} image, {n} white pixels", bitmap.width, bitmap.height)
+                write!(
+                    f,
+                    "{}x{} image, {n} white pixels",
+                    bitmap.width, bitmap.height
+                )
             }
             Answer::Dot { white } => f.write_str(if *white { "white" } else { "black" }),
         }
@@ -228,6 +236,9 @@ pub trait Implementation: Send + Sync {
     /// or `Unsupported` when the implementation cannot trace.
     fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {
         let _ = input;
-        Err(ImplError::Unsupported(format!("{}: op traces", self.label())))
+        Err(ImplError::Unsupported(format!(
+            "{}: op traces",
+            self.label()
+        )))
     }
 }

@@ -11,6 +11,6 @@ pub mod cli;
 pub mod commands;
 pub mod compare;
 pub mod implementation;
-pub mod runner;
 pub mod localize;
+pub mod runner;
 pub mod text;

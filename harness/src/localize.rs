@@ -95,7 +95,10 @@ fn nested(outer: &TraceRecord, inner: &TraceRecord) -> bool {
 }
 
 /// Diff two traces: the first divergent record and the origin.
-pub fn diff_traces(a: &[TraceRecord], b: &[TraceRecord]) -> (Option<FirstDivergence>, Option<Origin>) {
+pub fn diff_traces(
+    a: &[TraceRecord],
+    b: &[TraceRecord],
+) -> (Option<FirstDivergence>, Option<Origin>) {
     let Some(index) = (0..a.len().max(b.len())).find(|&i| match (a.get(i), b.get(i)) {
         (Some(x), Some(y)) => !x.same_computation(y),
         _ => true,
@@ -135,7 +138,11 @@ pub fn diff_traces(a: &[TraceRecord], b: &[TraceRecord]) -> (Option<FirstDiverge
             args: a[at].args.clone(),
             a: a[at].result,
             b: b[at].result,
-            path: if a[at].path.is_empty() { b[at].path.clone() } else { a[at].path.clone() },
+            path: if a[at].path.is_empty() {
+                b[at].path.clone()
+            } else {
+                a[at].path.clone()
+            },
         }
     });
     (Some(first), origin)
@@ -174,7 +181,10 @@ fn from_op_answer(r: Outcome<Answer>) -> Outcome<OpValue> {
 /// Replay every operation of `trace` through `imp` (ops level) and build
 /// the trace `imp` would have produced with the same operands: the same
 /// records with `imp`'s results.
-pub fn replay(imp: &dyn Implementation, trace: &[TraceRecord]) -> Result<Vec<TraceRecord>, LocalizeError> {
+pub fn replay(
+    imp: &dyn Implementation,
+    trace: &[TraceRecord],
+) -> Result<Vec<TraceRecord>, LocalizeError> {
     let batch: Vec<Vector> = trace
         .iter()
         .map(|r| {
@@ -186,7 +196,9 @@ pub fn replay(imp: &dyn Implementation, trace: &[TraceRecord]) -> Result<Vec<Tra
             })
         })
         .collect();
-    let answers = imp.eval(&batch).map_err(|e| LocalizeError::Impl(imp.label(), e))?;
+    let answers = imp
+        .eval(&batch)
+        .map_err(|e| LocalizeError::Impl(imp.label(), e))?;
     Ok(trace
         .iter()
         .zip(answers)
@@ -223,12 +235,15 @@ pub fn localize(
                 .trace(input)
                 .map_err(|e| LocalizeError::Impl(tracer.label(), e))?;
             let reference_answer = eval_one(tracer, input)?;
-            let side = |imp: &dyn Implementation, own: Option<Vec<TraceRecord>>, answer: &Outcome<Answer>| {
+            let side = |imp: &dyn Implementation,
+                        own: Option<Vec<TraceRecord>>,
+                        answer: &Outcome<Answer>| {
                 match own {
                     Some(t) => Ok::<_, LocalizeError>((t, "own trace".to_string())),
-                    None if *answer == reference_answer => {
-                        Ok((reference_trace.clone(), format!("agrees with {}: its trace", tracer.label())))
-                    }
+                    None if *answer == reference_answer => Ok((
+                        reference_trace.clone(),
+                        format!("agrees with {}: its trace", tracer.label()),
+                    )),
                     None => Ok((
                         replay(imp, &reference_trace)?,
                         format!("{}'s trace replayed op by op", tracer.label()),
@@ -265,7 +280,11 @@ impl fmt::Display for Localization {
         writeln!(f, "input: {}", self.input)?;
         writeln!(f, "  {:w$}  {}", self.a, self.a_answer)?;
         writeln!(f, "  {:w$}  {}", self.b, self.b_answer)?;
-        writeln!(f, "traces: {} ({} and {} records)", self.method, self.trace_lengths.0, self.trace_lengths.1)?;
+        writeln!(
+            f,
+            "traces: {} ({} and {} records)",
+            self.method, self.trace_lengths.0, self.trace_lengths.1
+        )?;
         let Some(first) = &self.first else {
             return writeln!(f, "the traces agree on every operation");
         };
@@ -294,7 +313,10 @@ impl fmt::Display for Localization {
                 writeln!(f, "  {:w$}  = {}", self.a, o.a)?;
                 writeln!(f, "  {:w$}  = {}", self.b, o.b)
             }
-            None => writeln!(f, "origin: no operation differs on identical operands (the operands differ first)"),
+            None => writeln!(
+                f,
+                "origin: no operation differs on identical operands (the operands differ first)"
+            ),
         }
     }
 }

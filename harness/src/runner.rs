@@ -133,7 +133,9 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
             let mine = results.iter().filter(|(j, _, _)| *j == i);
             let seconds = mine.clone().map(|(_, _, s)| s).sum();
             let answers = if imp.supports(set.level) {
-                mine.map(|(_, a, _)| a.clone()).collect::<Result<Vec<Vec<_>>, _>>().map(|v| v.concat())
+                mine.map(|(_, a, _)| a.clone())
+                    .collect::<Result<Vec<Vec<_>>, _>>()
+                    .map(|v| v.concat())
             } else {
                 Err(ImplError::Unsupported(format!("the {} level", set.level)))
             };
@@ -149,16 +151,20 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
 
 /// The localize command that reproduces a divergence.
 pub fn localize_command(a: &str, b: &str, input: &Vector) -> Option<String> {
-    input.localize_args().map(|args| format!("harness localize {a} {b} {args}"))
+    input
+        .localize_args()
+        .map(|args| format!("harness localize {a} {b} {args}"))
 }
 
 /// The answer of one run to one divergence's input (for the image level,
 /// the pixel's colour).
 fn answer_at(run: &[Outcome<Answer>], index: usize, level: Level) -> Outcome<Answer> {
     match (level, run.first()) {
-        (Level::Image, Some(Outcome::Value(Answer::Image { bitmap }))) => Outcome::Value(Answer::Dot {
-            white: bitmap.white[index],
-        }),
+        (Level::Image, Some(Outcome::Value(Answer::Image { bitmap }))) => {
+            Outcome::Value(Answer::Dot {
+                white: bitmap.white[index],
+            })
+        }
         (Level::Image, Some(other)) => other.clone(),
         _ => run[index].clone(),
     }
@@ -177,8 +183,10 @@ pub fn compare_runs(set: &VectorSet, runs: &[ImplRun]) -> Vec<Comparison> {
     if first.label != runs[0].label {
         return Vec::new();
     }
-    let exact_runs: Vec<&(&ImplRun, &Vec<Outcome<Answer>>)> =
-        answered.iter().filter(|(r, _)| r.numbers == Numbers::Float316).collect();
+    let exact_runs: Vec<&(&ImplRun, &Vec<Outcome<Answer>>)> = answered
+        .iter()
+        .filter(|(r, _)| r.numbers == Numbers::Float316)
+        .collect();
     others
         .iter()
         .map(|(other, other_answers)| {
@@ -203,8 +211,10 @@ pub fn compare_runs(set: &VectorSet, runs: &[ImplRun]) -> Vec<Comparison> {
             if comparison.policy == Policy::Exact {
                 for d in &mut comparison.divergences {
                     d.localize = localize_command(&sa.label, &sb.label, &d.input);
-                    let answers: Vec<Outcome<Answer>> =
-                        exact_runs.iter().map(|(_, a)| answer_at(a, d.index, set.level)).collect();
+                    let answers: Vec<Outcome<Answer>> = exact_runs
+                        .iter()
+                        .map(|(_, a)| answer_at(a, d.index, set.level))
+                        .collect();
                     let refs: Vec<&Outcome<Answer>> = answers.iter().collect();
                     d.odd_one_out = odd_one_out(&refs).map(|i| exact_runs[i].0.label.clone());
                 }
@@ -215,7 +225,11 @@ pub fn compare_runs(set: &VectorSet, runs: &[ImplRun]) -> Vec<Comparison> {
 }
 
 /// Run a set through the implementations and compare them.
-pub fn diff_set(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) -> LevelReport {
+pub fn diff_set(
+    impls: &[&dyn Implementation],
+    set: &VectorSet,
+    options: RunOptions,
+) -> LevelReport {
     let runs = run(impls, set, options);
     let comparisons = compare_runs(set, &runs);
     LevelReport {

@@ -11,12 +11,26 @@ pub const PRINTED: usize = 12;
 
 fn divergence(out: &mut String, c: &Comparison, d: &Divergence) -> fmt::Result {
     let tolerated = if d.tolerated { ", within policy" } else { "" };
-    writeln!(out, "    #{} {} [{}] {}{tolerated}", d.index, d.input, d.input.category(), d.kind)?;
+    writeln!(
+        out,
+        "    #{} {} [{}] {}{tolerated}",
+        d.index,
+        d.input,
+        d.input.category(),
+        d.kind
+    )?;
     writeln!(out, "        {}: {}", c.a, d.a)?;
     writeln!(out, "        {}: {}", c.b, d.b)?;
     if let Some(e) = &d.error {
-        let ulps = e.ulps_f32.map(|u| format!(", {u:.1} ulps f32")).unwrap_or_default();
-        writeln!(out, "        error: abs {:.3e}, rel {:.3e}{ulps}", e.abs, e.rel)?;
+        let ulps = e
+            .ulps_f32
+            .map(|u| format!(", {u:.1} ulps f32"))
+            .unwrap_or_default();
+        writeln!(
+            out,
+            "        error: abs {:.3e}, rel {:.3e}{ulps}",
+            e.abs, e.rel
+        )?;
     }
     if let Some(odd) = &d.odd_one_out {
         writeln!(out, "        odd one out: {odd}")?;
@@ -25,7 +39,11 @@ fn divergence(out: &mut String, c: &Comparison, d: &Divergence) -> fmt::Result {
         writeln!(out, "        localize: {cmd}")?;
     }
     if let Some(file) = &d.repro {
-        writeln!(out, "        repro: harness diff {} {} --vectors {file}", c.a, c.b)?;
+        writeln!(
+            out,
+            "        repro: harness diff {} {} --vectors {file}",
+            c.a, c.b
+        )?;
     }
     Ok(())
 }
@@ -46,7 +64,10 @@ pub fn comparison(c: &Comparison) -> String {
         };
         writeln!(out, "  {} vs {}: policy {policy}", c.a, c.b)?;
         if let Some(s) = &c.stats {
-            let ulps = s.max_ulps_f32.map(|u| format!(", max {u:.1} ulps f32")).unwrap_or_default();
+            let ulps = s
+                .max_ulps_f32
+                .map(|u| format!(", max {u:.1} ulps f32"))
+                .unwrap_or_default();
             writeln!(
                 out,
                 "    figures: {} values, max abs {:.3e}, mean abs {:.3e}, max rel {:.3e}{ulps}; {} of {} pixels flip",
@@ -58,10 +79,18 @@ pub fn comparison(c: &Comparison) -> String {
         }
         let total: usize = c.groups.iter().map(|g| g.count).sum();
         if !c.diverged {
-            let note = if total > 0 { format!(" ({total} differences within policy)") } else { String::new() };
+            let note = if total > 0 {
+                format!(" ({total} differences within policy)")
+            } else {
+                String::new()
+            };
             writeln!(out, "    no divergence on {} vectors{note}", c.vectors)?;
         } else {
-            writeln!(out, "    DIVERGENCE: {total} differences on {} vectors", c.vectors)?;
+            writeln!(
+                out,
+                "    DIVERGENCE: {total} differences on {} vectors",
+                c.vectors
+            )?;
         }
         if total == 0 {
             return Ok(());
@@ -70,7 +99,11 @@ pub fn comparison(c: &Comparison) -> String {
         for g in &c.groups {
             let op = g.op.map(|o| format!("{o} / ")).unwrap_or_default();
             let tolerated = if g.tolerated { ", within policy" } else { "" };
-            writeln!(out, "      {op}{}: {} x{} (first #{}){tolerated}", g.category, g.kind, g.count, g.first)?;
+            writeln!(
+                out,
+                "      {op}{}: {} x{} (first #{}){tolerated}",
+                g.category, g.kind, g.count, g.first
+            )?;
         }
         writeln!(out, "    divergences:")?;
         for d in c.divergences.iter().take(PRINTED) {

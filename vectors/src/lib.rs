@@ -10,6 +10,6 @@ pub mod set;
 mod validate;
 
 pub use set::{
-    load_named, sets_dir, ImageVector, Level, OpVector, PixelVector, SdfVector, SetError, Vector, VectorSet,
-    FORMAT_VERSION,
+    load_named, sets_dir, ImageVector, Level, OpVector, PixelVector, SdfVector, SetError, Vector,
+    VectorSet, FORMAT_VERSION,
 };

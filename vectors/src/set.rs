@@ -180,12 +180,7 @@ impl Vector {
                 Some(b) => format!("--op {} --a {} --b {}", v.op, t(v.a), t(b)),
                 None => format!("--op {} --a {}", v.op, t(v.a)),
             }),
-            Vector::Sdf(v) => Some(format!(
-                "--point {}:{}:{}",
-                t(v.p[0]),
-                t(v.p[1]),
-                t(v.p[2])
-            )),
+            Vector::Sdf(v) => Some(format!("--point {}:{}:{}", t(v.p[0]), t(v.p[1]), t(v.p[2]))),
             Vector::Pixel(v) => Some(format!("--pixel {},{}", v.x, v.y)),
             Vector::Image(_) => None,
         }
@@ -254,7 +249,13 @@ pub enum SetError {
 
 impl VectorSet {
     /// A set from its parts, with the current format version.
-    pub fn new(name: &str, level: Level, description: &str, seed: Option<u64>, vectors: Vec<Vector>) -> Self {
+    pub fn new(
+        name: &str,
+        level: Level,
+        description: &str,
+        seed: Option<u64>,
+        vectors: Vec<Vector>,
+    ) -> Self {
         VectorSet {
             format_version: FORMAT_VERSION,
             name: name.to_string(),
@@ -268,7 +269,13 @@ impl VectorSet {
     /// A one-vector set reproducing one input (saved as a one-line file).
     pub fn repro(vector: Vector) -> Self {
         let name = format!("repro-{}", vector.slug());
-        VectorSet::new(&name, vector.level(), "one failing input, written by harness diff", None, vec![vector])
+        VectorSet::new(
+            &name,
+            vector.level(),
+            "one failing input, written by harness diff",
+            None,
+            vec![vector],
+        )
     }
 
     /// Load and validate a set file.

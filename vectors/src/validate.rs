@@ -2,7 +2,9 @@
 //! with the path of the offending field (`vectors[12].a: expected [s,e,m]`)
 //! instead of a line and column.
 
-use crate::set::{ImageVector, Level, OpVector, PixelVector, SdfVector, Vector, VectorSet, FORMAT_VERSION};
+use crate::set::{
+    ImageVector, Level, OpVector, PixelVector, SdfVector, Vector, VectorSet, FORMAT_VERSION,
+};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{Op, F316};
 use serde_json::{Map, Value};
@@ -15,7 +17,8 @@ fn err<T>(path: &str, message: impl Into<String>) -> Result<T, FieldError> {
 }
 
 fn object<'a>(v: &'a Value, path: &str) -> Result<&'a Map<String, Value>, FieldError> {
-    v.as_object().map_or_else(|| err(path, "expected an object"), Ok)
+    v.as_object()
+        .map_or_else(|| err(path, "expected an object"), Ok)
 }
 
 fn field<'a>(obj: &'a Map<String, Value>, path: &str, name: &str) -> Result<&'a Value, FieldError> {
@@ -24,7 +27,9 @@ fn field<'a>(obj: &'a Map<String, Value>, path: &str, name: &str) -> Result<&'a 
 }
 
 fn string(v: &Value, path: &str) -> Result<String, FieldError> {
-    v.as_str().map(str::to_string).map_or_else(|| err(path, "expected a string"), Ok)
+    v.as_str()
+        .map(str::to_string)
+        .map_or_else(|| err(path, "expected a string"), Ok)
 }
 
 fn int_in(v: &Value, path: &str, lo: i64, hi: i64) -> Result<i64, FieldError> {
@@ -48,7 +53,10 @@ fn triple(v: &Value, path: &str) -> Result<F316, FieldError> {
 
 fn known_fields(obj: &Map<String, Value>, path: &str, allowed: &[&str]) -> Result<(), FieldError> {
     match obj.keys().find(|k| !allowed.contains(&k.as_str())) {
-        Some(k) => err(&format!("{path}.{k}"), format!("unknown field (expected {})", allowed.join(", "))),
+        Some(k) => err(
+            &format!("{path}.{k}"),
+            format!("unknown field (expected {})", allowed.join(", ")),
+        ),
         None => Ok(()),
     }
 }
@@ -62,14 +70,23 @@ fn op_vector(obj: &Map<String, Value>, path: &str, category: String) -> Result<V
     let a = triple(field(obj, path, "a")?, &format!("{path}.a"))?;
     let b = match (op.arity(), obj.get("b")) {
         (2, Some(b)) => Some(triple(b, &format!("{path}.b"))?),
-        (2, None) => return err(&format!("{path}.b"), format!("missing field (`{op}` takes two operands)")),
+        (2, None) => {
+            return err(
+                &format!("{path}.b"),
+                format!("missing field (`{op}` takes two operands)"),
+            )
+        }
         (_, Some(_)) => return err(&format!("{path}.b"), format!("`{op}` takes one operand")),
         (_, None) => None,
     };
     Ok(Vector::Op(OpVector { category, op, a, b }))
 }
 
-fn sdf_vector(obj: &Map<String, Value>, path: &str, category: String) -> Result<Vector, FieldError> {
+fn sdf_vector(
+    obj: &Map<String, Value>,
+    path: &str,
+    category: String,
+) -> Result<Vector, FieldError> {
     known_fields(obj, path, &["category", "p"])?;
     let p_path = format!("{path}.p");
     let items = match field(obj, path, "p")?.as_array() {
@@ -83,10 +100,24 @@ fn sdf_vector(obj: &Map<String, Value>, path: &str, category: String) -> Result<
     Ok(Vector::Sdf(SdfVector { category, p }))
 }
 
-fn pixel_vector(obj: &Map<String, Value>, path: &str, category: String) -> Result<Vector, FieldError> {
+fn pixel_vector(
+    obj: &Map<String, Value>,
+    path: &str,
+    category: String,
+) -> Result<Vector, FieldError> {
     known_fields(obj, path, &["category", "x", "y"])?;
-    let x = int_in(field(obj, path, "x")?, &format!("{path}.x"), 0, WIDTH as i64 - 1)? as u16;
-    let y = int_in(field(obj, path, "y")?, &format!("{path}.y"), 0, HEIGHT as i64 - 1)? as u16;
+    let x = int_in(
+        field(obj, path, "x")?,
+        &format!("{path}.x"),
+        0,
+        WIDTH as i64 - 1,
+    )? as u16;
+    let y = int_in(
+        field(obj, path, "y")?,
+        &format!("{path}.y"),
+        0,
+        HEIGHT as i64 - 1,
+    )? as u16;
     Ok(Vector::Pixel(PixelVector { category, x, y }))
 }
 
@@ -107,10 +138,26 @@ fn vector(v: &Value, path: &str, level: Level) -> Result<Vector, FieldError> {
 /// Build a set from parsed JSON, checking every field.
 pub(crate) fn set_from_value(v: &Value) -> Result<VectorSet, FieldError> {
     let obj = object(v, "(top level)")?;
-    known_fields(obj, "(top level)", &["format_version", "name", "level", "description", "seed", "vectors"])
-        .map_err(|(p, m)| (p.trim_start_matches("(top level).").to_string(), m))?;
+    known_fields(
+        obj,
+        "(top level)",
+        &[
+            "format_version",
+            "name",
+            "level",
+            "description",
+            "seed",
+            "vectors",
+        ],
+    )
+    .map_err(|(p, m)| (p.trim_start_matches("(top level).").to_string(), m))?;
     let top = |name: &str| obj.get(name).map_or_else(|| err(name, "missing field"), Ok);
-    let version = int_in(top("format_version")?, "format_version", 0, i64::from(u32::MAX))? as u32;
+    let version = int_in(
+        top("format_version")?,
+        "format_version",
+        0,
+        i64::from(u32::MAX),
+    )? as u32;
     if version != FORMAT_VERSION {
         return err(
             "format_version",
@@ -118,13 +165,18 @@ pub(crate) fn set_from_value(v: &Value) -> Result<VectorSet, FieldError> {
         );
     }
     let name = string(top("name")?, "name")?;
-    let level: Level = string(top("level")?, "level")?.parse().map_err(|m| ("level".to_string(), m))?;
+    let level: Level = string(top("level")?, "level")?
+        .parse()
+        .map_err(|m| ("level".to_string(), m))?;
     let description = match obj.get("description") {
         Some(d) => string(d, "description")?,
         None => String::new(),
     };
     let seed = match obj.get("seed") {
-        Some(s) => Some(s.as_u64().map_or_else(|| err("seed", "expected an unsigned integer"), Ok)?),
+        Some(s) => Some(
+            s.as_u64()
+                .map_or_else(|| err("seed", "expected an unsigned integer"), Ok)?,
+        ),
         None => None,
     };
     let items = top("vectors")?
@@ -158,11 +210,15 @@ mod tests {
         let head = r#"{"format_version":1,"name":"t","level":"ops","vectors":["#;
         let good = r#"{"category":"c","op":"add","a":[0,127,8192],"b":[0,0,0]}"#;
         assert_eq!(
-            error_of(&format!(r#"{head}{good},{{"category":"c","op":"sqrt","a":[0,1]}}]}}"#)),
+            error_of(&format!(
+                r#"{head}{good},{{"category":"c","op":"sqrt","a":[0,1]}}]}}"#
+            )),
             "t.json: vectors[1].a: expected [s,e,m] (three 16-bit integers)"
         );
         assert_eq!(
-            error_of(&format!(r#"{head}{{"category":"c","op":"add","a":[0,1,2]}}]}}"#)),
+            error_of(&format!(
+                r#"{head}{{"category":"c","op":"add","a":[0,1,2]}}]}}"#
+            )),
             "t.json: vectors[0].b: missing field (`add` takes two operands)"
         );
         assert_eq!(
@@ -174,15 +230,22 @@ mod tests {
             "t.json: format_version: this harness reads format 1, the file has 2"
         );
         assert_eq!(
-            error_of(r#"{"format_version":1,"name":"t","level":"pixels","vectors":[{"category":"c","x":512,"y":0}]}"#),
+            error_of(
+                r#"{"format_version":1,"name":"t","level":"pixels","vectors":[{"category":"c","x":512,"y":0}]}"#
+            ),
             "t.json: vectors[0].x: expected an integer in 0..=511"
         );
         assert_eq!(
-            error_of(r#"{"format_version":1,"name":"t","level":"sdf","vectors":[{"category":"c","p":[[0,0,0],[0,0,0],[0,0,70000]]}]}"#),
+            error_of(
+                r#"{"format_version":1,"name":"t","level":"sdf","vectors":[{"category":"c","p":[[0,0,0],[0,0,0],[0,0,70000]]}]}"#
+            ),
             "t.json: vectors[0].p[2]: expected [s,e,m] (three 16-bit integers)"
         );
         assert!(error_of("{").starts_with("t.json: not valid JSON"));
-        assert_eq!(error_of(r#"{"format_version":1,"name":"t","level":"ops"}"#), "t.json: vectors: missing field");
+        assert_eq!(
+            error_of(r#"{"format_version":1,"name":"t","level":"ops"}"#),
+            "t.json: vectors: missing field"
+        );
     }
 
     #[test]

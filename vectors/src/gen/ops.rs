@@ -72,7 +72,8 @@ fn with_sign(v: F316, s: i16) -> F316 {
 /// category means nothing for that operation.
 fn operands(d: &mut Draw, category: &str, op: Op) -> Option<(F316, Option<F316>)> {
     let binary = op.arity() == 2;
-    let second = |d: &mut Draw, s: &dyn Fn(&mut Draw) -> F316| if binary { Some(s(d)) } else { None };
+    let second =
+        |d: &mut Draw, s: &dyn Fn(&mut Draw) -> F316| if binary { Some(s(d)) } else { None };
     let draw_any = |d: &mut Draw| d.one(&any_normalised());
     let draw_scene = |d: &mut Draw| d.one(&scene_magnitude());
     Some(match category {
@@ -110,7 +111,8 @@ fn operands(d: &mut Draw, category: &str, op: Op) -> Option<(F316, Option<F316>)
             }
         }
         "mantissa-carry" => {
-            let carry = |d: &mut Draw| F316::new(0, d.one(&(120..=134i16)), d.one(&(16300..=16383i16)));
+            let carry =
+                |d: &mut Draw| F316::new(0, d.one(&(120..=134i16)), d.one(&(16300..=16383i16)));
             (carry(d), second(d, &carry))
         }
         "underflow" => {
@@ -123,7 +125,11 @@ fn operands(d: &mut Draw, category: &str, op: Op) -> Option<(F316, Option<F316>)
         }
         "underflow-fed-back" => {
             let u = d.one(&underflowed());
-            let u = if matches!(op, Op::Sqrt | Op::InvSqrt) { with_sign(u, 0) } else { u };
+            let u = if matches!(op, Op::Sqrt | Op::InvSqrt) {
+                with_sign(u, 0)
+            } else {
+                u
+            };
             (u, second(d, &draw_scene))
         }
         "tiny-huge" => {
@@ -153,11 +159,21 @@ fn operands(d: &mut Draw, category: &str, op: Op) -> Option<(F316, Option<F316>)
         }
         "domain-edge" if matches!(op, Op::Sqrt | Op::InvSqrt) => {
             // Negative inputs, including -0: Sys.error.
-            (F316::new(1, d.one(&(0..=140i16)), pick(d, &[0i16, 8192, 12000, 16383])), None)
+            (
+                F316::new(
+                    1,
+                    d.one(&(0..=140i16)),
+                    pick(d, &[0i16, 8192, 12000, 16383]),
+                ),
+                None,
+            )
         }
         "exponent-zero" if !binary => {
             let e = d.one(&(0..=3i16));
-            (F316::new(d.one(&(0..=1i16)), e, pick(d, &[0i16, 8192, 16383])), None)
+            (
+                F316::new(d.one(&(0..=1i16)), e, pick(d, &[0i16, 8192, 16383])),
+                None,
+            )
         }
         "hang" => hang_case(d, op)?,
         "wide-exponent" => {
@@ -176,7 +192,10 @@ fn hang_case(d: &mut Draw, op: Op) -> Option<(F316, Option<F316>)> {
     match op {
         Op::Add => Some((F316::new(0, e + 1, 0), Some(F316::new(1, e, 0)))),
         Op::Sub => Some((F316::new(0, e + 1, 0), Some(F316::new(0, e, 0)))),
-        Op::Div => Some((F316::new(d.one(&(0..=1i16)), e, 0), Some(d.one(&scene_magnitude())))),
+        Op::Div => Some((
+            F316::new(d.one(&(0..=1i16)), e, 0),
+            Some(d.one(&scene_magnitude())),
+        )),
         _ => None,
     }
 }
@@ -209,7 +228,9 @@ pub fn generate(seed: u64, per_category: usize) -> Vec<Vector> {
 /// operations: 4,194,306 values. `slice` takes every n-th value only.
 pub fn all_normalised(step: usize) -> impl Iterator<Item = F316> {
     let zeros = [F316::ZERO, F316::NEG_ZERO].into_iter();
-    let all = (0..=1i16).flat_map(|s| (0..=255i16).flat_map(move |e| (8192..=16383i16).map(move |m| F316::new(s, e, m))));
+    let all = (0..=1i16).flat_map(|s| {
+        (0..=255i16).flat_map(move |e| (8192..=16383i16).map(move |m| F316::new(s, e, m)))
+    });
     zeros.chain(all).step_by(step.max(1))
 }
 
@@ -223,7 +244,10 @@ mod tests {
         assert_eq!(a, generate(316, 2));
         assert_ne!(a, generate(317, 2));
         for op in Op::ALL {
-            assert!(a.iter().any(|v| matches!(v, Vector::Op(o) if o.op == op)), "{op}");
+            assert!(
+                a.iter().any(|v| matches!(v, Vector::Op(o) if o.op == op)),
+                "{op}"
+            );
         }
         for v in &a {
             let Vector::Op(o) = v else { panic!() };
@@ -234,7 +258,8 @@ mod tests {
     #[test]
     fn hard_cases_are_present() {
         let all = generate(1, 3);
-        let has = |f: &dyn Fn(&OpVector) -> bool| all.iter().any(|v| matches!(v, Vector::Op(o) if f(o)));
+        let has =
+            |f: &dyn Fn(&OpVector) -> bool| all.iter().any(|v| matches!(v, Vector::Op(o) if f(o)));
         assert!(has(&|o| o.op == Op::Div && o.b.is_some_and(F316::is_zero)));
         assert!(has(&|o| o.op == Op::Sqrt && o.a == NON_CANONICAL));
         assert!(has(&|o| o.op == Op::Sqrt && o.a.e < 0 && o.a.e % 2 != 0));
@@ -244,6 +269,9 @@ mod tests {
     #[test]
     fn exhaustive_domain_size() {
         assert_eq!(all_normalised(1).count(), 2 + 2 * 256 * 8192);
-        assert_eq!(all_normalised(1000).count(), (2 + 2 * 256 * 8192 + 999) / 1000);
+        assert_eq!(
+            all_normalised(1000).count(),
+            (2 + 2 * 256 * 8192 + 999) / 1000
+        );
     }
 }

@@ -8,7 +8,14 @@ use crate::set::{PixelVector, Vector};
 use common::image_consts::{HEIGHT, WIDTH};
 
 /// The categories of pixels.
-pub const CATEGORIES: [&str; 6] = ["random", "border", "horizon", "silhouette", "shadow-edge", "dither-tie"];
+pub const CATEGORIES: [&str; 6] = [
+    "random",
+    "border",
+    "horizon",
+    "silhouette",
+    "shadow-edge",
+    "dither-tie",
+];
 
 /// Facts about a render of the whole image.
 pub struct PixelFacts {
@@ -76,7 +83,11 @@ fn normalize(v: [f64; 3]) -> [f64; 3] {
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - b[1] * a[2], a[2] * b[0] - b[2] * a[0], a[0] * b[1] - b[0] * a[1]]
+    [
+        a[1] * b[2] - b[1] * a[2],
+        a[2] * b[0] - b[2] * a[0],
+        a[0] * b[1] - b[0] * a[1],
+    ]
 }
 
 /// `per_category` pixels of every category, in category order. The
@@ -92,7 +103,9 @@ pub fn generate(seed: u64, per_category: usize, facts: Option<&PixelFacts>) -> V
                 .chain((1..HEIGHT - 1).flat_map(|y| [(0, y), (WIDTH - 1, y)]))
                 .map(|(x, y)| (x as u16, y as u16))
                 .collect(),
-            "horizon" => (0..WIDTH).map(|x| (x as u16, horizon_row(x) as u16)).collect(),
+            "horizon" => (0..WIDTH)
+                .map(|x| (x as u16, horizon_row(x) as u16))
+                .collect(),
             "dither-tie" => match facts {
                 Some(f) => f.dither_ties.clone(),
                 None => continue,
@@ -155,15 +168,24 @@ mod tests {
             dither_ties: vec![(7, 9)],
         };
         let all = generate(3, 5, Some(&facts));
-        assert!(all.iter().filter(|v| v.category() == "dither-tie").all(|v| v.slug() == "pixel-7-9"));
+        assert!(all
+            .iter()
+            .filter(|v| v.category() == "dither-tie")
+            .all(|v| v.slug() == "pixel-7-9"));
         for v in &all {
             let Vector::Pixel(p) = v else { panic!() };
             match p.category.as_str() {
                 "silhouette" => assert_eq!(p.y, 99),
-                "shadow-edge" => assert!([199, 299].contains(&p.x) || [149, 199].contains(&p.y), "{v}"),
+                "shadow-edge" => assert!(
+                    [199, 299].contains(&p.x) || [149, 199].contains(&p.y),
+                    "{v}"
+                ),
                 _ => {}
             }
         }
-        assert_eq!(all.iter().filter(|v| v.category() == "silhouette").count(), 5);
+        assert_eq!(
+            all.iter().filter(|v| v.category() == "silhouette").count(),
+            5
+        );
     }
 }

@@ -42,7 +42,11 @@ fn point(d: &mut Draw, category: &str) -> [f64; 3] {
             d.one(&(-1.2..2.5f64)),
             d.one(&(-6.0..4.0f64)),
         ],
-        "near-floor" => [d.one(&(-4.0..4.0f64)), -1.0 + near(d), d.one(&(-6.0..4.0f64))],
+        "near-floor" => [
+            d.one(&(-4.0..4.0f64)),
+            -1.0 + near(d),
+            d.one(&(-6.0..4.0f64)),
+        ],
         "near-sphere" => {
             let (theta, z) = (unit(d) * TAU, unit(d) * 2.0 - 1.0);
             let r = 1.0 + near(d);
@@ -64,11 +68,21 @@ fn point(d: &mut Draw, category: &str) -> [f64; 3] {
             ]
         }
         "torus-axis" => {
-            let y = if d.one(&(0..4u8)) == 0 { 0.0 } else { d.one(&(-2.0..2.0f64)) };
+            let y = if d.one(&(0..4u8)) == 0 {
+                0.0
+            } else {
+                d.one(&(-2.0..2.0f64))
+            };
             [TORUS_CENTRE[0], y, 0.0]
         }
         "sphere-centre" => {
-            let off = |d: &mut Draw| if d.one(&any::<bool>()) { 0.0 } else { near(d) * 1e-2 };
+            let off = |d: &mut Draw| {
+                if d.one(&any::<bool>()) {
+                    0.0
+                } else {
+                    near(d) * 1e-2
+                }
+            };
             [SPHERE_CENTRE[0] + off(d), off(d), off(d)]
         }
         "tile-edge" => {
