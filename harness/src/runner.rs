@@ -13,6 +13,9 @@ use serde::{Deserialize, Serialize};
 use std::time::Instant;
 use vectors::{Level, Vector, VectorSet};
 
+/// An implementation's answers in set order, or why it gave none.
+pub type Answers = Result<Vec<Outcome<Answer>>, ImplError>;
+
 /// The answers of one implementation to one set.
 #[derive(Clone, Debug)]
 pub struct ImplRun {
@@ -21,7 +24,7 @@ pub struct ImplRun {
     /// Its numbers.
     pub numbers: Numbers,
     /// Its answers in set order, or why it gave none.
-    pub answers: Result<Vec<Outcome<Answer>>, ImplError>,
+    pub answers: Answers,
     /// Wall-clock seconds spent (summed over its batches).
     pub seconds: f64,
 }
@@ -106,7 +109,7 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
                 .map(move |chunk| (i, chunk))
         })
         .collect();
-    let results: Vec<(usize, Result<Vec<Outcome<Answer>>, ImplError>, f64)> = jobs
+    let results: Vec<(usize, Answers, f64)> = jobs
         .into_par_iter()
         .map(|(i, chunk)| {
             let start = Instant::now();

@@ -271,7 +271,7 @@ mod tests {
         assert_eq!(all_normalised(1).count(), 2 + 2 * 256 * 8192);
         assert_eq!(
             all_normalised(1000).count(),
-            (2 + 2 * 256 * 8192 + 999) / 1000
+            (2usize + 2 * 256 * 8192).div_ceil(1000)
         );
     }
 }
