@@ -1,1 +1,33 @@
-//! hack-vm
+//! A fast emulator of the nand2tetris Hack VM with the native Jack OS
+//! (`jack-os`), following `shared/spec/jack-vm-os.md` §1, §2.
+//!
+//! - [`Program`]: load a directory of `.vm` files ([`Program::load_dir`]) or
+//!   in-memory sources ([`Program::from_sources`]) once, with every
+//!   load-time check of the spec; share it as `Arc<Program>`.
+//! - [`Machine`]: RAM, registers, OS state and the Jack call stack. `Clone`
+//!   is a snapshot; [`Machine::run`] runs from the entry,
+//!   [`Machine::call`] calls any function by name; both take an instruction
+//!   budget and end with an [`Exit`] (with the Jack call stack where it
+//!   matters). [`Machine::run_watched`] reports calls of chosen functions to
+//!   a [`Watcher`].
+//!
+//! Speed: the program is decoded once into compact instructions with
+//! resolved jumps and calls, and common command sequences are fused
+//! (module `fuse`); the dispatch loop (module `exec`) keeps the VM
+//! registers in host registers and allocates nothing.
+
+mod error;
+mod exec;
+mod exit;
+mod fuse;
+mod load;
+mod machine;
+mod parse;
+mod program;
+
+pub use error::LoadError;
+pub use exit::{CallStack, Exit};
+pub use jack_os::{KeyScript, Profile, Ram};
+pub use load::IMPLICIT;
+pub use machine::{Config, Machine, Register, UnknownFunction, Watcher, MAX_DEPTH};
+pub use program::{FnId, Function, Program};

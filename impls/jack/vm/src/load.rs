@@ -1,0 +1,458 @@
+//! Loading: files to a checked, decoded [`Program`] (spec §2.1, §2.2, §2.4
+//! static slots, §2.6 entry point). Every failure is a [`LoadError`] naming
+//! the file and line; nothing here panics on any input.
+
+use crate::error::LoadError;
+use crate::parse::{self, Arith, Command, Line, Segment};
+use crate::program::{FnId, Function, Op, Program};
+use jack_os::Builtin;
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Name of the function formed by commands before the first `function` line.
+pub const IMPLICIT: &str = "__implicit";
+
+/// The built-in init calls of the synthetic `Sys.init`, in order (§2.6).
+const SYNTHETIC_CALLS: [&str; 8] = [
+    "Math.init",
+    "String.init",
+    "Array.init",
+    "Output.init",
+    "Screen.init",
+    "Keyboard.init",
+    "Memory.init",
+    "Main.main",
+];
+
+/// Static slots available: RAM 16..=255.
+const STATIC_SLOTS: usize = 240;
+
+/// A function as parsed, before decoding.
+struct RawFunction {
+    name: String,
+    file: String,
+    line: usize,
+    n_vars: u16,
+    /// True when the command list starts with the `function` line (index 0).
+    has_header: bool,
+    body: Vec<Line>,
+}
+
+impl Program {
+    /// Load every `.vm` file of `dir`, in file-name order.
+    pub fn load_dir(dir: &Path) -> Result<Arc<Program>, LoadError> {
+        let io = |source| LoadError::Io {
+            path: dir.to_path_buf(),
+            source,
+        };
+        let mut paths = Vec::new();
+        for entry in std::fs::read_dir(dir).map_err(io)? {
+            let path = entry.map_err(io)?.path();
+            if path.extension().is_some_and(|e| e == "vm") && path.is_file() {
+                paths.push(path);
+            }
+        }
+        paths.sort();
+        let mut sources = Vec::with_capacity(paths.len());
+        for path in paths {
+            let text = std::fs::read_to_string(&path).map_err(|source| LoadError::Io {
+                path: path.clone(),
+                source,
+            })?;
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            sources.push((name, text));
+        }
+        if sources.is_empty() {
+            return Err(LoadError::Program(format!(
+                "no .vm files in {}",
+                dir.display()
+            )));
+        }
+        Program::from_sources(&sources)
+    }
+
+    /// Load in-memory sources `(file name, text)`, in the order given. File
+    /// names end in `.vm`; with several files each function must be named
+    /// `Base.f` after its file's base name.
+    pub fn from_sources<S: AsRef<str>, T: AsRef<str>>(
+        sources: &[(S, T)],
+    ) -> Result<Arc<Program>, LoadError> {
+        let multi = sources.len() > 1;
+        let mut raw: Vec<RawFunction> = Vec::new();
+        for (file, text) in sources {
+            let file = file.as_ref();
+            let lines = parse::parse(file, text.as_ref())?;
+            split_functions(file, lines, multi, &mut raw)?;
+        }
+        let raw = dedupe(raw)?;
+        build(raw).map(Arc::new)
+    }
+}
+
+/// Group a file's commands into functions and check the file-name rule.
+fn split_functions(
+    file: &str,
+    lines: Vec<Line>,
+    multi: bool,
+    out: &mut Vec<RawFunction>,
+) -> Result<(), LoadError> {
+    let base = file.strip_suffix(".vm").unwrap_or(file);
+    for l in lines {
+        if let Command::Function(name, n_vars) = &l.command {
+            if multi && name.split_once('.').map(|(class, _)| class) != Some(base) {
+                return Err(LoadError::at(
+                    file,
+                    l.line,
+                    format!("function {name} must be named {base}.<name> in file {file}"),
+                ));
+            }
+            out.push(RawFunction {
+                name: name.clone(),
+                file: file.to_string(),
+                line: l.line,
+                n_vars: *n_vars,
+                has_header: true,
+                body: Vec::new(),
+            });
+            continue;
+        }
+        let current = match out.last_mut() {
+            Some(f) if f.file == file => f,
+            _ => {
+                out.push(RawFunction {
+                    name: IMPLICIT.to_string(),
+                    file: file.to_string(),
+                    line: l.line,
+                    n_vars: 0,
+                    has_header: false,
+                    body: Vec::new(),
+                });
+                out.last_mut().expect("just pushed")
+            }
+        };
+        current.body.push(l);
+    }
+    Ok(())
+}
+
+/// Reject duplicate function names; a later `Sys.init` replaces an earlier one.
+fn dedupe(raw: Vec<RawFunction>) -> Result<Vec<RawFunction>, LoadError> {
+    let mut out: Vec<RawFunction> = Vec::with_capacity(raw.len());
+    let mut seen: HashMap<String, usize> = HashMap::new();
+    for f in raw {
+        match seen.get(&f.name) {
+            Some(&i) if f.name == "Sys.init" => out[i] = f,
+            Some(_) => {
+                return Err(LoadError::at(
+                    &f.file,
+                    f.line,
+                    format!("VM Already has a function named {}", f.name),
+                ));
+            }
+            None => {
+                seen.insert(f.name.clone(), out.len());
+                out.push(f);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Choose the entry (§2.6), adding the synthetic `Sys.init` when needed.
+fn choose_entry(raw: &mut Vec<RawFunction>) -> Result<FnId, LoadError> {
+    let find = |raw: &[RawFunction], n: &str| raw.iter().position(|f| f.name == n);
+    let sys_init = find(raw, "Sys.init");
+    let implicit = find(raw, IMPLICIT);
+    if sys_init.is_some() && implicit.is_some() {
+        return Err(LoadError::Program(
+            "Sys.init is defined and there are commands outside any function (__implicit): no single entry point"
+                .to_string(),
+        ));
+    }
+    let id = if let Some(i) = sys_init {
+        i
+    } else if find(raw, "Main.main").is_some() {
+        let body = SYNTHETIC_CALLS
+            .iter()
+            .map(|n| Line {
+                line: 0,
+                command: Command::Call(n.to_string(), 0),
+            })
+            .collect();
+        raw.push(RawFunction {
+            name: "Sys.init".to_string(),
+            file: String::new(),
+            line: 0,
+            n_vars: 0,
+            has_header: true,
+            body,
+        });
+        raw.len() - 1
+    } else if let Some(i) = implicit {
+        i
+    } else if raw.len() == 1 {
+        0
+    } else {
+        return Err(LoadError::Program(
+            "Could not determine an entry point for VM".to_string(),
+        ));
+    };
+    Ok(id as FnId)
+}
+
+/// What a `call` resolves to.
+enum Target {
+    Vm(FnId),
+    Os(Builtin),
+}
+
+fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
+    // Entry errors are reported after the checks of the functions' code.
+    let chosen = choose_entry(&mut raw);
+    let entry = *chosen.as_ref().unwrap_or(&FnId::MAX);
+    if raw.len() > u16::MAX as usize {
+        return Err(LoadError::Program(format!(
+            "too many functions ({})",
+            raw.len()
+        )));
+    }
+    let by_name: HashMap<String, FnId> = raw
+        .iter()
+        .enumerate()
+        .map(|(i, f)| (f.name.clone(), i as FnId))
+        .collect();
+
+    let mut statics: HashMap<(String, u16), usize> = HashMap::new();
+    let mut messages: Vec<String> = Vec::new();
+    let mut plain: Vec<Op> = Vec::new();
+    let mut functions = Vec::with_capacity(raw.len());
+
+    for (id, f) in raw.iter().enumerate() {
+        let id = id as FnId;
+        let class = f.name.split('.').next().unwrap_or(&f.name).to_string();
+        let start = plain.len() as u32;
+
+        // Pass 1: instruction positions of labels and of each command index.
+        let first_index = usize::from(f.has_header);
+        let mut labels: HashMap<&str, u32> = HashMap::new();
+        let mut resume = vec![u32::MAX; first_index];
+        let mut pc = start;
+        for l in &f.body {
+            resume.push(pc);
+            match &l.command {
+                Command::Label(name) => {
+                    if labels.insert(name, pc).is_some() {
+                        return Err(LoadError::at(
+                            &f.file,
+                            l.line,
+                            format!("Cannot redeclare label {name}"),
+                        ));
+                    }
+                }
+                _ => pc += 1,
+            }
+        }
+        resume.push(pc); // one past the last command: the trailing Halt
+
+        // Pass 2: decode.
+        for (k, l) in f.body.iter().enumerate() {
+            let err = |m: String| LoadError::at(&f.file, l.line, m);
+            let fail = |messages: &mut Vec<String>, m: String| {
+                messages.push(m);
+                Op::Fail((messages.len() - 1) as u16)
+            };
+            let op = match &l.command {
+                Command::Label(_) => continue,
+                Command::Function(..) => unreachable!("function lines start a new function"),
+                Command::Goto(name) | Command::IfGoto(name) => {
+                    let target = *labels
+                        .get(name.as_str())
+                        .ok_or_else(|| err(format!("Undeclared label {name}")))?;
+                    if matches!(l.command, Command::Goto(_)) {
+                        Op::Goto(target)
+                    } else {
+                        Op::IfGoto(target)
+                    }
+                }
+                Command::Return => Op::Return,
+                Command::Arith(a) => match a {
+                    Arith::Add => Op::Add,
+                    Arith::Sub => Op::Sub,
+                    Arith::Neg => Op::Neg,
+                    Arith::Eq => Op::Eq,
+                    Arith::Gt => Op::Gt,
+                    Arith::Lt => Op::Lt,
+                    Arith::And => Op::And,
+                    Arith::Or => Op::Or,
+                    Arith::Not => Op::Not,
+                },
+                Command::Call(name, n) => {
+                    let index = k + first_index;
+                    match resolve(&by_name, name, *n).map_err(err)? {
+                        Target::Vm(callee) => Op::Call {
+                            callee: callee as u16,
+                            nargs: *n,
+                            ret: index as u16,
+                        },
+                        Target::Os(Builtin::MathMultiply) => Op::Multiply,
+                        Target::Os(Builtin::MathDivide) => Op::Divide,
+                        Target::Os(builtin) => Op::CallBuiltin {
+                            builtin,
+                            nargs: *n as u8,
+                        },
+                    }
+                }
+                Command::Push(seg, i) | Command::Pop(seg, i) => {
+                    let push = matches!(l.command, Command::Push(..));
+                    let i = *i;
+                    match seg {
+                        Segment::Constant if push => Op::PushConst(i as i16),
+                        Segment::Constant => Op::PopRam(i),
+                        Segment::Local | Segment::Argument if id == entry => Op::EntryAccess {
+                            local: *seg == Segment::Local,
+                            push,
+                            index: i,
+                        },
+                        Segment::Local if i >= f.n_vars => {
+                            fail(&mut messages, "Local offset out of bounds".into())
+                        }
+                        Segment::Local if push => Op::PushLocal(i),
+                        Segment::Local => Op::PopLocal(i),
+                        Segment::Argument if push => Op::PushArg(i),
+                        Segment::Argument => Op::PopArg(i),
+                        // Checked forms; the this/that analysis below relaxes them.
+                        Segment::This if push => Op::PushThisChk(i),
+                        Segment::This => Op::PopThisChk(i),
+                        Segment::That if push => Op::PushThatChk(i),
+                        Segment::That => Op::PopThatChk(i),
+                        Segment::Pointer if push => Op::PushPtr(i as u8),
+                        Segment::Pointer => Op::PopPtr(i as u8),
+                        Segment::Temp if push => Op::PushAbs(5 + i),
+                        Segment::Temp => Op::PopAbs(5 + i),
+                        Segment::Static => {
+                            let next = statics.len();
+                            let slot = *statics.entry((class.clone(), i)).or_insert(next);
+                            if slot >= STATIC_SLOTS {
+                                fail(
+                                    &mut messages,
+                                    format!("Too many static variables: {class}'s static {i} needs slot {slot} of {STATIC_SLOTS}"),
+                                )
+                            } else if push {
+                                Op::PushAbs(16 + slot as u16)
+                            } else {
+                                Op::PopAbs(16 + slot as u16)
+                            }
+                        }
+                    }
+                }
+            };
+            plain.push(op);
+        }
+        plain.push(Op::Halt);
+        functions.push(Function {
+            name: f.name.clone(),
+            file: f.file.clone(),
+            n_vars: f.n_vars,
+            start,
+            resume,
+        });
+    }
+    if plain.len() >= u32::MAX as usize / 2 {
+        return Err(LoadError::Program("program too large".to_string()));
+    }
+    for f in &functions {
+        relax_this_that(&mut plain, f.start as usize);
+    }
+    chosen?;
+    let statics = statics.len().min(STATIC_SLOTS);
+    let fused = crate::fuse::fuse(&plain);
+    Ok(Program {
+        functions,
+        by_name,
+        plain,
+        fused,
+        messages,
+        entry,
+        statics,
+    })
+}
+
+fn resolve(by_name: &HashMap<String, FnId>, name: &str, n: u16) -> Result<Target, String> {
+    if let Some(&id) = by_name.get(name) {
+        return Ok(Target::Vm(id));
+    }
+    match jack_os::lookup(name) {
+        Some(os) => {
+            let expected = os.builtin.vm_arity();
+            if usize::from(n) != expected {
+                Err(format!(
+                    "OS function {name} expects {expected} arguments, not {n}"
+                ))
+            } else {
+                Ok(Target::Os(os.builtin))
+            }
+        }
+        None => Err(format!("Undefined function {name}")),
+    }
+}
+
+/// The this/that initialisation analysis (§2.5): a `this`/`that` access is
+/// an error unless a `pop pointer 0`/`1` ran earlier in the same
+/// invocation. Where every path from the function's start passes such a
+/// pop, the unchecked form is used. A call leaves the caller's flags as
+/// they were (each invocation has its own).
+fn relax_this_that(code: &mut [Op], start: usize) {
+    let end = start
+        + code[start..]
+            .iter()
+            .position(|op| *op == Op::Halt)
+            .expect("every function ends in Halt");
+    let n = end - start + 1;
+    // Must-analysis: bit 0 = this initialised, bit 1 = that. 0b100 = unvisited (top).
+    const TOP: u8 = 0b111;
+    let mut state_in = vec![TOP; n];
+    state_in[0] = 0;
+    let mut work = vec![0usize];
+    while let Some(i) = work.pop() {
+        let s = state_in[i];
+        let op = code[start + i];
+        let out = match op {
+            Op::PopPtr(0) => s | 1,
+            Op::PopPtr(_) => s | 2,
+            _ => s,
+        } & 0b11;
+        let mut succ = [usize::MAX; 2];
+        match op {
+            Op::Goto(t) => succ[0] = t as usize - start,
+            Op::IfGoto(t) => {
+                succ[0] = t as usize - start;
+                succ[1] = i + 1;
+            }
+            Op::Return | Op::Halt | Op::Fail(_) => {}
+            _ => succ[0] = i + 1,
+        }
+        for j in succ.into_iter().filter(|&j| j < n) {
+            let merged = state_in[j] & out;
+            if merged != state_in[j] {
+                state_in[j] = merged;
+                work.push(j);
+            }
+        }
+    }
+    for (i, s) in state_in.into_iter().enumerate() {
+        let op = &mut code[start + i];
+        let this = s & 1 != 0 && s != TOP;
+        let that = s & 2 != 0 && s != TOP;
+        *op = match *op {
+            Op::PushThisChk(k) if this => Op::PushThis(k),
+            Op::PopThisChk(k) if this => Op::PopThis(k),
+            Op::PushThatChk(k) if that => Op::PushThat(k),
+            Op::PopThatChk(k) if that => Op::PopThat(k),
+            other => other,
+        };
+    }
+}

@@ -1,0 +1,371 @@
+//! A [`Machine`]: RAM, registers, OS state and the Jack call stack of one
+//! running program. `Clone` takes a snapshot; clones run independently
+//! (and in parallel: a `Machine` is `Send`).
+
+use crate::exit::{CallStack, Exit};
+use crate::program::{FnId, Program};
+use jack_os::{KeyScript, Os, Profile, Ram, KBD};
+use std::sync::Arc;
+
+/// A register that a test script may preset (`set sp 261`, `set local 300`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Register {
+    /// RAM[0].
+    Sp,
+    /// RAM[1]; presetting it makes `local` usable in the entry function.
+    Local,
+    /// RAM[2]; presetting it makes `argument` usable in the entry function.
+    Argument,
+    /// RAM[3]; presetting it counts as `pop pointer 0` for the entry.
+    This,
+    /// RAM[4]; presetting it counts as `pop pointer 1` for the entry.
+    That,
+}
+
+/// Per-invocation flags.
+pub(crate) const THIS_OK: u8 = 1;
+pub(crate) const THAT_OK: u8 = 2;
+pub(crate) const LOCAL_OK: u8 = 4;
+pub(crate) const ARG_OK: u8 = 8;
+
+/// `ret_pc` of the frame below a call made by [`Machine::call`].
+pub(crate) const HOST: u32 = u32::MAX;
+
+/// A frame of the internal call stack: what to restore in the caller.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame {
+    pub caller: FnId,
+    pub ret_pc: u32,
+    /// The RET word written to RAM; if RAM still holds it, `ret_pc` is right.
+    pub ret: i16,
+    pub nargs: u16,
+    pub flags: u8,
+    pub watched: bool,
+}
+
+/// Deepest Jack call stack before the run stops with a runtime error
+/// (the web IDE has no limit; this keeps a runaway recursion from
+/// exhausting host memory before the instruction budget does).
+pub const MAX_DEPTH: usize = 1 << 22;
+
+/// Options of a [`Machine`].
+#[derive(Clone, Debug, Default)]
+pub struct Config {
+    /// Which official tool the OS follows.
+    pub profile: Profile,
+    /// Keyboard input over time.
+    pub keys: KeyScript,
+    /// Count instructions per function (see [`Machine::function_profile`]).
+    pub profile_functions: bool,
+}
+
+/// Observer of calls to chosen functions (see [`Machine::run_watched`]).
+pub trait Watcher {
+    /// `function` is being called with `args` (VM order: `this` first).
+    fn on_call(&mut self, program: &Program, function: FnId, args: &[i16]);
+    /// `function` returned `value`; `ram` is the memory after the return.
+    fn on_return(&mut self, program: &Program, function: FnId, value: i16, ram: &Ram);
+}
+
+/// One emulated Hack VM with its OS.
+#[derive(Clone, Debug)]
+pub struct Machine {
+    pub(crate) program: Arc<Program>,
+    pub(crate) ram: Ram,
+    pub(crate) os: Os,
+    pub(crate) steps: u64,
+    pub(crate) pc: u32,
+    pub(crate) cur: FnId,
+    pub(crate) nargs: u16,
+    pub(crate) flags: u8,
+    pub(crate) frames: Vec<Frame>,
+    /// Set once the run has ended for good (halt, error, return from entry).
+    pub(crate) ended: Option<Exit>,
+    /// Per-function exclusive instruction counts, when profiling.
+    pub(crate) profile: Option<Vec<u64>>,
+    pub(crate) profile_mark: u64,
+    pub(crate) scratch: Vec<i16>,
+}
+
+impl Machine {
+    /// A machine after reset (spec §1), positioned at the entry function
+    /// with no frame (§2.6): SP=256, LCL=ARG=THIS=THAT=0.
+    pub fn new(program: Arc<Program>, config: Config) -> Machine {
+        let mut ram = Ram::new();
+        let mut os = Os::new(config.profile, config.keys);
+        os.reset(&mut ram);
+        let entry = program.entry;
+        let profile = config
+            .profile_functions
+            .then(|| vec![0; program.functions.len()]);
+        Machine {
+            pc: program.functions[entry as usize].start,
+            program,
+            ram,
+            os,
+            steps: 0,
+            cur: entry,
+            nargs: 0,
+            flags: 0,
+            frames: Vec::with_capacity(256),
+            ended: None,
+            profile,
+            profile_mark: 0,
+            scratch: Vec::new(),
+        }
+    }
+
+    /// The program this machine runs.
+    pub fn program(&self) -> &Arc<Program> {
+        &self.program
+    }
+
+    /// VM instructions executed so far (labels are free, a call is one).
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// The memory.
+    pub fn ram(&self) -> &Ram {
+        &self.ram
+    }
+
+    /// The memory, for presetting words like a test script's `set RAM[i] v`.
+    pub fn ram_mut(&mut self) -> &mut Ram {
+        &mut self.ram
+    }
+
+    /// The OS state (cursor, heap, profile, keys).
+    pub fn os(&self) -> &Os {
+        &self.os
+    }
+
+    /// Preset a register like a test script's `set sp|local|argument|this|that`,
+    /// which also marks that segment initialised for the entry function.
+    pub fn set_register(&mut self, reg: Register, value: i16) {
+        let (addr, flag) = match reg {
+            Register::Sp => (0, 0),
+            Register::Local => (1, LOCAL_OK),
+            Register::Argument => (2, ARG_OK),
+            Register::This => (3, THIS_OK),
+            Register::That => (4, THAT_OK),
+        };
+        self.ram.write(addr, value);
+        self.flags |= flag;
+    }
+
+    /// The Jack call stack, outermost first, innermost (running) last.
+    pub fn call_stack(&self) -> CallStack {
+        let p = &self.program;
+        let mut names: Vec<String> = self
+            .frames
+            .iter()
+            .filter(|f| f.ret_pc != HOST)
+            .map(|f| p.function_name(f.caller).to_string())
+            .collect();
+        names.push(p.function_name(self.cur).to_string());
+        CallStack(names)
+    }
+
+    /// How the run ended, if it has.
+    pub fn exit(&self) -> Option<&Exit> {
+        self.ended.as_ref()
+    }
+
+    /// Instructions per function (exclusive of callees), largest first;
+    /// empty unless `Config::profile_functions` was set.
+    pub fn function_profile(&self) -> Vec<(String, u64)> {
+        let Some(counts) = &self.profile else {
+            return Vec::new();
+        };
+        let mut v: Vec<(String, u64)> = counts
+            .iter()
+            .enumerate()
+            .filter(|(_, &c)| c > 0)
+            .map(|(i, &c)| (self.program.function_name(i as FnId).to_string(), c))
+            .collect();
+        v.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+        v
+    }
+
+    /// Run from where the machine stands (at first: the entry) for at most
+    /// `budget` more instructions (`None`: no limit). After a
+    /// [`Exit::Budget`] a further call continues; after any other end it
+    /// returns that end again.
+    pub fn run(&mut self, budget: Option<u64>) -> Exit {
+        self.drive::<false>(budget, None)
+    }
+
+    /// Like [`Machine::run`], telling `watcher` about every call to and
+    /// return from a function whose id is `true` in `watch` (indexed by
+    /// [`FnId`]).
+    pub fn run_watched(
+        &mut self,
+        budget: Option<u64>,
+        watch: &[bool],
+        watcher: &mut dyn Watcher,
+    ) -> Exit {
+        self.drive::<true>(budget, Some((watch, watcher)))
+    }
+
+    /// Call function `name` with `args` (VM order) from the host, as if by
+    /// `call name n` at the current stack top, and run it to its return for
+    /// at most `budget` instructions. On [`Exit::Returned`] the stack is as
+    /// before and the machine can take further calls; after any other end
+    /// the machine stays where it stopped (clone a snapshot to retry).
+    pub fn call(
+        &mut self,
+        name: &str,
+        args: &[i16],
+        budget: Option<u64>,
+    ) -> Result<Exit, UnknownFunction> {
+        self.call_inner::<false>(name, args, budget, None)
+    }
+
+    /// [`Machine::call`] with a watcher (see [`Machine::run_watched`]).
+    pub fn call_watched(
+        &mut self,
+        name: &str,
+        args: &[i16],
+        budget: Option<u64>,
+        watch: &[bool],
+        watcher: &mut dyn Watcher,
+    ) -> Result<Exit, UnknownFunction> {
+        self.call_inner::<true>(name, args, budget, Some((watch, watcher)))
+    }
+
+    fn call_inner<const W: bool>(
+        &mut self,
+        name: &str,
+        args: &[i16],
+        budget: Option<u64>,
+        mut watch: Option<(&[bool], &mut dyn Watcher)>,
+    ) -> Result<Exit, UnknownFunction> {
+        let callee = self
+            .program
+            .function_id(name)
+            .ok_or_else(|| UnknownFunction(name.to_string()))?;
+        if let Some(e) = &self.ended {
+            return Ok(e.clone());
+        }
+        let nargs = u16::try_from(args.len())
+            .map_err(|_| UnknownFunction(format!("{name} with {} arguments", args.len())))?;
+        let saved = (self.pc, self.cur, self.nargs, self.flags);
+        let base_depth = self.frames.len();
+        for &a in args {
+            let sp = self.ram.read(0);
+            self.ram.write(sp as i32, a);
+            self.ram.write(0, sp.wrapping_add(1));
+        }
+        let mut watched = false;
+        if let Some((set, watcher)) = &mut watch {
+            if set.get(callee as usize).copied().unwrap_or(false) {
+                watcher.on_call(&self.program, callee, args);
+                watched = true;
+            }
+        }
+        // The frame below the callee: returning into it ends the call.
+        self.frames.push(Frame {
+            caller: self.cur,
+            ret_pc: HOST,
+            ret: 0,
+            nargs: self.nargs,
+            flags: self.flags,
+            watched,
+        });
+        let function = &self.program.functions[callee as usize];
+        let (start, n_vars) = (function.start, function.n_vars);
+        self.enter(callee, nargs, 0, n_vars);
+        self.pc = start;
+        let exit = self.drive::<W>(budget, watch);
+        if let Exit::Returned(_) = exit {
+            debug_assert_eq!(self.frames.len(), base_depth);
+            (self.pc, self.cur, self.nargs, self.flags) = saved;
+            self.ended = None;
+            // The return value sits on the stack top: pop it.
+            let sp = self.ram.read(0);
+            self.ram.write(0, sp.wrapping_sub(1));
+        }
+        Ok(exit)
+    }
+
+    /// Push a call frame (RET, LCL, ARG, THIS, THAT) in RAM and set up the
+    /// callee's registers and zeroed locals; the internal frame is the
+    /// caller's business.
+    fn enter(&mut self, callee: FnId, nargs: u16, ret: i16, n_vars: u16) {
+        let r = &mut self.ram;
+        let base = r.read(0);
+        let saved = [ret, r.read(1), r.read(2), r.read(3), r.read(4)];
+        for (i, v) in saved.into_iter().enumerate() {
+            r.write(base.wrapping_add(i as i16) as i32, v);
+        }
+        let lcl = base.wrapping_add(5);
+        r.write(2, base.wrapping_sub(nargs as i16));
+        r.write(1, lcl);
+        for i in 0..n_vars {
+            r.write(lcl.wrapping_add(i as i16) as i32, 0);
+        }
+        r.write(0, lcl.wrapping_add(n_vars as i16));
+        self.cur = callee;
+        self.nargs = nargs;
+        self.flags = 0;
+    }
+
+    /// The outer loop: budget, key changes, choice of fused or exact code.
+    fn drive<const W: bool>(
+        &mut self,
+        budget: Option<u64>,
+        mut watch: Option<(&[bool], &mut dyn Watcher)>,
+    ) -> Exit {
+        if let Some(e) = &self.ended {
+            return e.clone();
+        }
+        let budget_end = budget.map_or(u64::MAX, |b| self.steps.saturating_add(b));
+        self.ram
+            .write(KBD as i32, self.os.keys().key_at(self.steps));
+        let program = Arc::clone(&self.program);
+        let exit = loop {
+            let key_change = self.os.keys().next_change(self.steps).unwrap_or(u64::MAX);
+            let limit = budget_end.min(key_change);
+            let soft = limit.saturating_sub(crate::fuse::MAX_FUSED_STEPS);
+            let result = if self.steps < soft {
+                self.exec::<W>(&program, &program.fused, soft, &mut watch)
+            } else if self.steps < limit {
+                self.exec::<W>(&program, &program.plain, limit, &mut watch)
+            } else {
+                None
+            };
+            if let Some(exit) = result {
+                break exit;
+            }
+            if self.steps >= budget_end {
+                break Exit::Budget {
+                    stack: self.call_stack(),
+                };
+            }
+            if self.steps >= key_change {
+                self.ram
+                    .write(KBD as i32, self.os.keys().key_at(self.steps));
+            }
+        };
+        self.charge_profile();
+        if !matches!(exit, Exit::Budget { .. } | Exit::Returned(_)) {
+            self.ended = Some(exit.clone());
+        }
+        exit
+    }
+
+    /// Attribute the instructions since the last mark to the running function.
+    #[inline]
+    pub(crate) fn charge_profile(&mut self) {
+        if let Some(p) = &mut self.profile {
+            p[self.cur as usize] += self.steps - self.profile_mark;
+            self.profile_mark = self.steps;
+        }
+    }
+}
+
+/// [`Machine::call`] named a function the program does not define.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("no VM function named {0}")]
+pub struct UnknownFunction(pub String);

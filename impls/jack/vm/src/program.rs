@@ -1,0 +1,139 @@
+//! A loaded VM program: the decoded instruction arrays and the function
+//! table. Built once by [`crate::load`], shared read-only (`Arc<Program>`)
+//! by every [`crate::Machine`].
+
+use jack_os::Builtin;
+use std::collections::HashMap;
+
+/// Index of a VM function in [`Program::functions`].
+pub type FnId = u32;
+
+/// One decoded instruction. Labels are gone (jumps land on the next real
+/// command), segment addresses that are fixed at load time are resolved,
+/// and call targets are function ids. Fused forms cover several VM commands;
+/// `Op::steps` says how many.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Op {
+    PushConst(i16),
+    PushLocal(u16),
+    PushArg(u16),
+    /// `this i`, proven at load time to follow a `pop pointer 0` of the
+    /// same invocation; `PushThisChk` checks at run time.
+    PushThis(u16),
+    PushThisChk(u16),
+    PushThat(u16),
+    PushThatChk(u16),
+    /// static or temp: a fixed address in 5..=255.
+    PushAbs(u16),
+    PushPtr(u8),
+    PopLocal(u16),
+    PopArg(u16),
+    PopThis(u16),
+    PopThisChk(u16),
+    PopThat(u16),
+    PopThatChk(u16),
+    PopAbs(u16),
+    PopPtr(u8),
+    /// `pop constant n`: writes RAM[n] (a quirk of the web IDE).
+    PopRam(u16),
+    /// An access that fails at run time with a message fixed at load time
+    /// (index into `Program::messages`), e.g. `local i` with i >= nVars.
+    Fail(u16),
+    /// `local`/`argument` in the entry function, which may run without a
+    /// frame: fully checked, slow. (segment is Local or Argument, push?)
+    EntryAccess {
+        local: bool,
+        push: bool,
+        index: u16,
+    },
+    Add,
+    Sub,
+    Neg,
+    Eq,
+    Gt,
+    Lt,
+    And,
+    Or,
+    Not,
+    Goto(u32),
+    IfGoto(u32),
+    Call {
+        callee: u16,
+        nargs: u16,
+        ret: u16,
+    },
+    CallBuiltin {
+        builtin: Builtin,
+        nargs: u8,
+    },
+    /// `call Math.multiply 2` / `call Math.divide 2` to the built-in.
+    Multiply,
+    Divide,
+    Return,
+    /// Ran past the last command of a function: the VM halts.
+    Halt,
+}
+
+/// A VM function of the program.
+#[derive(Clone, Debug)]
+pub struct Function {
+    /// Full name, e.g. `Float316.add`.
+    pub name: String,
+    /// File it came from (empty for the synthetic `Sys.init`).
+    pub file: String,
+    /// Number of locals (`function f nVars`).
+    pub n_vars: u16,
+    /// First instruction.
+    pub(crate) start: u32,
+    /// Command index (as stored in a frame's RET, counting the `function`
+    /// line and labels) to the instruction that runs it.
+    pub(crate) resume: Vec<u32>,
+}
+
+/// A loaded, checked and decoded VM program. Immutable; share it with `Arc`.
+#[derive(Debug)]
+pub struct Program {
+    pub(crate) functions: Vec<Function>,
+    pub(crate) by_name: HashMap<String, FnId>,
+    /// One instruction per non-label command, plus a `Halt` after each function.
+    pub(crate) plain: Vec<Op>,
+    /// Same indexing as `plain`; at some indices a fused instruction.
+    pub(crate) fused: Vec<Op>,
+    pub(crate) messages: Vec<String>,
+    pub(crate) entry: FnId,
+    /// Number of static slots allocated (RAM 16..16+n).
+    pub(crate) statics: usize,
+}
+
+impl Program {
+    /// The function called `name`, if the program defines it.
+    pub fn function_id(&self, name: &str) -> Option<FnId> {
+        self.by_name.get(name).copied()
+    }
+
+    /// All functions; a [`FnId`] indexes this slice.
+    pub fn functions(&self) -> &[Function] {
+        &self.functions
+    }
+
+    /// The name of function `id`.
+    pub fn function_name(&self, id: FnId) -> &str {
+        &self.functions[id as usize].name
+    }
+
+    /// The entry function (spec §2.6): `Sys.init`, the synthetic `Sys.init`,
+    /// `__implicit` or the sole function.
+    pub fn entry(&self) -> FnId {
+        self.entry
+    }
+
+    /// Number of distinct static variables (RAM 16.. holds them).
+    pub fn static_count(&self) -> usize {
+        self.statics
+    }
+
+    /// Number of decoded instructions (labels excluded).
+    pub fn instruction_count(&self) -> usize {
+        self.plain.len()
+    }
+}
