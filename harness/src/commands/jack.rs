@@ -1,10 +1,18 @@
-//! `harness jack`: placeholder until the Jack toolchain lands.
+//! `harness jack`: the Jack toolchain. One module per subcommand under
+//! `commands/jack/`.
+
+mod run;
 
 /// Jack subcommands.
 #[derive(Debug, clap::Subcommand)]
-pub enum JackCommand {}
+pub enum JackCommand {
+    /// Run a VM program on the Hack VM emulator (compiling .jack files first).
+    Run(run::RunArgs),
+}
 
 /// Run a Jack subcommand.
 pub fn run(cmd: JackCommand) -> anyhow::Result<std::process::ExitCode> {
-    match cmd {}
+    match cmd {
+        JackCommand::Run(args) => run::run(args),
+    }
 }

@@ -7,7 +7,7 @@ use crate::exit::Exit;
 use crate::machine::{
     Frame, Machine, Watcher, ARG_OK, HOST, LOCAL_OK, MAX_DEPTH, THAT_OK, THIS_OK,
 };
-use crate::program::{Op, Program};
+use crate::program::{Bin, Dst, Op, Program, Src};
 use jack_os::{math, Builtin, Ram, Stop, RAM_SIZE};
 
 /// The VM registers RAM[0..=4], cached.
@@ -89,6 +89,66 @@ enum Halt {
     Exit(Exit),
     Error(String),
     Os(Stop),
+    /// A fused instruction's fast-path conditions do not hold: run the
+    /// plain commands from the same index.
+    Deopt,
+}
+
+/// How [`Machine::exec`] returned.
+pub(crate) enum Flow {
+    /// The step count reached `stop_at`.
+    Limit,
+    /// The run ended.
+    End(Exit),
+    /// Plain code must run the next few commands (see `Halt::Deopt`).
+    Deopt,
+}
+
+/// Fused instructions need `MIN_SP <= SP <= MAX_SP`: the stack words they
+/// touch are ordinary RAM and none of their pops happens at SP = 256.
+const MIN_SP: u16 = 258;
+const MAX_SP: u16 = (RAM_SIZE - 9) as u16;
+
+#[inline(always)]
+fn fast_sp(sp: u16) -> bool {
+    sp.wrapping_sub(MIN_SP) <= MAX_SP - MIN_SP
+}
+
+/// Whether reading `s` cannot fail in this invocation.
+#[inline(always)]
+fn src_ok(s: Src, nargs: u16, flags: u8) -> bool {
+    match s {
+        Src::Arg(i) => i < nargs,
+        Src::ThisChk(_) => flags & THIS_OK != 0,
+        Src::ThatChk(_) => flags & THAT_OK != 0,
+        _ => true,
+    }
+}
+
+/// Whether writing `d` cannot fail in this invocation.
+#[inline(always)]
+fn dst_ok(d: Dst, nargs: u16, flags: u8) -> bool {
+    match d {
+        Dst::Arg(i) => i < nargs,
+        Dst::ThisChk(_) => flags & THIS_OK != 0,
+        Dst::ThatChk(_) => flags & THAT_OK != 0,
+        _ => true,
+    }
+}
+
+#[inline(always)]
+fn apply(op: Bin, x: i16, y: i16, profile: jack_os::Profile) -> Option<i16> {
+    Some(match op {
+        Bin::Add => x.wrapping_add(y),
+        Bin::Sub => x.wrapping_sub(y),
+        Bin::And => x & y,
+        Bin::Or => x | y,
+        Bin::Eq => -i16::from(x == y),
+        Bin::Gt => -i16::from(x > y),
+        Bin::Lt => -i16::from(x < y),
+        Bin::Mul => math::multiply(x, y),
+        Bin::Div => return math::divide(profile, x, y),
+    })
 }
 
 const POP_BELOW: &str = "Cannot pop the stack below 256 in strict mode";
@@ -106,7 +166,7 @@ impl Machine {
         code: &[Op],
         stop_at: u64,
         watch: &mut Option<(&[bool], &mut dyn Watcher)>,
-    ) -> Option<Exit> {
+    ) -> Flow {
         let mut pc = self.pc as usize;
         let mut steps = self.steps;
         let mut cur = self.cur;
@@ -119,6 +179,7 @@ impl Machine {
         let mut profile = self.profile.as_deref_mut();
         let mut profile_mark = self.profile_mark;
         let scratch = &mut self.scratch;
+        let os_profile = os.profile();
         let mut w = words(ram);
         let mut regs = Regs::load(w);
 
@@ -199,6 +260,112 @@ impl Machine {
                     if let Some(stop) = c.stop {
                         break 'run Some(Halt::Os(stop));
                     }
+                }};
+            }
+
+            // Undo the fetch and let plain code run from here.
+            macro_rules! deopt {
+                () => {{
+                    pc -= 1;
+                    steps -= 1;
+                    break 'run Some(Halt::Deopt);
+                }};
+            }
+            // Read a fused operand (its checks were done by `src_ok`).
+            macro_rules! src {
+                ($s:expr) => {
+                    match $s {
+                        Src::Const(c) => c,
+                        Src::Local(i) => rd!(regs.lcl.wrapping_add(i)),
+                        Src::Arg(i) => rd!(regs.arg.wrapping_add(i)),
+                        Src::This(i) | Src::ThisChk(i) => rd!(regs.this.wrapping_add(i)),
+                        Src::That(i) | Src::ThatChk(i) => rd!(regs.that.wrapping_add(i)),
+                        Src::Abs(a) => w[a as usize],
+                    }
+                };
+            }
+            // Store into a fused destination (checked by `dst_ok`).
+            macro_rules! dst {
+                ($d:expr, $v:expr) => {{
+                    let v: i16 = $v;
+                    match $d {
+                        Dst::Local(i) => wr!(regs.lcl.wrapping_add(i), v),
+                        Dst::Arg(i) => wr!(regs.arg.wrapping_add(i), v),
+                        Dst::This(i) | Dst::ThisChk(i) => wr!(regs.this.wrapping_add(i), v),
+                        Dst::That(i) | Dst::ThatChk(i) => wr!(regs.that.wrapping_add(i), v),
+                        Dst::Abs(a) => w[a as usize] = v,
+                        Dst::Ptr(0) => {
+                            regs.this = v as u16;
+                            flags |= THIS_OK;
+                        }
+                        Dst::Ptr(_) => {
+                            regs.that = v as u16;
+                            flags |= THAT_OK;
+                        }
+                    }
+                }};
+            }
+            // `push a; push b; op` on the stack words at sp, sp+1; leaves
+            // SP = sp+1 and returns the result (also stored at sp).
+            macro_rules! push_push_op {
+                ($op:expr, $a:expr, $b:expr) => {{
+                    let sp = regs.sp;
+                    let x = src!($a);
+                    w[sp as usize] = x;
+                    regs.sp = sp + 1;
+                    let y = src!($b);
+                    w[sp as usize + 1] = y;
+                    let Some(r) = apply($op, x, y, os_profile) else {
+                        regs.sp = sp;
+                        deopt!()
+                    };
+                    w[sp as usize] = r;
+                    r
+                }};
+            }
+            macro_rules! do_return {
+                () => {{
+                    let frame = regs.lcl;
+                    let ret = rd!(frame.wrapping_sub(5));
+                    let v = pop!();
+                    wr!(regs.arg, v);
+                    regs.sp = regs.arg.wrapping_add(1);
+                    regs.that = rd!(frame.wrapping_sub(1)) as u16;
+                    regs.this = rd!(frame.wrapping_sub(2)) as u16;
+                    regs.arg = rd!(frame.wrapping_sub(3)) as u16;
+                    regs.lcl = rd!(frame.wrapping_sub(4)) as u16;
+                    charge!();
+                    let Some(fr) = frames.pop() else {
+                        // A return from the entry function ends the run.
+                        break 'run Some(Halt::Exit(Exit::Halted));
+                    };
+                    let callee = cur;
+                    cur = fr.caller;
+                    nargs = fr.nargs;
+                    flags = fr.flags;
+                    if W && fr.watched {
+                        if let Some((_, watcher)) = watch {
+                            regs.store(w);
+                            watcher.on_return(program, callee, v, ram);
+                            w = words(ram);
+                        }
+                    }
+                    if fr.ret_pc == HOST {
+                        break 'run Some(Halt::Exit(Exit::Returned(v)));
+                    }
+                    pc = if ret == fr.ret {
+                        fr.ret_pc as usize
+                    } else {
+                        match resume_pc(program, cur, ret) {
+                            Some(p) => p as usize,
+                            None => {
+                                break 'run Some(Halt::Error(format!(
+                                    "Return address {ret} is not a command of {}",
+                                    program.function_name(cur)
+                                )))
+                            }
+                        }
+                    };
                 }};
             }
 
@@ -385,52 +552,172 @@ impl Machine {
                     flags = 0;
                     pc = f.start as usize;
                 }
-                Op::Return => {
-                    let frame = regs.lcl;
-                    let ret = rd!(frame.wrapping_sub(5));
-                    let v = pop!();
-                    wr!(regs.arg, v);
-                    regs.sp = regs.arg.wrapping_add(1);
-                    regs.that = rd!(frame.wrapping_sub(1)) as u16;
-                    regs.this = rd!(frame.wrapping_sub(2)) as u16;
-                    regs.arg = rd!(frame.wrapping_sub(3)) as u16;
-                    regs.lcl = rd!(frame.wrapping_sub(4)) as u16;
-                    charge!();
-                    let Some(fr) = frames.pop() else {
-                        // A return from the entry function ends the run.
-                        break Some(Halt::Exit(Exit::Halted));
-                    };
-                    let callee = cur;
-                    cur = fr.caller;
-                    nargs = fr.nargs;
-                    flags = fr.flags;
-                    if W && fr.watched {
-                        if let Some((_, watcher)) = watch {
-                            regs.store(w);
-                            watcher.on_return(program, callee, v, ram);
-                            w = words(ram);
-                        }
-                    }
-                    if fr.ret_pc == HOST {
-                        break Some(Halt::Exit(Exit::Returned(v)));
-                    }
-                    pc = if ret == fr.ret {
-                        fr.ret_pc as usize
-                    } else {
-                        match resume_pc(program, cur, ret) {
-                            Some(p) => p as usize,
-                            None => {
-                                break Some(Halt::Error(format!(
-                                    "Return address {ret} is not a command of {}",
-                                    program.function_name(cur)
-                                )))
-                            }
-                        }
-                    };
-                }
+                Op::Return => do_return!(),
                 Op::Halt => {
                     steps -= 1;
                     break Some(Halt::Exit(Exit::Halted));
+                }
+
+                // Fused instructions.
+                Op::Push2(a, b) => {
+                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
+                        deopt!();
+                    }
+                    steps += op.steps() - 1;
+                    let sp = regs.sp;
+                    w[sp as usize] = src!(a);
+                    regs.sp = sp + 1;
+                    w[sp as usize + 1] = src!(b);
+                    regs.sp = sp + 2;
+                }
+                Op::Move(a, d) => {
+                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && dst_ok(d, nargs, flags)) {
+                        deopt!();
+                    }
+                    steps += op.steps() - 1;
+                    let v = src!(a);
+                    w[regs.sp as usize] = v;
+                    dst!(d, v);
+                }
+                Op::BinSS { op: o, a, b } => {
+                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
+                        deopt!();
+                    }
+                    push_push_op!(o, a, b);
+                    steps += op.steps() - 1;
+                }
+                Op::BinPop { op: o, a, b, d } => {
+                    if !(fast_sp(regs.sp)
+                        && src_ok(a, nargs, flags)
+                        && src_ok(b, nargs, flags)
+                        && dst_ok(d, nargs, flags))
+                    {
+                        deopt!();
+                    }
+                    let r = push_push_op!(o, a, b);
+                    steps += op.steps() - 1;
+                    regs.sp -= 1;
+                    dst!(d, r);
+                }
+                Op::BinS { op: o, b } | Op::BinSPop { op: o, b, .. } => {
+                    let d = match op {
+                        Op::BinSPop { d, .. } => Some(d),
+                        _ => None,
+                    };
+                    if !(fast_sp(regs.sp) && src_ok(b, nargs, flags) && d.is_none_or(|d| dst_ok(d, nargs, flags))) {
+                        deopt!();
+                    }
+                    let sp = regs.sp;
+                    let x = w[sp as usize - 1];
+                    let y = src!(b);
+                    w[sp as usize] = y;
+                    let Some(r) = apply(o, x, y, os_profile) else { deopt!() };
+                    steps += op.steps() - 1;
+                    w[sp as usize - 1] = r;
+                    if let Some(d) = d {
+                        regs.sp = sp - 1;
+                        dst!(d, r);
+                    }
+                }
+                Op::CmpJump { op: o, a, b, not, target } => {
+                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
+                        deopt!();
+                    }
+                    steps += op.steps() - 1;
+                    let r = push_push_op!(o, a, b);
+                    let r = if not { !r } else { r };
+                    w[regs.sp as usize - 1] = r;
+                    regs.sp -= 1;
+                    if r != 0 {
+                        pc = target as usize;
+                    }
+                }
+                Op::CmpNotJump { op: o, target } => {
+                    if !fast_sp(regs.sp) {
+                        deopt!();
+                    }
+                    steps += op.steps() - 1;
+                    let sp = regs.sp as usize;
+                    let Some(r) = apply(o, w[sp - 2], w[sp - 1], os_profile) else { deopt!() };
+                    w[sp - 2] = !r;
+                    regs.sp -= 2;
+                    if !r != 0 {
+                        pc = target as usize;
+                    }
+                }
+                Op::NotIfGoto(target) => {
+                    if !fast_sp(regs.sp) {
+                        deopt!();
+                    }
+                    steps += op.steps() - 1;
+                    let sp = regs.sp as usize;
+                    let r = !w[sp - 1];
+                    w[sp - 1] = r;
+                    regs.sp -= 1;
+                    if r != 0 {
+                        pc = target as usize;
+                    }
+                }
+                Op::ArrayRead { index, base } => {
+                    if !(fast_sp(regs.sp) && src_ok(index, nargs, flags) && src_ok(base, nargs, flags)) {
+                        deopt!();
+                    }
+                    steps += op.steps() - 1;
+                    let a = push_push_op!(Bin::Add, index, base);
+                    let sp = regs.sp - 1;
+                    regs.sp = sp;
+                    regs.that = a as u16;
+                    flags |= THAT_OK;
+                    let v = rd!(regs.that);
+                    w[sp as usize] = v;
+                    regs.sp = sp + 1;
+                }
+                Op::PtrRead => {
+                    if !fast_sp(regs.sp) {
+                        deopt!();
+                    }
+                    steps += op.steps() - 1;
+                    let sp = regs.sp as usize;
+                    let a = w[sp - 2].wrapping_add(w[sp - 1]);
+                    w[sp - 2] = a;
+                    regs.sp -= 2;
+                    regs.that = a as u16;
+                    flags |= THAT_OK;
+                    let v = rd!(regs.that);
+                    w[sp - 2] = v;
+                    regs.sp += 1;
+                }
+                Op::StoreThat | Op::StoreThatSrc(_) => {
+                    let v = if let Op::StoreThatSrc(s) = op {
+                        if !(fast_sp(regs.sp) && src_ok(s, nargs, flags)) {
+                            deopt!();
+                        }
+                        let v = src!(s);
+                        w[regs.sp as usize] = v;
+                        v
+                    } else {
+                        if !fast_sp(regs.sp) {
+                            deopt!();
+                        }
+                        regs.sp -= 1;
+                        w[regs.sp as usize]
+                    };
+                    steps += op.steps() - 1;
+                    // pop temp 0; pop pointer 1; push temp 0; pop that 0
+                    w[5] = v;
+                    regs.sp -= 1;
+                    regs.that = w[regs.sp as usize] as u16;
+                    flags |= THAT_OK;
+                    w[regs.sp as usize] = v;
+                    wr!(regs.that, v);
+                }
+                Op::PushReturn(a) => {
+                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags)) {
+                        deopt!();
+                    }
+                    steps += op.steps() - 1;
+                    push!(src!(a));
+                    do_return!();
                 }
             }
         };
@@ -442,8 +729,9 @@ impl Machine {
         self.nargs = nargs;
         self.flags = flags;
         self.profile_mark = profile_mark;
-        let halt = halt?;
-        Some(match halt {
+        let Some(halt) = halt else { return Flow::Limit };
+        Flow::End(match halt {
+            Halt::Deopt => return Flow::Deopt,
             Halt::Exit(e) => e,
             Halt::Error(message) => Exit::RuntimeError {
                 message,

@@ -1,13 +1,164 @@
-//! Superinstructions: common sequences of the Jack compiler's output fused
-//! into one instruction, written over the first command's slot (the other
-//! slots keep their plain form, so a jump into the middle still works).
+//! Superinstructions: sequences the Jack compiler emits all the time (spec
+//! §4.3 templates) fused into one instruction. Each index of the fused array
+//! holds the longest pattern starting there, so a jump into the middle of a
+//! sequence still finds a valid (possibly fused) instruction, and the plain
+//! array with the same indexing can take over at any point.
+//!
+//! A fused instruction performs the same memory reads and writes, in the
+//! same order, as its commands; it only skips re-reading stack words it has
+//! just written. When its fast-path conditions do not hold (a stack pointer
+//! near 256 or near the end of RAM, an argument or `this`/`that` access that
+//! would fail) it does nothing and the plain commands run instead, so errors
+//! and step counts are exactly those of the plain commands.
 
-use crate::program::Op;
+use crate::program::{Bin, Dst, Op, Src};
 
 /// The most VM commands one fused instruction stands for.
-pub(crate) const MAX_FUSED_STEPS: u64 = 1;
+pub(crate) const MAX_FUSED_STEPS: u64 = 5;
 
 /// The fused instruction array (same indexing as `plain`).
 pub(crate) fn fuse(plain: &[Op]) -> Vec<Op> {
-    plain.to_vec()
+    (0..plain.len()).map(|i| longest(&plain[i..])).collect()
+}
+
+fn src(op: Op) -> Option<Src> {
+    Some(match op {
+        Op::PushConst(c) => Src::Const(c),
+        Op::PushLocal(i) => Src::Local(i),
+        Op::PushArg(i) => Src::Arg(i),
+        Op::PushThis(i) => Src::This(i),
+        Op::PushThisChk(i) => Src::ThisChk(i),
+        Op::PushThat(i) => Src::That(i),
+        Op::PushThatChk(i) => Src::ThatChk(i),
+        Op::PushAbs(a) => Src::Abs(a),
+        _ => return None,
+    })
+}
+
+fn dst(op: Op) -> Option<Dst> {
+    Some(match op {
+        Op::PopLocal(i) => Dst::Local(i),
+        Op::PopArg(i) => Dst::Arg(i),
+        Op::PopThis(i) => Dst::This(i),
+        Op::PopThisChk(i) => Dst::ThisChk(i),
+        Op::PopThat(i) => Dst::That(i),
+        Op::PopThatChk(i) => Dst::ThatChk(i),
+        Op::PopAbs(a) => Dst::Abs(a),
+        Op::PopPtr(p) => Dst::Ptr(p),
+        _ => return None,
+    })
+}
+
+fn bin(op: Op) -> Option<Bin> {
+    Some(match op {
+        Op::Add => Bin::Add,
+        Op::Sub => Bin::Sub,
+        Op::And => Bin::And,
+        Op::Or => Bin::Or,
+        Op::Eq => Bin::Eq,
+        Op::Gt => Bin::Gt,
+        Op::Lt => Bin::Lt,
+        Op::Multiply => Bin::Mul,
+        Op::Divide => Bin::Div,
+        _ => return None,
+    })
+}
+
+fn cmp(op: Op) -> Option<Bin> {
+    bin(op).filter(|b| matches!(b, Bin::Eq | Bin::Gt | Bin::Lt))
+}
+
+fn is_that0(op: Op) -> bool {
+    matches!(op, Op::PushThat(0) | Op::PushThatChk(0))
+}
+
+/// `pop temp 0; pop pointer 1; push temp 0; pop that 0`: the tail of
+/// `let a[i] = e`.
+fn is_store_tail(p: &[Op]) -> bool {
+    matches!(p, [Op::PopAbs(5), Op::PopPtr(1), Op::PushAbs(5), Op::PopThat(0) | Op::PopThatChk(0), ..])
+}
+
+fn longest(p: &[Op]) -> Op {
+    let at = |i: usize| p.get(i).copied().unwrap_or(Op::Halt);
+    let (s0, s1) = (src(at(0)), src(at(1)));
+    if let (Some(a), Some(b)) = (s0, s1) {
+        if let Some(op) = cmp(at(2)) {
+            match (at(3), at(4)) {
+                (Op::Not, Op::IfGoto(target)) => return Op::CmpJump { op, a, b, not: true, target },
+                (Op::IfGoto(target), _) => return Op::CmpJump { op, a, b, not: false, target },
+                _ => {}
+            }
+        }
+        if at(2) == Op::Add && at(3) == Op::PopPtr(1) && is_that0(at(4)) {
+            return Op::ArrayRead { index: a, base: b };
+        }
+        if let Some(op) = bin(at(2)) {
+            if let Some(d) = dst(at(3)) {
+                return Op::BinPop { op, a, b, d };
+            }
+            return Op::BinSS { op, a, b };
+        }
+    }
+    if let Some(v) = s0 {
+        if is_store_tail(&p[1..]) {
+            return Op::StoreThatSrc(v);
+        }
+    }
+    if is_store_tail(p) {
+        return Op::StoreThat;
+    }
+    if let Some(op) = cmp(at(0)) {
+        if let (Op::Not, Op::IfGoto(target)) = (at(1), at(2)) {
+            return Op::CmpNotJump { op, target };
+        }
+    }
+    if at(0) == Op::Add && at(1) == Op::PopPtr(1) && is_that0(at(2)) {
+        return Op::PtrRead;
+    }
+    if let Some(b) = s0 {
+        if let Some(op) = bin(at(1)) {
+            if let Some(d) = dst(at(2)) {
+                return Op::BinSPop { op, b, d };
+            }
+            return Op::BinS { op, b };
+        }
+        if at(1) == Op::Return {
+            return Op::PushReturn(b);
+        }
+        if let Some(d) = dst(at(1)) {
+            return Op::Move(b, d);
+        }
+        if let Some(b2) = s1 {
+            return Op::Push2(b, b2);
+        }
+    }
+    if let (Op::Not, Op::IfGoto(target)) = (at(0), at(1)) {
+        return Op::NotIfGoto(target);
+    }
+    at(0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn jack_templates_fuse() {
+        let cond = [Op::PushLocal(1), Op::PushConst(8192), Op::Lt, Op::Not, Op::IfGoto(9)];
+        assert_eq!(
+            longest(&cond),
+            Op::CmpJump { op: Bin::Lt, a: Src::Local(1), b: Src::Const(8192), not: true, target: 9 }
+        );
+        let read = [Op::PushConst(2), Op::PushLocal(0), Op::Add, Op::PopPtr(1), Op::PushThat(0)];
+        assert_eq!(longest(&read), Op::ArrayRead { index: Src::Const(2), base: Src::Local(0) });
+        let store = [Op::PushLocal(2), Op::PopAbs(5), Op::PopPtr(1), Op::PushAbs(5), Op::PopThat(0)];
+        assert_eq!(longest(&store), Op::StoreThatSrc(Src::Local(2)));
+        let prologue = [Op::PushArg(0), Op::PopPtr(0), Op::PushThis(1)];
+        assert_eq!(longest(&prologue), Op::Move(Src::Arg(0), Dst::Ptr(0)));
+        assert_eq!(longest(&[Op::Add, Op::Halt]), Op::Add);
+        assert_eq!(longest(&[Op::PushConst(0), Op::Return]), Op::PushReturn(Src::Const(0)));
+        for op in fuse(&cond).into_iter().chain(fuse(&read)).chain(fuse(&store)) {
+            assert!(op.steps() <= MAX_FUSED_STEPS);
+        }
+    }
 }

@@ -2,6 +2,7 @@
 //! running program. `Clone` takes a snapshot; clones run independently
 //! (and in parallel: a `Machine` is `Send`).
 
+use crate::exec::Flow;
 use crate::exit::{CallStack, Exit};
 use crate::program::{FnId, Program};
 use jack_os::{KeyScript, Os, Profile, Ram, KBD};
@@ -328,14 +329,22 @@ impl Machine {
             let key_change = self.os.keys().next_change(self.steps).unwrap_or(u64::MAX);
             let limit = budget_end.min(key_change);
             let soft = limit.saturating_sub(crate::fuse::MAX_FUSED_STEPS);
-            let result = if self.steps < soft {
+            let flow = if self.steps < soft {
                 self.exec::<W>(&program, &program.fused, soft, &mut watch)
             } else if self.steps < limit {
                 self.exec::<W>(&program, &program.plain, limit, &mut watch)
             } else {
-                None
+                Flow::Limit
             };
-            if let Some(exit) = result {
+            let flow = match flow {
+                // A fused instruction declined: run its commands one by one.
+                Flow::Deopt => {
+                    let stop = limit.min(self.steps + crate::fuse::MAX_FUSED_STEPS);
+                    self.exec::<W>(&program, &program.plain, stop, &mut watch)
+                }
+                other => other,
+            };
+            if let Flow::End(exit) = flow {
                 break exit;
             }
             if self.steps >= budget_end {

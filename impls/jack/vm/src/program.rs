@@ -72,6 +72,92 @@ pub(crate) enum Op {
     Return,
     /// Ran past the last command of a function: the VM halts.
     Halt,
+
+    // Fused forms (module `fuse`); the comment gives the commands.
+    /// push a; push b
+    Push2(Src, Src),
+    /// push a; pop d
+    Move(Src, Dst),
+    /// push a; push b; op
+    BinSS { op: Bin, a: Src, b: Src },
+    /// push a; push b; op; pop d
+    BinPop { op: Bin, a: Src, b: Src, d: Dst },
+    /// push b; op (the left operand is on the stack)
+    BinS { op: Bin, b: Src },
+    /// push b; op; pop d
+    BinSPop { op: Bin, b: Src, d: Dst },
+    /// push a; push b; eq|gt|lt; [not;] if-goto target
+    CmpJump { op: Bin, a: Src, b: Src, not: bool, target: u32 },
+    /// eq|gt|lt; not; if-goto target
+    CmpNotJump { op: Bin, target: u32 },
+    /// not; if-goto target
+    NotIfGoto(u32),
+    /// push index; push base; add; pop pointer 1; push that 0
+    ArrayRead { index: Src, base: Src },
+    /// add; pop pointer 1; push that 0
+    PtrRead,
+    /// pop temp 0; pop pointer 1; push temp 0; pop that 0
+    StoreThat,
+    /// push v; pop temp 0; pop pointer 1; push temp 0; pop that 0
+    StoreThatSrc(Src),
+    /// push a; return
+    PushReturn(Src),
+}
+
+/// The operand of a fused `push`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Src {
+    Const(i16),
+    Local(u16),
+    Arg(u16),
+    This(u16),
+    ThisChk(u16),
+    That(u16),
+    ThatChk(u16),
+    /// static or temp.
+    Abs(u16),
+}
+
+/// The target of a fused `pop`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Dst {
+    Local(u16),
+    Arg(u16),
+    This(u16),
+    ThisChk(u16),
+    That(u16),
+    ThatChk(u16),
+    Abs(u16),
+    Ptr(u8),
+}
+
+/// A binary operation of a fused instruction (Mul/Div: the built-ins).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Bin {
+    Add,
+    Sub,
+    And,
+    Or,
+    Eq,
+    Gt,
+    Lt,
+    Mul,
+    Div,
+}
+
+impl Op {
+    /// VM commands (steps) this instruction stands for.
+    pub(crate) const fn steps(self) -> u64 {
+        match self {
+            Op::Halt => 0,
+            Op::Push2(..) | Op::Move(..) | Op::BinS { .. } | Op::NotIfGoto(_) | Op::PushReturn(_) => 2,
+            Op::BinSS { .. } | Op::BinSPop { .. } | Op::CmpNotJump { .. } | Op::PtrRead => 3,
+            Op::BinPop { .. } | Op::StoreThat => 4,
+            Op::CmpJump { not, .. } => 4 + not as u64,
+            Op::ArrayRead { .. } | Op::StoreThatSrc(_) => 5,
+            _ => 1,
+        }
+    }
 }
 
 /// A VM function of the program.

@@ -1,0 +1,118 @@
+//! `harness jack run DIR`: load a VM program (or compile a Jack one), run it
+//! from its entry on the emulator and report the instruction count, how it
+//! ended (with the Jack call stack) and optionally the screen as PNG.
+
+use anyhow::Context;
+use hack_vm::{Config, Exit, KeyScript, Machine, Profile, Program, Ram};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+
+/// Arguments of `harness jack run`.
+#[derive(Debug, clap::Args)]
+pub struct RunArgs {
+    /// Directory holding the program's .vm files (or .jack files).
+    pub dir: PathBuf,
+    /// Keys pressed one after another, comma-separated (e.g. "SPACE,A,ENTER").
+    #[arg(long, default_value = "")]
+    pub keys: String,
+    /// Instructions each key is held, and then released.
+    #[arg(long, default_value_t = KeyScript::DEFAULT_HOLD)]
+    pub hold: u64,
+    /// Stop after this many VM instructions (reported as a budget end).
+    #[arg(long)]
+    pub max_instructions: Option<u64>,
+    /// OS profile: which official tool to follow.
+    #[arg(long, default_value = "desktop")]
+    pub profile: Profile,
+    /// Write the 512x256 screen to this PNG.
+    #[arg(long)]
+    pub screen: Option<PathBuf>,
+    /// Print the instruction count of each function.
+    #[arg(long)]
+    pub profile_functions: bool,
+    /// Run under both profiles and report whether screens and ends differ.
+    #[arg(long)]
+    pub compare_profiles: bool,
+}
+
+/// Run `harness jack run`. Exit 0 when the program halted (or, with
+/// `--compare-profiles`, when both profiles agree), 1 otherwise.
+pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
+    let program = load(&args.dir)?;
+    let keys = KeyScript::parse(&args.keys, args.hold).context("--keys")?;
+    let config = |profile| Config { profile, keys: keys.clone(), profile_functions: args.profile_functions };
+    if args.compare_profiles {
+        let runs: Vec<(Profile, Machine, Exit)> =
+            Profile::ALL.into_iter().map(|p| run_one(&program, config(p), args.max_instructions)).collect();
+        for (p, m, e) in &runs {
+            println!("{p}: {} instructions, {e}", m.steps());
+        }
+        let (a, b) = (&runs[0], &runs[1]);
+        let diff = screen_diff(a.1.ram(), b.1.ram());
+        let same_end = a.2 == b.2;
+        println!("end states: {}", if same_end { "same" } else { "differ" });
+        match diff {
+            None => println!("screens: same"),
+            Some((count, (x, y))) => println!("screens: {count} pixels differ, first at ({x},{y})"),
+        }
+        if let Some(path) = &args.screen {
+            for (p, m, _) in &runs {
+                let out = path.with_file_name(format!(
+                    "{}-{p}.{}",
+                    path.file_stem().unwrap_or_default().to_string_lossy(),
+                    path.extension().unwrap_or_default().to_string_lossy()
+                ));
+                write_screen(m.ram(), &out)?;
+            }
+        }
+        return Ok(if same_end && diff.is_none() { ExitCode::SUCCESS } else { ExitCode::from(1) });
+    }
+    let (_, machine, exit) = run_one(&program, config(args.profile), args.max_instructions);
+    println!("instructions: {}", machine.steps());
+    println!("end: {exit}");
+    if args.profile_functions {
+        let total = machine.steps().max(1) as f64;
+        for (name, count) in machine.function_profile() {
+            println!("{count:>14} {:>6.2}%  {name}", 100.0 * count as f64 / total);
+        }
+    }
+    if let Some(path) = &args.screen {
+        write_screen(machine.ram(), path)?;
+    }
+    Ok(if exit == Exit::Halted { ExitCode::SUCCESS } else { ExitCode::from(1) })
+}
+
+fn load(dir: &Path) -> anyhow::Result<Arc<Program>> {
+    Program::load_dir(dir).with_context(|| format!("loading {}", dir.display()))
+}
+
+fn run_one(program: &Arc<Program>, config: Config, budget: Option<u64>) -> (Profile, Machine, Exit) {
+    let profile = config.profile;
+    let mut machine = Machine::new(Arc::clone(program), config);
+    let exit = machine.run(budget);
+    (profile, machine, exit)
+}
+
+/// Number of differing pixels and the first (row-major), if any differ.
+fn screen_diff(a: &Ram, b: &Ram) -> Option<(usize, (usize, usize))> {
+    let mut count = 0;
+    let mut first = None;
+    for y in 0..256 {
+        for x in 0..512 {
+            if a.pixel(x, y) != b.pixel(x, y) {
+                count += 1;
+                first.get_or_insert((x, y));
+            }
+        }
+    }
+    first.map(|f| (count, f))
+}
+
+/// The screen as a greyscale PNG: white 255, black (a 1 bit) 0.
+fn write_screen(ram: &Ram, path: &Path) -> anyhow::Result<()> {
+    let img = image::GrayImage::from_fn(512, 256, |x, y| {
+        image::Luma([if ram.pixel(x as usize, y as usize) { 0 } else { 255 }])
+    });
+    img.save(path).with_context(|| format!("writing {}", path.display()))
+}
