@@ -41,10 +41,16 @@ pub struct RunArgs {
 pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     let program = load(&args.dir)?;
     let keys = KeyScript::parse(&args.keys, args.hold).context("--keys")?;
-    let config = |profile| Config { profile, keys: keys.clone(), profile_functions: args.profile_functions };
+    let config = |profile| Config {
+        profile,
+        keys: keys.clone(),
+        profile_functions: args.profile_functions,
+    };
     if args.compare_profiles {
-        let runs: Vec<(Profile, Machine, Exit)> =
-            Profile::ALL.into_iter().map(|p| run_one(&program, config(p), args.max_instructions)).collect();
+        let runs: Vec<(Profile, Machine, Exit)> = Profile::ALL
+            .into_iter()
+            .map(|p| run_one(&program, config(p), args.max_instructions))
+            .collect();
         for (p, m, e) in &runs {
             println!("{p}: {} instructions, {e}", m.steps());
         }
@@ -66,7 +72,11 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
                 write_screen(m.ram(), &out)?;
             }
         }
-        return Ok(if same_end && diff.is_none() { ExitCode::SUCCESS } else { ExitCode::from(1) });
+        return Ok(if same_end && diff.is_none() {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(1)
+        });
     }
     let (_, machine, exit) = run_one(&program, config(args.profile), args.max_instructions);
     println!("instructions: {}", machine.steps());
@@ -80,14 +90,22 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     if let Some(path) = &args.screen {
         write_screen(machine.ram(), path)?;
     }
-    Ok(if exit == Exit::Halted { ExitCode::SUCCESS } else { ExitCode::from(1) })
+    Ok(if exit == Exit::Halted {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }
 
 fn load(dir: &Path) -> anyhow::Result<Arc<Program>> {
     Program::load_dir(dir).with_context(|| format!("loading {}", dir.display()))
 }
 
-fn run_one(program: &Arc<Program>, config: Config, budget: Option<u64>) -> (Profile, Machine, Exit) {
+fn run_one(
+    program: &Arc<Program>,
+    config: Config,
+    budget: Option<u64>,
+) -> (Profile, Machine, Exit) {
     let profile = config.profile;
     let mut machine = Machine::new(Arc::clone(program), config);
     let exit = machine.run(budget);
@@ -112,7 +130,12 @@ fn screen_diff(a: &Ram, b: &Ram) -> Option<(usize, (usize, usize))> {
 /// The screen as a greyscale PNG: white 255, black (a 1 bit) 0.
 fn write_screen(ram: &Ram, path: &Path) -> anyhow::Result<()> {
     let img = image::GrayImage::from_fn(512, 256, |x, y| {
-        image::Luma([if ram.pixel(x as usize, y as usize) { 0 } else { 255 }])
+        image::Luma([if ram.pixel(x as usize, y as usize) {
+            0
+        } else {
+            255
+        }])
     });
-    img.save(path).with_context(|| format!("writing {}", path.display()))
+    img.save(path)
+        .with_context(|| format!("writing {}", path.display()))
 }

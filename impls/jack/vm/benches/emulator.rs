@@ -21,7 +21,9 @@ fn workload() -> Arc<Program> {
 
 fn one_call(snapshot: &Machine) -> u64 {
     let mut m = snapshot.clone();
-    let exit = m.call("Main.run", &[ROUNDS], None).expect("Main.run exists");
+    let exit = m
+        .call("Main.run", &[ROUNDS], None)
+        .expect("Main.run exists");
     assert!(matches!(exit, Exit::Returned(_)), "{exit}");
     m.steps()
 }
@@ -31,12 +33,25 @@ fn emulator(c: &mut Criterion) {
     let steps = one_call(&snapshot);
     let mut g = c.benchmark_group("hack-vm");
     g.throughput(Throughput::Elements(steps));
-    g.bench_function("float316-like, single thread", |b| b.iter(|| one_call(&snapshot)));
+    g.bench_function("float316-like, single thread", |b| {
+        b.iter(|| one_call(&snapshot))
+    });
     let jobs = 4 * rayon::current_num_threads() as u64;
     g.throughput(Throughput::Elements(steps * jobs));
-    g.bench_function(format!("float316-like, {jobs} clones on {} threads", rayon::current_num_threads()), |b| {
-        b.iter(|| (0..jobs).into_par_iter().map(|_| one_call(&snapshot)).sum::<u64>())
-    });
+    g.bench_function(
+        format!(
+            "float316-like, {jobs} clones on {} threads",
+            rayon::current_num_threads()
+        ),
+        |b| {
+            b.iter(|| {
+                (0..jobs)
+                    .into_par_iter()
+                    .map(|_| one_call(&snapshot))
+                    .sum::<u64>()
+            })
+        },
+    );
     g.finish();
 }
 

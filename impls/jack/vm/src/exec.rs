@@ -263,6 +263,14 @@ impl Machine {
                 }};
             }
 
+            // Account for the commands a fused instruction covers beyond the first.
+            macro_rules! skip {
+                ($op:expr) => {{
+                    let extra = $op.steps() - 1;
+                    steps += extra;
+                    pc += extra as usize;
+                }};
+            }
             // Undo the fetch and let plain code run from here.
             macro_rules! deopt {
                 () => {{
@@ -563,7 +571,7 @@ impl Machine {
                     if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
                         deopt!();
                     }
-                    steps += op.steps() - 1;
+                    skip!(op);
                     let sp = regs.sp;
                     w[sp as usize] = src!(a);
                     regs.sp = sp + 1;
@@ -574,7 +582,7 @@ impl Machine {
                     if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && dst_ok(d, nargs, flags)) {
                         deopt!();
                     }
-                    steps += op.steps() - 1;
+                    skip!(op);
                     let v = src!(a);
                     w[regs.sp as usize] = v;
                     dst!(d, v);
@@ -584,7 +592,7 @@ impl Machine {
                         deopt!();
                     }
                     push_push_op!(o, a, b);
-                    steps += op.steps() - 1;
+                    skip!(op);
                 }
                 Op::BinPop { op: o, a, b, d } => {
                     if !(fast_sp(regs.sp)
@@ -595,7 +603,7 @@ impl Machine {
                         deopt!();
                     }
                     let r = push_push_op!(o, a, b);
-                    steps += op.steps() - 1;
+                    skip!(op);
                     regs.sp -= 1;
                     dst!(d, r);
                 }
@@ -604,26 +612,37 @@ impl Machine {
                         Op::BinSPop { d, .. } => Some(d),
                         _ => None,
                     };
-                    if !(fast_sp(regs.sp) && src_ok(b, nargs, flags) && d.is_none_or(|d| dst_ok(d, nargs, flags))) {
+                    if !(fast_sp(regs.sp)
+                        && src_ok(b, nargs, flags)
+                        && d.is_none_or(|d| dst_ok(d, nargs, flags)))
+                    {
                         deopt!();
                     }
                     let sp = regs.sp;
                     let x = w[sp as usize - 1];
                     let y = src!(b);
                     w[sp as usize] = y;
-                    let Some(r) = apply(o, x, y, os_profile) else { deopt!() };
-                    steps += op.steps() - 1;
+                    let Some(r) = apply(o, x, y, os_profile) else {
+                        deopt!()
+                    };
+                    skip!(op);
                     w[sp as usize - 1] = r;
                     if let Some(d) = d {
                         regs.sp = sp - 1;
                         dst!(d, r);
                     }
                 }
-                Op::CmpJump { op: o, a, b, not, target } => {
+                Op::CmpJump {
+                    op: o,
+                    a,
+                    b,
+                    not,
+                    target,
+                } => {
                     if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
                         deopt!();
                     }
-                    steps += op.steps() - 1;
+                    skip!(op);
                     let r = push_push_op!(o, a, b);
                     let r = if not { !r } else { r };
                     w[regs.sp as usize - 1] = r;
@@ -636,9 +655,11 @@ impl Machine {
                     if !fast_sp(regs.sp) {
                         deopt!();
                     }
-                    steps += op.steps() - 1;
+                    skip!(op);
                     let sp = regs.sp as usize;
-                    let Some(r) = apply(o, w[sp - 2], w[sp - 1], os_profile) else { deopt!() };
+                    let Some(r) = apply(o, w[sp - 2], w[sp - 1], os_profile) else {
+                        deopt!()
+                    };
                     w[sp - 2] = !r;
                     regs.sp -= 2;
                     if !r != 0 {
@@ -649,7 +670,7 @@ impl Machine {
                     if !fast_sp(regs.sp) {
                         deopt!();
                     }
-                    steps += op.steps() - 1;
+                    skip!(op);
                     let sp = regs.sp as usize;
                     let r = !w[sp - 1];
                     w[sp - 1] = r;
@@ -659,10 +680,13 @@ impl Machine {
                     }
                 }
                 Op::ArrayRead { index, base } => {
-                    if !(fast_sp(regs.sp) && src_ok(index, nargs, flags) && src_ok(base, nargs, flags)) {
+                    if !(fast_sp(regs.sp)
+                        && src_ok(index, nargs, flags)
+                        && src_ok(base, nargs, flags))
+                    {
                         deopt!();
                     }
-                    steps += op.steps() - 1;
+                    skip!(op);
                     let a = push_push_op!(Bin::Add, index, base);
                     let sp = regs.sp - 1;
                     regs.sp = sp;
@@ -676,7 +700,7 @@ impl Machine {
                     if !fast_sp(regs.sp) {
                         deopt!();
                     }
-                    steps += op.steps() - 1;
+                    skip!(op);
                     let sp = regs.sp as usize;
                     let a = w[sp - 2].wrapping_add(w[sp - 1]);
                     w[sp - 2] = a;
@@ -702,7 +726,7 @@ impl Machine {
                         regs.sp -= 1;
                         w[regs.sp as usize]
                     };
-                    steps += op.steps() - 1;
+                    skip!(op);
                     // pop temp 0; pop pointer 1; push temp 0; pop that 0
                     w[5] = v;
                     regs.sp -= 1;
@@ -715,7 +739,7 @@ impl Machine {
                     if !(fast_sp(regs.sp) && src_ok(a, nargs, flags)) {
                         deopt!();
                     }
-                    steps += op.steps() - 1;
+                    skip!(op);
                     push!(src!(a));
                     do_return!();
                 }

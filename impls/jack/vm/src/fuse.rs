@@ -75,7 +75,16 @@ fn is_that0(op: Op) -> bool {
 /// `pop temp 0; pop pointer 1; push temp 0; pop that 0`: the tail of
 /// `let a[i] = e`.
 fn is_store_tail(p: &[Op]) -> bool {
-    matches!(p, [Op::PopAbs(5), Op::PopPtr(1), Op::PushAbs(5), Op::PopThat(0) | Op::PopThatChk(0), ..])
+    matches!(
+        p,
+        [
+            Op::PopAbs(5),
+            Op::PopPtr(1),
+            Op::PushAbs(5),
+            Op::PopThat(0) | Op::PopThatChk(0),
+            ..
+        ]
+    )
 }
 
 fn longest(p: &[Op]) -> Op {
@@ -84,8 +93,24 @@ fn longest(p: &[Op]) -> Op {
     if let (Some(a), Some(b)) = (s0, s1) {
         if let Some(op) = cmp(at(2)) {
             match (at(3), at(4)) {
-                (Op::Not, Op::IfGoto(target)) => return Op::CmpJump { op, a, b, not: true, target },
-                (Op::IfGoto(target), _) => return Op::CmpJump { op, a, b, not: false, target },
+                (Op::Not, Op::IfGoto(target)) => {
+                    return Op::CmpJump {
+                        op,
+                        a,
+                        b,
+                        not: true,
+                        target,
+                    }
+                }
+                (Op::IfGoto(target), _) => {
+                    return Op::CmpJump {
+                        op,
+                        a,
+                        b,
+                        not: false,
+                        target,
+                    }
+                }
                 _ => {}
             }
         }
@@ -144,20 +169,57 @@ mod tests {
 
     #[test]
     fn jack_templates_fuse() {
-        let cond = [Op::PushLocal(1), Op::PushConst(8192), Op::Lt, Op::Not, Op::IfGoto(9)];
+        let cond = [
+            Op::PushLocal(1),
+            Op::PushConst(8192),
+            Op::Lt,
+            Op::Not,
+            Op::IfGoto(9),
+        ];
         assert_eq!(
             longest(&cond),
-            Op::CmpJump { op: Bin::Lt, a: Src::Local(1), b: Src::Const(8192), not: true, target: 9 }
+            Op::CmpJump {
+                op: Bin::Lt,
+                a: Src::Local(1),
+                b: Src::Const(8192),
+                not: true,
+                target: 9
+            }
         );
-        let read = [Op::PushConst(2), Op::PushLocal(0), Op::Add, Op::PopPtr(1), Op::PushThat(0)];
-        assert_eq!(longest(&read), Op::ArrayRead { index: Src::Const(2), base: Src::Local(0) });
-        let store = [Op::PushLocal(2), Op::PopAbs(5), Op::PopPtr(1), Op::PushAbs(5), Op::PopThat(0)];
+        let read = [
+            Op::PushConst(2),
+            Op::PushLocal(0),
+            Op::Add,
+            Op::PopPtr(1),
+            Op::PushThat(0),
+        ];
+        assert_eq!(
+            longest(&read),
+            Op::ArrayRead {
+                index: Src::Const(2),
+                base: Src::Local(0)
+            }
+        );
+        let store = [
+            Op::PushLocal(2),
+            Op::PopAbs(5),
+            Op::PopPtr(1),
+            Op::PushAbs(5),
+            Op::PopThat(0),
+        ];
         assert_eq!(longest(&store), Op::StoreThatSrc(Src::Local(2)));
         let prologue = [Op::PushArg(0), Op::PopPtr(0), Op::PushThis(1)];
         assert_eq!(longest(&prologue), Op::Move(Src::Arg(0), Dst::Ptr(0)));
         assert_eq!(longest(&[Op::Add, Op::Halt]), Op::Add);
-        assert_eq!(longest(&[Op::PushConst(0), Op::Return]), Op::PushReturn(Src::Const(0)));
-        for op in fuse(&cond).into_iter().chain(fuse(&read)).chain(fuse(&store)) {
+        assert_eq!(
+            longest(&[Op::PushConst(0), Op::Return]),
+            Op::PushReturn(Src::Const(0))
+        );
+        for op in fuse(&cond)
+            .into_iter()
+            .chain(fuse(&read))
+            .chain(fuse(&store))
+        {
             assert!(op.steps() <= MAX_FUSED_STEPS);
         }
     }

@@ -79,21 +79,49 @@ pub(crate) enum Op {
     /// push a; pop d
     Move(Src, Dst),
     /// push a; push b; op
-    BinSS { op: Bin, a: Src, b: Src },
+    BinSS {
+        op: Bin,
+        a: Src,
+        b: Src,
+    },
     /// push a; push b; op; pop d
-    BinPop { op: Bin, a: Src, b: Src, d: Dst },
+    BinPop {
+        op: Bin,
+        a: Src,
+        b: Src,
+        d: Dst,
+    },
     /// push b; op (the left operand is on the stack)
-    BinS { op: Bin, b: Src },
+    BinS {
+        op: Bin,
+        b: Src,
+    },
     /// push b; op; pop d
-    BinSPop { op: Bin, b: Src, d: Dst },
+    BinSPop {
+        op: Bin,
+        b: Src,
+        d: Dst,
+    },
     /// push a; push b; eq|gt|lt; [not;] if-goto target
-    CmpJump { op: Bin, a: Src, b: Src, not: bool, target: u32 },
+    CmpJump {
+        op: Bin,
+        a: Src,
+        b: Src,
+        not: bool,
+        target: u32,
+    },
     /// eq|gt|lt; not; if-goto target
-    CmpNotJump { op: Bin, target: u32 },
+    CmpNotJump {
+        op: Bin,
+        target: u32,
+    },
     /// not; if-goto target
     NotIfGoto(u32),
     /// push index; push base; add; pop pointer 1; push that 0
-    ArrayRead { index: Src, base: Src },
+    ArrayRead {
+        index: Src,
+        base: Src,
+    },
     /// add; pop pointer 1; push that 0
     PtrRead,
     /// pop temp 0; pop pointer 1; push temp 0; pop that 0
@@ -150,7 +178,11 @@ impl Op {
     pub(crate) const fn steps(self) -> u64 {
         match self {
             Op::Halt => 0,
-            Op::Push2(..) | Op::Move(..) | Op::BinS { .. } | Op::NotIfGoto(_) | Op::PushReturn(_) => 2,
+            Op::Push2(..)
+            | Op::Move(..)
+            | Op::BinS { .. }
+            | Op::NotIfGoto(_)
+            | Op::PushReturn(_) => 2,
             Op::BinSS { .. } | Op::BinSPop { .. } | Op::CmpNotJump { .. } | Op::PtrRead => 3,
             Op::BinPop { .. } | Op::StoreThat => 4,
             Op::CmpJump { not, .. } => 4 + not as u64,

@@ -38,7 +38,11 @@ fn machine() -> Machine {
 fn workload_matches_the_model() {
     let m = machine();
     for n in [0, 1, 2, 10, 300] {
-        assert_eq!(m.clone().call("Main.run", &[n], None).unwrap(), Exit::Returned(model_run(n)), "n={n}");
+        assert_eq!(
+            m.clone().call("Main.run", &[n], None).unwrap(),
+            Exit::Returned(model_run(n)),
+            "n={n}"
+        );
     }
 }
 
