@@ -39,7 +39,6 @@ pub struct RunArgs {
 /// Run `harness jack run`. Exit 0 when the program halted (or, with
 /// `--compare-profiles`, when both profiles agree), 1 otherwise.
 pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
-    let program = load(&args.dir)?;
     let keys = KeyScript::parse(&args.keys, args.hold).context("--keys")?;
     let config = |profile| Config {
         profile,
@@ -47,10 +46,11 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         profile_functions: args.profile_functions,
     };
     if args.compare_profiles {
-        let runs: Vec<(Profile, Machine, Exit)> = Profile::ALL
-            .into_iter()
-            .map(|p| run_one(&program, config(p), args.max_instructions))
-            .collect();
+        let mut runs: Vec<(Profile, Machine, Exit)> = Vec::new();
+        for p in Profile::ALL {
+            let program = load(&args.dir, p)?;
+            runs.push(run_one(&program, config(p), args.max_instructions));
+        }
         for (p, m, e) in &runs {
             println!("{p}: {} instructions, {e}", m.steps());
         }
@@ -78,6 +78,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
             ExitCode::from(1)
         });
     }
+    let program = load(&args.dir, args.profile)?;
     let (_, machine, exit) = run_one(&program, config(args.profile), args.max_instructions);
     println!("instructions: {}", machine.steps());
     println!("end: {exit}");
@@ -97,8 +98,25 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     })
 }
 
-fn load(dir: &Path) -> anyhow::Result<Arc<Program>> {
-    Program::load_dir(dir).with_context(|| format!("loading {}", dir.display()))
+/// The program of `dir`: its .jack files compiled under `profile` if it has
+/// any, else its .vm files.
+fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
+    let has_jack = std::fs::read_dir(dir)
+        .with_context(|| format!("reading {}", dir.display()))?
+        .filter_map(Result::ok)
+        .any(|e| e.path().extension().is_some_and(|x| x == "jack"));
+    if !has_jack {
+        return Program::load_dir(dir).with_context(|| format!("loading {}", dir.display()));
+    }
+    let compiler_profile: jack_compiler::Profile = profile.name().parse()?;
+    let classes = jack_compiler::compile_dir(dir, compiler_profile)
+        .with_context(|| format!("compiling {}", dir.display()))?;
+    let sources: Vec<(String, String)> = classes
+        .into_iter()
+        .map(|c| (format!("{}.vm", c.class_name), c.code))
+        .collect();
+    Program::from_sources(&sources)
+        .with_context(|| format!("loading the VM code compiled from {}", dir.display()))
 }
 
 fn run_one(
