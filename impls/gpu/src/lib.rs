@@ -1,1 +1,48 @@
-//! gpu
+//! The GPU implementations, as wgpu compute kernels:
+//!
+//! - `gpu-f32`: the float formulation of the seed scene (spec section 7) in
+//!   WGSL f32 ([`Gpu::f32_sdf`], [`Gpu::f32_pixels`], [`Gpu::render_f32`]);
+//! - `gpu-f316`: Float316 ported to WGSL integer arithmetic with Jack's
+//!   16-bit semantics, bit-exact with `ref-f316` ([`Gpu::f316_ops`],
+//!   [`Gpu::f316_sdf`], [`Gpu::f316_pixels`], [`Gpu::render_f316`]).
+//!
+//! [`Gpu::new`] picks an adapter (any real GPU, else Mesa's lavapipe on the
+//! CPU), opens the device and compiles every kernel once: that is the
+//! set-up cost, measured apart from the renders. Every call batches its
+//! input to the device's limits, reuses its buffers and reads results back
+//! once per batch. Failures (no adapter, a shader that does not compile, a
+//! lost device) are [`GpuError`] values; results are never faked.
+//!
+//! Tests that need an adapter fail when there is none, unless the
+//! environment variable [`SKIP_ENV`] is set: see
+//! [`Gpu::new_unless_skipped`].
+
+mod context;
+mod error;
+mod float316;
+mod float32;
+mod image;
+mod kernel;
+
+pub use context::{AdapterDescription, Gpu};
+pub use error::GpuError;
+pub use image::all_pixels;
+
+/// Set this environment variable (to any value) to skip the GPU leg where no
+/// adapter can be had. Without it, a missing adapter is an error.
+pub const SKIP_ENV: &str = "F316_SKIP_GPU";
+
+impl Gpu {
+    /// [`Gpu::new`], except that a failure gives `Ok(None)` when the
+    /// environment variable [`SKIP_ENV`] says the GPU leg is skipped.
+    pub fn new_unless_skipped() -> Result<Option<Gpu>, GpuError> {
+        match Gpu::new() {
+            Ok(gpu) => Ok(Some(gpu)),
+            Err(error) if std::env::var_os(SKIP_ENV).is_some() => {
+                eprintln!("GPU leg skipped ({SKIP_ENV} is set): {error}");
+                Ok(None)
+            }
+            Err(error) => Err(error),
+        }
+    }
+}

@@ -1,0 +1,195 @@
+//! The device context: one adapter, one device and queue, and every
+//! kernel's pipeline, created once by [`Gpu::new`] and shared by all calls.
+
+use crate::error::GpuError;
+use crate::kernel::{Kernel, KernelSpec};
+use crate::{float316, float32};
+use serde::{Deserialize, Serialize};
+use std::sync::{Arc, Mutex};
+
+/// The adapter a [`Gpu`] runs on, as reports name it.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct AdapterDescription {
+    /// The adapter's name (`llvmpipe (LLVM 15.0.6, 256 bits)` for lavapipe).
+    pub name: String,
+    /// The graphics API wgpu drives it through (`Vulkan`, `Metal`, ...).
+    pub backend: String,
+    /// Discrete, integrated, virtual, CPU or other.
+    pub device_type: String,
+    /// The driver's name (`llvmpipe`).
+    pub driver: String,
+    /// The driver's version string.
+    pub driver_info: String,
+}
+
+impl AdapterDescription {
+    fn from_info(info: &wgpu::AdapterInfo) -> Self {
+        AdapterDescription {
+            name: info.name.clone(),
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            driver: info.driver.clone(),
+            driver_info: info.driver_info.clone(),
+        }
+    }
+
+    /// Whether this is a software rasteriser running on the CPU (lavapipe).
+    pub fn is_software(&self) -> bool {
+        self.device_type == format!("{:?}", wgpu::DeviceType::Cpu)
+    }
+}
+
+impl std::fmt::Display for AdapterDescription {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} ({}, {}, driver {} {})",
+            self.name, self.backend, self.device_type, self.driver, self.driver_info
+        )
+    }
+}
+
+/// Problems the device reports outside any call: a lost device, or an
+/// error no error scope caught.
+#[derive(Default)]
+pub(crate) struct Health {
+    lost: Mutex<Option<String>>,
+    uncaptured: Mutex<Vec<String>>,
+}
+
+impl Health {
+    /// The first problem recorded, if any.
+    pub(crate) fn check(&self) -> Result<(), GpuError> {
+        if let Some(reason) = lock(&self.lost).clone() {
+            return Err(GpuError::DeviceLost { reason });
+        }
+        if let Some(message) = lock(&self.uncaptured).first().cloned() {
+            return Err(GpuError::Execution {
+                kernel: "device".into(),
+                message,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Lock a mutex, ignoring poisoning (the data are plain records).
+pub(crate) fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// The GPU context: adapter, device, queue and the pipelines of every
+/// kernel, created once. Methods take `&self`; buffers are reused between
+/// calls.
+pub struct Gpu {
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    pub(crate) health: Arc<Health>,
+    pub(crate) layout: wgpu::BindGroupLayout,
+    adapter: AdapterDescription,
+    pub(crate) f316_ops: Kernel,
+    pub(crate) f316_sdf: Kernel,
+    pub(crate) f316_pixels: Kernel,
+    pub(crate) f32_sdf: Kernel,
+    pub(crate) f32_pixels: Kernel,
+}
+
+/// Preference among adapter kinds: real GPUs first, the CPU last.
+fn rank(info: &wgpu::AdapterInfo) -> u8 {
+    match info.device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Other => 3,
+        wgpu::DeviceType::Cpu => 4,
+    }
+}
+
+/// Pick any real GPU, else a software adapter (lavapipe); only adapters that
+/// run compute shaders count.
+fn choose_adapter(instance: &wgpu::Instance) -> Result<wgpu::Adapter, GpuError> {
+    let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::all()));
+    let mut seen = Vec::new();
+    let mut usable = Vec::new();
+    for adapter in adapters {
+        let info = adapter.get_info();
+        let compute = adapter
+            .get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS);
+        seen.push(format!(
+            "{} on {:?}{}",
+            info.name,
+            info.backend,
+            if compute { "" } else { " without compute shaders" }
+        ));
+        if compute {
+            usable.push(adapter);
+        }
+    }
+    usable.sort_by_key(|a| rank(&a.get_info()));
+    usable.into_iter().next().ok_or_else(|| GpuError::NoAdapter {
+        detail: if seen.is_empty() {
+            "wgpu saw no adapter at all".into()
+        } else {
+            format!("seen: {}", seen.join("; "))
+        },
+    })
+}
+
+impl Gpu {
+    /// Open the preferred adapter and compile every kernel. The time this
+    /// takes is the set-up cost, separate from any render.
+    ///
+    /// `WGPU_BACKEND` (e.g. `vulkan`) restricts the backends tried.
+    pub fn new() -> Result<Gpu, GpuError> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = choose_adapter(&instance)?;
+        let description = AdapterDescription::from_info(&adapter.get_info());
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("f316-harness"),
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|source| GpuError::RequestDevice {
+            adapter: description.name.clone(),
+            source,
+        })?;
+
+        let health = Arc::new(Health::default());
+        let lost = Arc::clone(&health);
+        device.set_device_lost_callback(move |reason, message| {
+            *lock(&lost.lost) = Some(format!("{reason:?}: {message}"));
+        });
+        let uncaptured = Arc::clone(&health);
+        device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
+            lock(&uncaptured.uncaptured).push(error.to_string());
+        }));
+
+        let layout = crate::kernel::bind_group_layout(&device);
+        let compile = |spec: &KernelSpec| Kernel::new(&device, &health, &layout, spec);
+        Ok(Gpu {
+            f316_ops: compile(&float316::OPS)?,
+            f316_sdf: compile(&float316::SDF)?,
+            f316_pixels: compile(&float316::PIXELS)?,
+            f32_sdf: compile(&float32::SDF)?,
+            f32_pixels: compile(&float32::PIXELS)?,
+            device,
+            queue,
+            health,
+            layout,
+            adapter: description,
+        })
+    }
+
+    /// The adapter the kernels run on.
+    pub fn adapter_info(&self) -> &AdapterDescription {
+        &self.adapter
+    }
+
+    /// Release the device now. Every later call fails with
+    /// [`GpuError::DeviceLost`], as it would after a driver reset.
+    pub fn destroy(&self) {
+        self.device.destroy();
+    }
+}

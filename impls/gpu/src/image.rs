@@ -1,0 +1,29 @@
+//! Pixel coordinates as kernel input: validation against the image size and
+//! the full image in row-major order.
+
+use crate::error::GpuError;
+use common::image_consts::{HEIGHT, WIDTH};
+
+/// Every pixel of the 512x256 image, row by row (the order of the renders).
+pub fn all_pixels() -> Vec<(u16, u16)> {
+    (0..HEIGHT as u16)
+        .flat_map(|y| (0..WIDTH as u16).map(move |x| (x, y)))
+        .collect()
+}
+
+/// Pixel coordinates as kernel input words (x, y per item).
+pub(crate) fn pixel_words(pixels: &[(u16, u16)]) -> Result<Vec<u32>, GpuError> {
+    let mut words = Vec::with_capacity(2 * pixels.len());
+    for &(x, y) in pixels {
+        if x as usize >= WIDTH || y as usize >= HEIGHT {
+            return Err(GpuError::PixelOutsideImage {
+                x,
+                y,
+                width: WIDTH,
+                height: HEIGHT,
+            });
+        }
+        words.extend([x as u32, y as u32]);
+    }
+    Ok(words)
+}

@@ -1,0 +1,288 @@
+//! One compute kernel: its pipeline, its reusable buffers, and the batched
+//! run that feeds it input words and reads output words back once per batch.
+//!
+//! Every kernel has the same bindings (shaders/io.wgsl): input words, output
+//! words, and the item count of the batch. A kernel reads `in_words` and
+//! writes `out_words` words per item.
+
+use crate::context::{lock, Gpu, Health};
+use crate::error::GpuError;
+use std::sync::{mpsc, Mutex};
+
+/// Invocations per workgroup; equals `WG` in shaders/io.wgsl.
+const WORKGROUP_SIZE: usize = 64;
+
+/// The most items one batch holds, whatever the device allows: bounds the
+/// memory a batch takes and the length of one dispatch.
+const MAX_BATCH_ITEMS: usize = 1 << 20;
+
+/// The bindings shared by every kernel, as WGSL.
+pub(crate) const IO_WGSL: &str = include_str!("shaders/io.wgsl");
+
+/// What a kernel is: its shader, entry point and strides.
+pub(crate) struct KernelSpec {
+    /// A name for errors and debuggers.
+    pub label: &'static str,
+    /// The kernel's WGSL, without the shared bindings (prepended here).
+    pub source: &'static str,
+    /// The entry point.
+    pub entry: &'static str,
+    /// Input words per item.
+    pub in_words: usize,
+    /// Output words per item.
+    pub out_words: usize,
+}
+
+/// The buffers of one batch size, reused between runs.
+struct Buffers {
+    capacity: usize,
+    input: wgpu::Buffer,
+    output: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    params: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+}
+
+/// A compiled kernel with its buffers.
+pub(crate) struct Kernel {
+    label: &'static str,
+    in_words: usize,
+    out_words: usize,
+    pipeline: wgpu::ComputePipeline,
+    buffers: Mutex<Option<Buffers>>,
+}
+
+/// The bind group layout of shaders/io.wgsl.
+pub(crate) fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("kernel io"),
+        entries: &[
+            storage(0, true),
+            storage(1, false),
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            },
+        ],
+    })
+}
+
+/// Run `f` inside validation, out-of-memory and internal error scopes and
+/// return the first error they caught.
+fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::Error>) {
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
+    let value = f();
+    let errors = [internal.pop(), memory.pop(), validation.pop()].map(pollster::block_on);
+    (value, errors.into_iter().flatten().next())
+}
+
+/// Compile `source` (the shared bindings are prepended) into a compute
+/// pipeline with entry point `entry`. A malformed shader is a
+/// [`GpuError::Compile`], never a panic.
+pub(crate) fn compile(
+    device: &wgpu::Device,
+    health: &Health,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    source: &str,
+    entry: &str,
+) -> Result<wgpu::ComputePipeline, GpuError> {
+    let (pipeline, error) = scoped(device, || {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(format!("{IO_WGSL}\n{source}").into()),
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(layout)],
+            immediate_size: 0,
+        });
+        device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(label),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some(entry),
+            compilation_options: Default::default(),
+            cache: None,
+        })
+    });
+    if let Some(error) = error {
+        return Err(GpuError::Compile {
+            kernel: label.to_string(),
+            message: error.to_string(),
+        });
+    }
+    health.check()?;
+    Ok(pipeline)
+}
+
+impl Kernel {
+    /// Compile the kernel described by `spec`.
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        health: &Health,
+        layout: &wgpu::BindGroupLayout,
+        spec: &KernelSpec,
+    ) -> Result<Kernel, GpuError> {
+        Ok(Kernel {
+            label: spec.label,
+            in_words: spec.in_words,
+            out_words: spec.out_words,
+            pipeline: compile(device, health, layout, spec.label, spec.source, spec.entry)?,
+            buffers: Mutex::new(None),
+        })
+    }
+
+    /// The most items one batch may hold on this device: storage binding
+    /// and buffer sizes, and workgroups per dispatch dimension.
+    fn batch_items(&self, limits: &wgpu::Limits) -> usize {
+        let item_bytes = (4 * self.in_words.max(self.out_words)) as u64;
+        let by_binding = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size) / item_bytes;
+        let by_dispatch = limits.max_compute_workgroups_per_dimension as u64 * WORKGROUP_SIZE as u64;
+        by_binding.min(by_dispatch).min(MAX_BATCH_ITEMS as u64) as usize
+    }
+
+    fn make_buffers(&self, gpu: &Gpu, capacity: usize) -> Buffers {
+        let buffer = |label, words: usize, usage| {
+            gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: (4 * words.max(4)) as u64,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        use wgpu::BufferUsages as U;
+        let input = buffer("input", capacity * self.in_words, U::STORAGE | U::COPY_DST);
+        let output = buffer("output", capacity * self.out_words, U::STORAGE | U::COPY_SRC);
+        let readback = buffer("readback", capacity * self.out_words, U::MAP_READ | U::COPY_DST);
+        let params = buffer("params", 4, U::UNIFORM | U::COPY_DST);
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(self.label),
+            layout: &gpu.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: input.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: output.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: params.as_entire_binding(),
+                },
+            ],
+        });
+        Buffers {
+            capacity,
+            input,
+            output,
+            readback,
+            params,
+            bind_group,
+        }
+    }
+
+    /// Run the kernel on `input` (`in_words` per item) and return the output
+    /// words (`out_words` per item), in batches that fit the device.
+    pub(crate) fn run(&self, gpu: &Gpu, input: &[u32]) -> Result<Vec<u32>, GpuError> {
+        gpu.health.check()?;
+        debug_assert_eq!(input.len() % self.in_words, 0);
+        let items = input.len() / self.in_words;
+        let batch = self.batch_items(&gpu.device.limits());
+        let mut output = Vec::with_capacity(items * self.out_words);
+        let mut cache = lock(&self.buffers);
+        for chunk in input.chunks(batch * self.in_words) {
+            let n = chunk.len() / self.in_words;
+            if cache.as_ref().is_none_or(|b| b.capacity < n) {
+                *cache = Some(self.make_buffers(gpu, n));
+            }
+            let buffers = cache.as_ref().expect("buffers were just made");
+            self.run_batch(gpu, buffers, chunk, n, &mut output)?;
+        }
+        Ok(output)
+    }
+
+    fn run_batch(
+        &self,
+        gpu: &Gpu,
+        buffers: &Buffers,
+        chunk: &[u32],
+        n: usize,
+        output: &mut Vec<u32>,
+    ) -> Result<(), GpuError> {
+        let out_bytes = (4 * n * self.out_words) as u64;
+        let ((), error) = scoped(&gpu.device, || {
+            gpu.queue
+                .write_buffer(&buffers.input, 0, bytemuck::cast_slice(chunk));
+            gpu.queue
+                .write_buffer(&buffers.params, 0, bytemuck::cast_slice(&[n as u32, 0, 0, 0]));
+            let mut encoder = gpu
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(self.label) });
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(self.label),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &buffers.bind_group, &[]);
+                pass.dispatch_workgroups(n.div_ceil(WORKGROUP_SIZE) as u32, 1, 1);
+            }
+            encoder.copy_buffer_to_buffer(&buffers.output, 0, &buffers.readback, 0, out_bytes);
+            gpu.queue.submit([encoder.finish()]);
+        });
+        if let Some(error) = error {
+            return Err(self.failure(error.to_string()));
+        }
+        let (sender, receiver) = mpsc::channel();
+        buffers
+            .readback
+            .map_async(wgpu::MapMode::Read, 0..out_bytes, move |result| {
+                // The receiver waits below; a send error cannot happen.
+                let _ = sender.send(result);
+            });
+        let polled = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        gpu.health.check()?;
+        polled.map_err(|e| self.failure(e.to_string()))?;
+        let mapped = receiver
+            .recv()
+            .map_err(|e| self.failure(e.to_string()))?;
+        mapped.map_err(|e| self.failure(e.to_string()))?;
+        {
+            let view = buffers
+                .readback
+                .get_mapped_range(0..out_bytes)
+                .map_err(|e| self.failure(e.to_string()))?;
+            output.extend_from_slice(bytemuck::cast_slice(&view));
+        }
+        buffers.readback.unmap();
+        Ok(())
+    }
+
+    fn failure(&self, message: String) -> GpuError {
+        GpuError::Execution {
+            kernel: self.label.to_string(),
+            message,
+        }
+    }
+}
