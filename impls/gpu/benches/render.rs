@@ -18,8 +18,12 @@ fn bench(c: &mut Criterion) {
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(20));
     group.bench_function("setup", |b| b.iter(|| Gpu::new().expect("set-up")));
-    group.bench_function("render_f32", |b| b.iter(|| gpu.render_f32().expect("render")));
-    group.bench_function("render_f316", |b| b.iter(|| gpu.render_f316().expect("render")));
+    group.bench_function("render_f32", |b| {
+        b.iter(|| gpu.render_f32().expect("render"))
+    });
+    group.bench_function("render_f316", |b| {
+        b.iter(|| gpu.render_f316().expect("render"))
+    });
     group.finish();
 }
 

@@ -121,29 +121,43 @@ fn choose_adapter(instance: &wgpu::Instance) -> Result<wgpu::Adapter, GpuError> 
             "{} on {:?}{}",
             info.name,
             info.backend,
-            if compute { "" } else { " without compute shaders" }
+            if compute {
+                ""
+            } else {
+                " without compute shaders"
+            }
         ));
         if compute {
             usable.push(adapter);
         }
     }
     usable.sort_by_key(|a| rank(&a.get_info()));
-    usable.into_iter().next().ok_or_else(|| GpuError::NoAdapter {
-        detail: if seen.is_empty() {
-            "wgpu saw no adapter at all".into()
-        } else {
-            format!("seen: {}", seen.join("; "))
-        },
-    })
+    usable
+        .into_iter()
+        .next()
+        .ok_or_else(|| GpuError::NoAdapter {
+            detail: if seen.is_empty() {
+                "wgpu saw no adapter at all".into()
+            } else {
+                format!("seen: {}", seen.join("; "))
+            },
+        })
 }
 
-impl Gpu {
-    /// Open the preferred adapter and compile every kernel. The time this
-    /// takes is the set-up cost, separate from any render.
-    ///
-    /// `WGPU_BACKEND` (e.g. `vulkan`) restricts the backends tried.
-    pub fn new() -> Result<Gpu, GpuError> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+/// An open device with its health records, before any kernel is compiled.
+pub(crate) struct Device {
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    pub(crate) health: Arc<Health>,
+    pub(crate) adapter: AdapterDescription,
+}
+
+impl Device {
+    /// Open the preferred adapter's device and watch it for loss and for
+    /// errors no scope catches.
+    pub(crate) fn open() -> Result<Device, GpuError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter = choose_adapter(&instance)?;
         let description = AdapterDescription::from_info(&adapter.get_info());
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
@@ -165,7 +179,27 @@ impl Gpu {
         device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
             lock(&uncaptured.uncaptured).push(error.to_string());
         }));
+        Ok(Device {
+            device,
+            queue,
+            health,
+            adapter: description,
+        })
+    }
+}
 
+impl Gpu {
+    /// Open the preferred adapter and compile every kernel. The time this
+    /// takes is the set-up cost, separate from any render.
+    ///
+    /// `WGPU_BACKEND` (e.g. `vulkan`) restricts the backends tried.
+    pub fn new() -> Result<Gpu, GpuError> {
+        let Device {
+            device,
+            queue,
+            health,
+            adapter,
+        } = Device::open()?;
         let layout = crate::kernel::bind_group_layout(&device);
         let compile = |spec: &KernelSpec| Kernel::new(&device, &health, &layout, spec);
         Ok(Gpu {
@@ -178,7 +212,7 @@ impl Gpu {
             queue,
             health,
             layout,
-            adapter: description,
+            adapter,
         })
     }
 
@@ -191,5 +225,7 @@ impl Gpu {
     /// [`GpuError::DeviceLost`], as it would after a driver reset.
     pub fn destroy(&self) {
         self.device.destroy();
+        // Deliver the device-lost callback now; its error is the point.
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
     }
 }

@@ -39,7 +39,10 @@ pub(crate) const PIXELS: KernelSpec = KernelSpec {
 
 /// The op code the kernel switches on: the index in [`Op::ALL`].
 fn op_code(op: Op) -> u32 {
-    Op::ALL.iter().position(|&o| o == op).expect("Op::ALL lists every op") as u32
+    Op::ALL
+        .iter()
+        .position(|&o| o == op)
+        .expect("Op::ALL lists every op") as u32
 }
 
 fn push(words: &mut Vec<u32>, v: F316) {
@@ -100,7 +103,10 @@ impl Gpu {
 
     /// Pixel shades: the clamped value before dithering and whether the
     /// dithered pixel is white, per `(x, y)` of the 512x256 image.
-    pub fn f316_pixels(&self, pixels: &[(u16, u16)]) -> Result<Vec<Outcome<(F316, bool)>>, GpuError> {
+    pub fn f316_pixels(
+        &self,
+        pixels: &[(u16, u16)],
+    ) -> Result<Vec<Outcome<(F316, bool)>>, GpuError> {
         let out = self.f316_pixels.run(self, &pixel_words(pixels)?)?;
         Ok(out
             .chunks(PIXELS.out_words)

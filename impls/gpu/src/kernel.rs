@@ -155,8 +155,12 @@ impl Kernel {
     /// and buffer sizes, and workgroups per dispatch dimension.
     fn batch_items(&self, limits: &wgpu::Limits) -> usize {
         let item_bytes = (4 * self.in_words.max(self.out_words)) as u64;
-        let by_binding = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size) / item_bytes;
-        let by_dispatch = limits.max_compute_workgroups_per_dimension as u64 * WORKGROUP_SIZE as u64;
+        let by_binding = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size)
+            / item_bytes;
+        let by_dispatch =
+            limits.max_compute_workgroups_per_dimension as u64 * WORKGROUP_SIZE as u64;
         by_binding.min(by_dispatch).min(MAX_BATCH_ITEMS as u64) as usize
     }
 
@@ -171,8 +175,16 @@ impl Kernel {
         };
         use wgpu::BufferUsages as U;
         let input = buffer("input", capacity * self.in_words, U::STORAGE | U::COPY_DST);
-        let output = buffer("output", capacity * self.out_words, U::STORAGE | U::COPY_SRC);
-        let readback = buffer("readback", capacity * self.out_words, U::MAP_READ | U::COPY_DST);
+        let output = buffer(
+            "output",
+            capacity * self.out_words,
+            U::STORAGE | U::COPY_SRC,
+        );
+        let readback = buffer(
+            "readback",
+            capacity * self.out_words,
+            U::MAP_READ | U::COPY_DST,
+        );
         let params = buffer("params", 4, U::UNIFORM | U::COPY_DST);
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some(self.label),
@@ -234,11 +246,16 @@ impl Kernel {
         let ((), error) = scoped(&gpu.device, || {
             gpu.queue
                 .write_buffer(&buffers.input, 0, bytemuck::cast_slice(chunk));
-            gpu.queue
-                .write_buffer(&buffers.params, 0, bytemuck::cast_slice(&[n as u32, 0, 0, 0]));
+            gpu.queue.write_buffer(
+                &buffers.params,
+                0,
+                bytemuck::cast_slice(&[n as u32, 0, 0, 0]),
+            );
             let mut encoder = gpu
                 .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(self.label) });
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some(self.label),
+                });
             {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some(self.label),
@@ -252,6 +269,9 @@ impl Kernel {
             gpu.queue.submit([encoder.finish()]);
         });
         if let Some(error) = error {
+            // A lost device shows as invalid resources: name the cause.
+            let _ = gpu.device.poll(wgpu::PollType::Poll);
+            gpu.health.check()?;
             return Err(self.failure(error.to_string()));
         }
         let (sender, receiver) = mpsc::channel();
@@ -264,9 +284,7 @@ impl Kernel {
         let polled = gpu.device.poll(wgpu::PollType::wait_indefinitely());
         gpu.health.check()?;
         polled.map_err(|e| self.failure(e.to_string()))?;
-        let mapped = receiver
-            .recv()
-            .map_err(|e| self.failure(e.to_string()))?;
+        let mapped = receiver.recv().map_err(|e| self.failure(e.to_string()))?;
         mapped.map_err(|e| self.failure(e.to_string()))?;
         {
             let view = buffers
@@ -284,5 +302,52 @@ impl Kernel {
             kernel: self.label.to_string(),
             message,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::context::Device;
+
+    /// A malformed shader through the pipeline-creation function is a
+    /// `Compile` error naming the kernel, not a panic. Needs an adapter
+    /// (fails without one unless `F316_SKIP_GPU` is set).
+    #[test]
+    fn malformed_wgsl_is_a_compile_error() {
+        let device = match Device::open() {
+            Ok(device) => device,
+            Err(error) if std::env::var_os(crate::SKIP_ENV).is_some() => {
+                eprintln!("GPU leg skipped: {error}");
+                return;
+            }
+            Err(error) => panic!("{error} (set {} to skip the GPU leg)", crate::SKIP_ENV),
+        };
+        let layout = bind_group_layout(&device.device);
+        let compile = |source: &str| {
+            compile(
+                &device.device,
+                &device.health,
+                &layout,
+                "probe",
+                source,
+                "main",
+            )
+        };
+        let good = "@compute @workgroup_size(WG) fn main() { outp[0] = params.count; }";
+        assert!(compile(good).is_ok(), "a well-formed kernel compiles");
+        let bad = "@compute @workgroup_size(WG) fn main( { outp[0] = ; }";
+        match compile(bad) {
+            Err(GpuError::Compile { kernel, message }) => {
+                assert_eq!(kernel, "probe");
+                assert!(!message.is_empty());
+            }
+            other => panic!("expected a compile error, got {other:?}"),
+        }
+        let missing_entry = "@compute @workgroup_size(WG) fn other() {}";
+        assert!(matches!(
+            compile(missing_entry),
+            Err(GpuError::Compile { .. })
+        ));
     }
 }

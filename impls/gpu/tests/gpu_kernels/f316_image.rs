@@ -6,7 +6,10 @@ use common::image_consts::{HEIGHT, WIDTH};
 use common::Outcome;
 
 fn seed_image() -> image::GrayImage {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../vectors/images/seed-float316-512x256.png");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../vectors/images/seed-float316-512x256.png"
+    );
     image::open(path).expect("seed image").to_luma8()
 }
 
@@ -14,7 +17,10 @@ fn seed_image() -> image::GrayImage {
 fn f316_render_matches_the_seed_image() {
     let Some(gpu) = gpu() else { return };
     let seed = seed_image();
-    assert_eq!((seed.width() as usize, seed.height() as usize), (WIDTH, HEIGHT));
+    assert_eq!(
+        (seed.width() as usize, seed.height() as usize),
+        (WIDTH, HEIGHT)
+    );
     let pixels = gpu.render_f316().expect("render");
     assert_eq!(pixels.len(), WIDTH * HEIGHT);
     let mut differing = Vec::new();

@@ -2,6 +2,7 @@
 //! test binary so that the device is opened and the kernels compiled once.
 //! Without an adapter these tests fail, unless `F316_SKIP_GPU` is set.
 
-mod f316_ops;
+mod device;
 mod f316_image;
+mod f316_ops;
 mod support;

@@ -25,7 +25,10 @@ fn hand_worked_operations() {
         ((Op::Add, ONE, Z), num(ONE)),
         // 1 + (-0.5): the difference is renormalised.
         ((Op::Add, ONE, f(1, 126, 8192)), num(f(0, 126, 8192))),
-        ((Op::Mul, f(0, 127, 12288), f(0, 128, 8192)), num(f(0, 128, 12288))),
+        (
+            (Op::Mul, f(0, 127, 12288), f(0, 128, 8192)),
+            num(f(0, 128, 12288)),
+        ),
         ((Op::Mul, NEG_ONE, Z), num(F316::NEG_ZERO)),
         ((Op::Div, ONE, f(0, 128, 8192)), num(f(0, 126, 8192))),
         ((Op::Div, Z, NEG_ONE), num(F316::NEG_ZERO)),
@@ -43,9 +46,18 @@ fn hand_worked_operations() {
         ((Op::Mod2, NEG_ONE, Z), num(ONE)),
         ((Op::Mod2, f(0, 200, 0), Z), num(Z)),
         ((Op::Mod2, f(0, 126, 8192), Z), Outcome::OutOfDomain),
-        ((Op::Gt, Z, F316::NEG_ZERO), Outcome::Value(OpValue::Bool(true))),
-        ((Op::Gt, NEG_ONE, f(1, 126, 8192)), Outcome::Value(OpValue::Bool(false))),
-        ((Op::Gt, f(0, 127, 8193), ONE), Outcome::Value(OpValue::Bool(true))),
+        (
+            (Op::Gt, Z, F316::NEG_ZERO),
+            Outcome::Value(OpValue::Bool(true)),
+        ),
+        (
+            (Op::Gt, NEG_ONE, f(1, 126, 8192)),
+            Outcome::Value(OpValue::Bool(false)),
+        ),
+        (
+            (Op::Gt, f(0, 127, 8193), ONE),
+            Outcome::Value(OpValue::Bool(true)),
+        ),
         ((Op::Halve, ONE, Z), num(f(0, 126, 8192))),
         ((Op::Double, Z, Z), num(Z)),
         ((Op::Quarter, f(0, 129, 8192), Z), num(ONE)),
