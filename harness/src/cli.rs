@@ -21,6 +21,15 @@ pub enum Command {
     /// Jack toolchain: compile Jack to VM code, run a VM program.
     #[command(subcommand)]
     Jack(commands::jack::JackCommand),
+    /// Compare implementations on vector sets; exit 1 on a divergence.
+    Diff(commands::diff::DiffArgs),
+    /// Print the first Float316 operation on which two implementations differ.
+    Localize(commands::localize::LocalizeArgs),
+    /// Inject each fault of the catalogue and check that it is detected and localized.
+    Selftest(commands::selftest::SelftestArgs),
+    /// Vector sets: regenerate the committed ones, check a file.
+    #[command(subcommand)]
+    Vectors(commands::vectors::VectorsCommand),
 }
 
 /// Run a parsed command line; the exit code follows the design's contract
@@ -29,5 +38,9 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
         Command::Render(args) => commands::render::run(args),
         Command::Jack(cmd) => commands::jack::run(cmd),
+        Command::Diff(args) => commands::diff::run(args),
+        Command::Localize(args) => commands::localize::run(args),
+        Command::Selftest(args) => commands::selftest::run(args),
+        Command::Vectors(cmd) => commands::vectors::run(cmd),
     }
 }

@@ -11,6 +11,8 @@ pub mod cli;
 pub mod commands;
 pub mod compare;
 pub mod implementation;
+pub mod impls;
 pub mod localize;
 pub mod runner;
+pub mod selftest;
 pub mod text;

@@ -62,6 +62,9 @@ pub struct Localization {
     pub first: Option<FirstDivergence>,
     /// The operation at fault, when one has identical operands.
     pub origin: Option<Origin>,
+    /// When the answers differ but the traces agree throughout: the last
+    /// operation, after which the logic that uses its result differs.
+    pub after_last: Option<TraceRecord>,
 }
 
 impl Localization {
@@ -256,6 +259,10 @@ pub fn localize(
         }
     };
     let (first, origin) = diff_traces(&ta, &tb);
+    let after_last = match (&first, a_answer != b_answer) {
+        (None, true) => ta.last().cloned(),
+        _ => None,
+    };
     Ok(Localization {
         input: input.clone(),
         a: a.label(),
@@ -266,6 +273,7 @@ pub fn localize(
         trace_lengths: (ta.len(), tb.len()),
         first,
         origin,
+        after_last,
     })
 }
 
@@ -286,7 +294,12 @@ impl fmt::Display for Localization {
             self.method, self.trace_lengths.0, self.trace_lengths.1
         )?;
         let Some(first) = &self.first else {
-            return writeln!(f, "the traces agree on every operation");
+            writeln!(f, "the traces agree on every operation")?;
+            if let Some(last) = &self.after_last {
+                writeln!(f, "the answers differ after the last operation, in the logic that uses its result:")?;
+                writeln!(f, "  last operation  {last}")?;
+            }
+            return Ok(());
         };
         writeln!(f, "first divergent operation: record {}", first.index)?;
         match &first.previous {

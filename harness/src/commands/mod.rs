@@ -1,4 +1,8 @@
 //! One module per subcommand.
 
+pub mod diff;
 pub mod jack;
+pub mod localize;
 pub mod render;
+pub mod selftest;
+pub mod vectors;

@@ -1,0 +1,158 @@
+//! `harness diff A B [C...] [--level ops|sdf|pixels|image|all] [--vectors
+//! FILE] [--report DIR]`: run vector sets through the implementations,
+//! compare the first with each other one, print the divergences (each with
+//! the localize command that reproduces it) and, with `--report`, write a
+//! JSON report and a one-line repro file per divergence.
+//! Exit 0: no divergence; 1: divergence; 2: usage or input error (also when
+//! an implementation is unavailable: nothing was compared).
+
+use crate::impls;
+use crate::runner::{diff_set, LevelReport, RunOptions};
+use crate::text;
+use anyhow::{bail, Context};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use vectors::{Level, Vector, VectorSet};
+
+/// Levels selectable with `--level`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum LevelArg {
+    Ops,
+    Sdf,
+    Pixels,
+    Image,
+    All,
+}
+
+impl LevelArg {
+    fn levels(self) -> Vec<Level> {
+        match self {
+            LevelArg::Ops => vec![Level::Ops],
+            LevelArg::Sdf => vec![Level::Sdf],
+            LevelArg::Pixels => vec![Level::Pixels],
+            LevelArg::Image => vec![Level::Image],
+            LevelArg::All => Level::ALL.to_vec(),
+        }
+    }
+}
+
+/// Arguments of `harness diff`.
+#[derive(Debug, clap::Args)]
+pub struct DiffArgs {
+    /// The implementation under test (ref-f64, ref-f32, ref-f316, jack,
+    /// gpu-f32, gpu-f316; `NAME+FAULT` injects a fault, e.g.
+    /// ref-f316+sqrt-floor-div, jack+web-divide, ref-f64+f32-oracle).
+    pub a: String,
+    /// The implementation it is compared with.
+    pub b: String,
+    /// More implementations: each is compared with A too, and with three
+    /// or more the odd one out of each divergence is named.
+    pub more: Vec<String>,
+    /// Which level(s); without --vectors each level uses its small set.
+    #[arg(long, value_enum)]
+    pub level: Option<LevelArg>,
+    /// A vector set file (its level is used).
+    #[arg(long)]
+    pub vectors: Option<PathBuf>,
+    /// Write report.json and repro/*.json into this directory.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+}
+
+/// The sets a diff runs: the file given, or each level's small set.
+pub fn sets_for(level: Option<LevelArg>, file: Option<&Path>) -> anyhow::Result<Vec<VectorSet>> {
+    match file {
+        Some(path) => {
+            let set = VectorSet::load(path)?;
+            if let Some(l) = level {
+                if l != LevelArg::All && l.levels() != [set.level] {
+                    bail!(
+                        "--level {l:?} does not match the level `{}` of {}",
+                        set.level,
+                        path.display()
+                    );
+                }
+            }
+            Ok(vec![set])
+        }
+        None => level
+            .unwrap_or(LevelArg::All)
+            .levels()
+            .into_iter()
+            .map(|l| {
+                let name = vectors::named::small_set_name(l);
+                vectors::load_named(name).with_context(|| format!("the committed set {name}"))
+            })
+            .collect(),
+    }
+}
+
+/// Write `report.json` and a one-line repro file per kept divergence,
+/// recording the repro paths in the report.
+pub fn write_report(dir: &Path, reports: &mut [LevelReport]) -> anyhow::Result<()> {
+    let repro_dir = dir.join("repro");
+    std::fs::create_dir_all(&repro_dir)
+        .with_context(|| format!("creating {}", repro_dir.display()))?;
+    for report in reports.iter_mut() {
+        for c in &mut report.comparisons {
+            for d in &mut c.divergences {
+                if matches!(d.input, Vector::Image(_)) {
+                    continue;
+                }
+                let file = repro_dir.join(format!("{}.json", d.input.slug()));
+                VectorSet::repro(d.input.clone()).save(&file)?;
+                d.repro = Some(file.display().to_string());
+            }
+        }
+    }
+    let json = serde_json::to_string_pretty(reports).context("serialising the report")?;
+    let path = dir.join("report.json");
+    std::fs::write(&path, json).with_context(|| format!("writing {}", path.display()))
+}
+
+/// Run `harness diff`.
+pub fn run(args: DiffArgs) -> anyhow::Result<ExitCode> {
+    let sets = sets_for(args.level, args.vectors.as_deref())?;
+    let labels: Vec<String> = [args.a, args.b].into_iter().chain(args.more).collect();
+    let opened = labels
+        .iter()
+        .map(|l| impls::open_label(l).with_context(|| format!("implementation `{l}`")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let refs: Vec<&dyn crate::implementation::Implementation> =
+        opened.iter().map(|b| b.as_ref()).collect();
+    let options = RunOptions {
+        progress: std::io::stderr().is_terminal(),
+    };
+    let mut reports: Vec<LevelReport> = sets
+        .iter()
+        .map(|set| diff_set(&refs, set, options))
+        .collect();
+    if let Some(dir) = &args.report {
+        write_report(dir, &mut reports)?;
+    }
+    let mut failed = false;
+    for r in &reports {
+        print!("{}", text::level_report(r));
+        let timings: Vec<String> = r
+            .runs
+            .iter()
+            .map(|s| format!("{} {:.2}s", s.label, s.seconds))
+            .collect();
+        println!("  time: {}", timings.join(", "));
+        failed |= r
+            .failures()
+            .any(|(_, e)| !matches!(e, crate::implementation::ImplError::Unsupported(_)));
+    }
+    if let Some(dir) = &args.report {
+        println!("report: {}", dir.join("report.json").display());
+    }
+    Ok(if reports.iter().any(LevelReport::diverged) {
+        ExitCode::from(1)
+    } else if failed {
+        eprintln!("error: an implementation gave no answers; nothing was compared for it");
+        ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
+    })
+}

@@ -1,0 +1,136 @@
+//! `harness localize A B --pixel X,Y | --point P | --op NAME --a S,E,M
+//! [--b S,E,M]`: print the first Float316 operation on which A and B
+//! differ for one input, with its operands, both results, the call path
+//! and the last matching operation before it.
+//! `--point` takes three decimals `x,y,z` (encoded by truncation) or three
+//! triples `s,e,m:s,e,m:s,e,m`. Exit 0: the answers agree; 1: they differ
+//! (the localization is printed); 2: usage or input error.
+
+use crate::implementation::ImplName;
+use crate::impls;
+use crate::localize::localize;
+use anyhow::{bail, Context};
+use common::{Op, F316};
+use std::process::ExitCode;
+use vectors::{OpVector, PixelVector, SdfVector, Vector};
+
+/// Arguments of `harness localize`.
+#[derive(Debug, clap::Args)]
+pub struct LocalizeArgs {
+    /// One implementation (a Float316 one: ref-f316, jack, gpu-f316, or
+    /// one with a fault: ref-f316+sqrt-floor-div, jack+web-divide).
+    pub a: String,
+    /// The other.
+    pub b: String,
+    /// A pixel `X,Y`.
+    #[arg(long, conflicts_with_all = ["point", "op"])]
+    pub pixel: Option<String>,
+    /// A scene query point: `x,y,z` or `s,e,m:s,e,m:s,e,m`.
+    #[arg(long, conflicts_with = "op")]
+    pub point: Option<String>,
+    /// A Float316 operation (with --a and, for binary ones, --b).
+    #[arg(long, requires = "op_a")]
+    pub op: Option<Op>,
+    /// The first operand `s,e,m`.
+    #[arg(long = "a", id = "op_a", value_name = "S,E,M")]
+    pub op_a: Option<String>,
+    /// The second operand `s,e,m`.
+    #[arg(long = "b", id = "op_b", value_name = "S,E,M")]
+    pub op_b: Option<String>,
+    /// Print the localization as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn ints<T: std::str::FromStr>(s: &str, n: usize, what: &str) -> anyhow::Result<Vec<T>> {
+    let parts: Vec<T> = s
+        .split(',')
+        .map(|p| p.trim().parse::<T>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| anyhow::anyhow!("{what}: `{s}` is not {n} comma-separated numbers"))?;
+    if parts.len() != n {
+        bail!("{what}: `{s}` is not {n} comma-separated numbers");
+    }
+    Ok(parts)
+}
+
+fn triple(s: &str, what: &str) -> anyhow::Result<F316> {
+    let t: Vec<i16> = ints(s, 3, what)?;
+    Ok(F316::new(t[0], t[1], t[2]))
+}
+
+/// The input the arguments name.
+pub fn input_of(args: &LocalizeArgs) -> anyhow::Result<Vector> {
+    if let Some(p) = &args.pixel {
+        let xy: Vec<u16> = ints(p, 2, "--pixel")?;
+        if usize::from(xy[0]) >= common::image_consts::WIDTH
+            || usize::from(xy[1]) >= common::image_consts::HEIGHT
+        {
+            bail!(
+                "--pixel: ({},{}) is outside the 512x256 image",
+                xy[0],
+                xy[1]
+            );
+        }
+        return Ok(Vector::Pixel(PixelVector {
+            category: "localize".into(),
+            x: xy[0],
+            y: xy[1],
+        }));
+    }
+    if let Some(p) = &args.point {
+        let coords: Vec<F316> = if p.contains(':') {
+            p.split(':')
+                .map(|t| triple(t, "--point"))
+                .collect::<Result<_, _>>()?
+        } else {
+            ints::<f64>(p, 3, "--point")?
+                .into_iter()
+                .map(|x| {
+                    F316::from_f64_truncating(x)
+                        .with_context(|| format!("--point: {x} is not a Float316 value"))
+                })
+                .collect::<Result<_, _>>()?
+        };
+        if coords.len() != 3 {
+            bail!("--point: expected three coordinates");
+        }
+        return Ok(Vector::Sdf(SdfVector {
+            category: "localize".into(),
+            p: [coords[0], coords[1], coords[2]],
+        }));
+    }
+    if let Some(op) = args.op {
+        let a = triple(args.op_a.as_deref().unwrap_or_default(), "--a")?;
+        let b = args.op_b.as_deref().map(|b| triple(b, "--b")).transpose()?;
+        if b.is_some() != (op.arity() == 2) {
+            bail!("`{op}` takes {} operand(s)", op.arity());
+        }
+        return Ok(Vector::Op(OpVector {
+            category: "localize".into(),
+            op,
+            a,
+            b,
+        }));
+    }
+    bail!("say which input: --pixel X,Y, --point x,y,z or --op NAME --a S,E,M [--b S,E,M]")
+}
+
+/// Run `harness localize`.
+pub fn run(args: LocalizeArgs) -> anyhow::Result<ExitCode> {
+    let input = input_of(&args)?;
+    let a = impls::open_label(&args.a).with_context(|| format!("implementation `{}`", args.a))?;
+    let b = impls::open_label(&args.b).with_context(|| format!("implementation `{}`", args.b))?;
+    let tracer = impls::open(ImplName::RefF316)?;
+    let found = localize(a.as_ref(), b.as_ref(), tracer.as_ref(), &input)?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&found)?);
+    } else {
+        print!("{found}");
+    }
+    Ok(if found.differs() || found.first.is_some() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
