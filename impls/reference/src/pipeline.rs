@@ -139,8 +139,8 @@ fn normal<E: Engine>(e: &mut E, k: &Consts<E::N>, p: V3<E::N>) -> R<V3<E::N>> {
                 *di = sdf(e, k, q)?.sd;
             }
             let mut n = vec3::scale(e, k.normal_k[0], d[0])?;
-            for i in 1..4 {
-                let t = vec3::scale(e, k.normal_k[i], d[i])?;
+            for (&ki, &di) in k.normal_k.iter().zip(&d).skip(1) {
+                let t = vec3::scale(e, ki, di)?;
                 n = vec3::add(e, n, t)?;
             }
             vec3::normalize(e, n)

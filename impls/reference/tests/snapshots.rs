@@ -65,7 +65,7 @@ fn image_digests() {
         writeln!(
             out,
             "{imp}: white {white}, fnv1a {:016x}, differs from ref-f316 in {differ} pixels",
-            fnv1a(&g)
+            fnv1a(g)
         )
         .unwrap();
     }

@@ -1,0 +1,122 @@
+//! Op traces of a pixel and an SDF query, and the effect of each variant.
+
+use common::{Op, OpValue, Outcome, F316};
+use reference::{op, trace_op, RefImpl, Reference, RequestError, Settings, Variant};
+
+#[test]
+fn pixel_trace_agrees_with_the_untraced_pixel_and_names_its_path() {
+    let r = Reference::seed(RefImpl::F316);
+    let tr = r.trace_pixel(312, 87).unwrap();
+    assert_eq!(tr.outcome, r.pixel(312, 87));
+    assert!(tr.records.iter().all(|rec| rec.path[0] == "pixel(312,87)"));
+    assert!(tr
+        .records
+        .iter()
+        .all(|rec| rec.result.kind() == common::OutcomeKind::Value));
+    let torus_sqrt_div = tr.records.iter().find(|rec| {
+        rec.op == Op::Div
+            && rec.path.len() == 5
+            && rec.path[1].starts_with("march step ")
+            && rec.path[3] == "torus"
+    });
+    let rec = torus_sqrt_div.expect("a div inside the torus's sqrt");
+    assert_eq!(rec.path[2], "scene");
+    assert_eq!(rec.path[4], "sqrt");
+    // The last operation decides the dithered bit.
+    let last = tr.records.last().unwrap();
+    assert_eq!(last.op, Op::Gt);
+    let white = tr.outcome.value().unwrap().white;
+    assert_eq!(last.result, Outcome::Value(OpValue::Bool(white)));
+}
+
+#[test]
+fn sdf_trace_starts_with_the_floor() {
+    let r = Reference::seed(RefImpl::F316);
+    let p = [
+        F316::new(0, 127, 8192),
+        F316::new(1, 126, 8192),
+        F316::new(0, 128, 12288),
+    ];
+    let tr = r.trace_sdf(p).unwrap();
+    assert_eq!(tr.outcome, r.sdf(p));
+    let first = &tr.records[0];
+    assert_eq!(
+        (first.op, first.args.as_slice()),
+        (Op::Add, &[p[1], F316::ONE][..])
+    );
+    assert_eq!(first.path[1..], ["scene".to_string(), "floor".to_string()]);
+}
+
+#[test]
+fn float_implementations_do_not_trace() {
+    let r = Reference::seed(RefImpl::F64);
+    assert!(matches!(
+        r.trace_pixel(0, 0),
+        Err(RequestError::NotTraceable(RefImpl::F64))
+    ));
+}
+
+#[test]
+fn float_sdf_takes_the_value_of_the_triple() {
+    let p = [
+        F316::new(0, 127, 8192),
+        F316::new(1, 126, 8192),
+        F316::new(0, 128, 12288),
+    ];
+    let f316 = Reference::seed(RefImpl::F316).sdf(p).value().unwrap();
+    let f64v = Reference::seed(RefImpl::F64).sdf(p).value().unwrap();
+    // The floor at y = -0.5 is 0.5 away, nearer than the sphere and torus.
+    assert_eq!(f64v.sd.value, 0.5);
+    assert_eq!(f316.sd.triple, Some(F316::new(0, 126, 8192)));
+    assert_eq!(f64v.sd.triple, None);
+}
+
+fn f(x: f64) -> F316 {
+    F316::from_f64_truncating(x).unwrap()
+}
+
+/// Each arithmetic variant changes a specific operation.
+#[test]
+fn each_arithmetic_variant_changes_an_operation() {
+    let cases: [(Variant, Op, Vec<F316>); 6] = [
+        (
+            Variant::MulLowProduct,
+            Op::Mul,
+            vec![F316::new(0, 127, 16383); 2],
+        ),
+        (
+            Variant::MulKeepLow,
+            Op::Mul,
+            vec![F316::new(0, 127, 16383); 2],
+        ),
+        (Variant::Newton1, Op::Sqrt, vec![f(2.0)]),
+        (Variant::Newton3, Op::InvSqrt, vec![f(2.0)]),
+        (Variant::SqrtFloorDiv, Op::Sqrt, vec![f(0.6)]),
+        (Variant::AddAlignOffByOne, Op::Add, vec![f(1.0), f(0.75)]),
+    ];
+    for (v, o, args) in cases {
+        let spec = op(o, &args, Settings::default().arith).unwrap();
+        let varied = op(o, &args, v.apply(Settings::default()).arith).unwrap();
+        assert_ne!(spec, varied, "{v}");
+        let steps = trace_op(o, &args, v.apply(Settings::default()).arith)
+            .unwrap()
+            .records
+            .len();
+        assert!(steps >= 1);
+    }
+}
+
+/// Newton steps change the number of traced operations.
+#[test]
+fn newton_steps_shape_the_trace() {
+    let n = |v: Option<Variant>| {
+        let s = v.map_or(Settings::default(), |v| v.apply(Settings::default()));
+        trace_op(Op::Sqrt, &[f(2.0)], s.arith)
+            .unwrap()
+            .records
+            .len()
+    };
+    assert_eq!(n(Some(Variant::Newton1)), 4);
+    assert_eq!(n(None), 7);
+    assert_eq!(n(Some(Variant::Newton3)), 10);
+}
