@@ -7,9 +7,10 @@ use std::fmt::Write as _;
 
 use crate::ast::*;
 use crate::error::{ErrorKind, Pos};
-use crate::os_api::{self, OsSubroutine};
-use crate::profile::Profile;
+use crate::os_api;
 use crate::program::{Program, ProgramClass};
+use jack_os::OsSubroutine;
+use jack_os::Profile;
 
 const PRIMITIVES: [&str; 3] = ["int", "char", "boolean"];
 
@@ -127,7 +128,7 @@ impl<'a> Gen<'a> {
                         ErrorKind::OsInterface {
                             class: os.class.to_string(),
                             name: os.name.to_string(),
-                            interface: os.interface(),
+                            interface: os_api::interface(os),
                         },
                     );
                 }
@@ -397,7 +398,11 @@ impl<'a> Gen<'a> {
     ) -> Result<(), ErrorKind> {
         let web = self.program.profile == Profile::Web;
         let (kind, n_params, kind_label) = if let Some(os) = os_api::lookup(class, name) {
-            (os.kind, os.params.len(), capitalize(os.kind.keyword()))
+            (
+                os_api::kind(os),
+                usize::from(os.params),
+                capitalize(os_api::kind(os).keyword()),
+            )
         } else {
             match self.program.class(class) {
                 // A file that did not parse: its subroutines are unknown.
@@ -451,11 +456,11 @@ impl<'a> Gen<'a> {
 
 /// Whether a user subroutine declares exactly the OS interface.
 fn same_signature(os: &OsSubroutine, sub: &Subroutine) -> bool {
-    os.kind == sub.kind
-        && os.ret == sub.ret.text
-        && os.params.len() == sub.params.len()
+    os_api::kind(os) == sub.kind
+        && os.return_type == sub.ret.text
+        && os.param_types.len() == sub.params.len()
         && os
-            .params
+            .param_types
             .iter()
             .zip(&sub.params)
             .all(|(a, (b, _))| *a == b.text)

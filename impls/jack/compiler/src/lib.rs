@@ -3,8 +3,13 @@
 //! with their messages, and the exact code templates and label numbering.
 //!
 //! Two [`Profile`]s select the checks: `desktop` (default, the tools the seed
-//! program was written with; unknown class types are accepted) and `web` (the
-//! web IDE exactly). Code generation is the same for both.
+//! program was written with: a type may name a class outside the program, and
+//! calls into such a class are not checked, since it may come as VM code) and
+//! `web` (the web IDE exactly: "Unknown type T", "Class C doesn't exist", and
+//! its message quirks). Code generation is the same for both.
+//!
+//! Calls are validated against the OS subroutine table of `jack-os` first,
+//! then against the classes compiled together.
 //!
 //! ```
 //! use jack_compiler::{compile_sources, Profile};
@@ -19,15 +24,15 @@ mod codegen;
 pub mod error;
 mod flow;
 pub mod lexer;
-pub mod os_api;
+mod os_api;
 pub mod parser;
-mod profile;
 mod program;
 
 use std::path::Path;
 
 pub use error::{CompileDirError, CompileError, CompileErrors, ErrorKind, Pos};
-pub use profile::{Profile, UnknownProfile};
+/// The profile type shared with the OS and the VM.
+pub use jack_os::{Profile, ProfileParseError};
 use program::{Program, ProgramClass};
 
 /// The VM code of one class.

@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use crate::ast::Class;
-use crate::profile::Profile;
+use jack_os::Profile;
 
 /// A class of the program as far as it is known.
 #[derive(Debug, Clone, Copy)]
