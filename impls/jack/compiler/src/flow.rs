@@ -44,16 +44,13 @@ fn bare_returns(stmts: &[Statement], errors: &mut Vec<(Pos, ErrorKind)>) {
 
 /// Whether every path through `stmts` returns, given whether the code that
 /// follows them (`after`) does.
+/// Walks backwards, so recursion is as deep as the nesting, not the length.
 fn returns(stmts: &[Statement], after: bool) -> bool {
-    match stmts.split_first() {
-        None => after,
-        Some((Statement::Return { .. }, _)) => true,
-        Some((Statement::If { then, els, .. }, rest)) => {
-            let cont = returns(rest, after);
-            returns(then, cont) && returns(els, cont)
-        }
-        Some((_, rest)) => returns(rest, after),
-    }
+    stmts.iter().rev().fold(after, |cont, s| match s {
+        Statement::Return { .. } => true,
+        Statement::If { then, els, .. } => returns(then, cont) && returns(els, cont),
+        _ => cont,
+    })
 }
 
 #[cfg(test)]

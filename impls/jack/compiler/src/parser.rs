@@ -174,7 +174,7 @@ impl Parser {
             if id.text.len() > prim.len() && id.text.starts_with(prim) {
                 let pos = Pos {
                     line: id.pos.line,
-                    col: id.pos.col + prim.len() as u32,
+                    col: id.pos.col.saturating_add(prim.len() as u32),
                 };
                 let msg = format!("Expected whitespace after the type '{prim}'");
                 return Err((pos, ErrorKind::Syntax(msg)));

@@ -138,3 +138,14 @@ fn deepest_accepted_nesting_compiles() {
     );
     assert!(compile_sources(&[("Main.jack", src.as_str())], Profile::Web).is_ok());
 }
+
+#[test]
+fn long_programs_compile_without_deep_recursion() {
+    let stmts = "let x = x + 1; if (x) { let x = 0; } ".repeat(50_000);
+    let src = format!("class Main {{ function int f() {{ var int x; {stmts} return x; }} }}");
+    let out = compile_sources(&[("Main.jack", src.as_str())], Profile::Web).unwrap();
+    assert!(out[0].code.contains("label Main_99999\n"));
+    let sum = "1 + ".repeat(100_000);
+    let src = format!("class Main {{ function int f() {{ return {sum}1; }} }}");
+    assert!(compile_sources(&[("Main.jack", src.as_str())], Profile::Web).is_ok());
+}
