@@ -1,11 +1,14 @@
 //! `harness jack`: the Jack toolchain. One module per subcommand under
 //! `commands/jack/`.
 
+mod compile;
 mod run;
 
 /// Jack subcommands.
 #[derive(Debug, clap::Subcommand)]
 pub enum JackCommand {
+    /// Compile every .jack file of SRC_DIR to one .vm file per class.
+    Compile(compile::CompileArgs),
     /// Run a VM program on the Hack VM emulator (compiling .jack files first).
     Run(run::RunArgs),
 }
@@ -13,6 +16,7 @@ pub enum JackCommand {
 /// Run a Jack subcommand.
 pub fn run(cmd: JackCommand) -> anyhow::Result<std::process::ExitCode> {
     match cmd {
+        JackCommand::Compile(args) => compile::run(args),
         JackCommand::Run(args) => run::run(args),
     }
 }
