@@ -13,6 +13,7 @@ pub mod compare;
 pub mod implementation;
 pub mod impls;
 pub mod localize;
+pub mod report;
 pub mod runner;
 pub mod selftest;
 pub mod text;

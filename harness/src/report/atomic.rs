@@ -1,0 +1,184 @@
+//! Atomic writes: a report directory is built in a staging directory next to
+//! its final place and swapped in with one rename, so a reader (or a crash)
+//! sees either the whole previous report or the whole new one.
+
+use anyhow::{bail, Context, Result};
+use std::fs;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A directory being built next to `target`; [`StagingDir::commit`] puts it
+/// in place, dropping it without committing removes it.
+#[derive(Debug)]
+pub struct StagingDir {
+    staging: PathBuf,
+    target: PathBuf,
+    committed: bool,
+}
+
+/// `parent/.name.suffix-pid`, a hidden sibling of `target`.
+fn sibling(target: &Path, suffix: &str) -> Result<PathBuf> {
+    let name = target
+        .file_name()
+        .with_context(|| format!("{} has no final component", target.display()))?;
+    let parent = target.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    Ok(parent.join(format!(".{}.{suffix}-{}", name.to_string_lossy(), std::process::id())))
+}
+
+impl StagingDir {
+    /// Create an empty staging directory beside `target` (creating
+    /// `target`'s parent if needed).
+    pub fn new(target: &Path) -> Result<Self> {
+        let staging = sibling(target, "staging")?;
+        if let Some(parent) = staging.parent() {
+            fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
+        }
+        if staging.exists() {
+            fs::remove_dir_all(&staging).with_context(|| format!("removing stale {}", staging.display()))?;
+        }
+        fs::create_dir(&staging).with_context(|| format!("creating {}", staging.display()))?;
+        Ok(StagingDir { staging, target: target.to_path_buf(), committed: false })
+    }
+
+    /// Where to write the files.
+    pub fn path(&self) -> &Path {
+        &self.staging
+    }
+
+    /// Replace `target` by the staging directory in one step; the previous
+    /// contents of `target` are then removed.
+    pub fn commit(mut self) -> Result<PathBuf> {
+        if self.target.exists() {
+            if !self.target.is_dir() {
+                bail!("{} exists and is not a directory", self.target.display());
+            }
+            exchange(&self.staging, &self.target)?;
+            // The staging path now holds the previous report.
+            self.committed = true;
+            fs::remove_dir_all(&self.staging)
+                .with_context(|| format!("removing the previous report moved to {}", self.staging.display()))?;
+        } else {
+            fs::rename(&self.staging, &self.target)
+                .with_context(|| format!("renaming {} to {}", self.staging.display(), self.target.display()))?;
+            self.committed = true;
+        }
+        Ok(self.target.clone())
+    }
+}
+
+impl Drop for StagingDir {
+    fn drop(&mut self) {
+        if !self.committed {
+            // Best effort: a half-built report must not linger.
+            let _ = fs::remove_dir_all(&self.staging);
+        }
+    }
+}
+
+/// Swap two directories atomically (Linux `renameat2(RENAME_EXCHANGE)`).
+#[cfg(target_os = "linux")]
+fn exchange(a: &Path, b: &Path) -> Result<()> {
+    use rustix::fs::{renameat_with, RenameFlags, CWD};
+    renameat_with(CWD, a, CWD, b, RenameFlags::EXCHANGE)
+        .with_context(|| format!("exchanging {} and {}", a.display(), b.display()))
+}
+
+/// Swap two directories with two renames (no atomic exchange here): a crash
+/// between them leaves the previous report under `a`'s name, not lost.
+#[cfg(not(target_os = "linux"))]
+fn exchange(a: &Path, b: &Path) -> Result<()> {
+    let aside = sibling(b, "previous")?;
+    fs::rename(b, &aside).with_context(|| format!("moving {} aside", b.display()))?;
+    fs::rename(a, b).with_context(|| format!("renaming {} to {}", a.display(), b.display()))?;
+    fs::rename(&aside, a).with_context(|| format!("moving {} back", aside.display()))
+}
+
+/// Write a file atomically: a temporary sibling, flushed, then renamed over
+/// `path`.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    let tmp = sibling(path, "tmp")?;
+    let result = (|| {
+        let mut f = fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
+        f.write_all(bytes).with_context(|| format!("writing {}", tmp.display()))?;
+        f.sync_all().with_context(|| format!("syncing {}", tmp.display()))?;
+        fs::rename(&tmp, path).with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
+    })();
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entries(dir: &Path) -> Vec<String> {
+        let mut v: Vec<String> = fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn first_commit_creates_the_directory() {
+        let root = tempfile::tempdir().unwrap();
+        let target = root.path().join("reports/nightly");
+        let stage = StagingDir::new(&target).unwrap();
+        fs::write(stage.path().join("a.txt"), "new").unwrap();
+        stage.commit().unwrap();
+        assert_eq!(fs::read_to_string(target.join("a.txt")).unwrap(), "new");
+        assert_eq!(entries(&root.path().join("reports")), vec!["nightly"]);
+    }
+
+    #[test]
+    fn commit_replaces_the_previous_report_whole() {
+        let root = tempfile::tempdir().unwrap();
+        let target = root.path().join("nightly");
+        fs::create_dir(&target).unwrap();
+        fs::write(target.join("old.txt"), "old").unwrap();
+        let stage = StagingDir::new(&target).unwrap();
+        fs::write(stage.path().join("new.txt"), "new").unwrap();
+        stage.commit().unwrap();
+        assert_eq!(entries(&target), vec!["new.txt"]);
+        assert_eq!(entries(root.path()), vec!["nightly"], "no staging leftovers");
+    }
+
+    #[test]
+    fn an_abandoned_build_keeps_the_previous_report() {
+        let root = tempfile::tempdir().unwrap();
+        let target = root.path().join("nightly");
+        fs::create_dir(&target).unwrap();
+        fs::write(target.join("old.txt"), "old").unwrap();
+        {
+            let stage = StagingDir::new(&target).unwrap();
+            fs::write(stage.path().join("half.txt"), "half").unwrap();
+            // A failure: dropped without commit.
+        }
+        assert_eq!(entries(&target), vec!["old.txt"]);
+        assert_eq!(entries(root.path()), vec!["nightly"]);
+    }
+
+    #[test]
+    fn commit_refuses_a_file_in_the_way() {
+        let root = tempfile::tempdir().unwrap();
+        let target = root.path().join("nightly");
+        fs::write(&target, "not a dir").unwrap();
+        let stage = StagingDir::new(&target).unwrap();
+        assert!(stage.commit().is_err());
+        assert_eq!(fs::read_to_string(&target).unwrap(), "not a dir");
+    }
+
+    #[test]
+    fn write_file_replaces_contents() {
+        let root = tempfile::tempdir().unwrap();
+        let p = root.path().join("history.jsonl");
+        write_file(&p, b"one\n").unwrap();
+        write_file(&p, b"one\ntwo\n").unwrap();
+        assert_eq!(fs::read_to_string(&p).unwrap(), "one\ntwo\n");
+        assert_eq!(entries(root.path()), vec!["history.jsonl"]);
+        assert!(write_file(&root.path().join("missing/x"), b"").is_err());
+    }
+}

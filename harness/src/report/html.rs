@@ -1,0 +1,591 @@
+//! The HTML page of a report: one self-contained `index.html` whose images
+//! are files beside it, referenced relatively, so the directory can be
+//! copied and opened offline. Divergent pixels are marked over the
+//! difference overlay; hovering a mark shows its coordinates and the first
+//! divergent operation, and links to its row in the table.
+
+use crate::report::history::{History, HistoryEntry};
+use crate::report::model::*;
+use crate::report::plot::short_number;
+use std::fmt::Write;
+
+/// Escape text for HTML content and attribute values.
+pub fn esc(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            _ => out.push(c),
+        }
+    }
+    out
+}
+
+/// A duration in a readable unit: `85 ns`, `3.2 µs`, `14 ms`, `2.5 s`, `4m 10s`.
+pub fn seconds(s: f64) -> String {
+    if s <= 0.0 || !s.is_finite() {
+        "–".into()
+    } else if s < 1e-6 {
+        format!("{:.0} ns", s * 1e9)
+    } else if s < 1e-3 {
+        format!("{:.1} µs", s * 1e6)
+    } else if s < 1.0 {
+        format!("{:.1} ms", s * 1e3)
+    } else if s < 120.0 {
+        format!("{s:.1} s")
+    } else {
+        format!("{}m {:02}s", (s / 60.0).floor(), (s % 60.0).round() as u64)
+    }
+}
+
+fn opt_number(v: Option<f64>) -> String {
+    v.map(short_number).unwrap_or_else(|| "–".into())
+}
+
+fn yes_no(v: Option<bool>) -> &'static str {
+    match v {
+        Some(true) => "<span class=ok>yes</span>",
+        Some(false) => "<span class=bad>no</span>",
+        None => "–",
+    }
+}
+
+/// Anchor-safe id fragment of a label.
+fn slug(s: &str) -> String {
+    s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '-' }).collect()
+}
+
+const STYLE: &str = r#"
+body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:0;color:#1d2430;background:#f6f7f9;line-height:1.45}
+header{background:#1d2430;color:#fff;padding:18px 32px}
+header h1{margin:0 0 4px;font-size:22px}
+header .meta{color:#c9d1dc;font-size:13px}
+nav{padding:8px 32px;background:#e9edf2;font-size:14px;position:sticky;top:0;z-index:3}
+nav a{margin-right:14px;color:#1a4f8b;text-decoration:none}
+main{padding:8px 32px 40px;max-width:1200px}
+section{background:#fff;border:1px solid #dde2e8;border-radius:6px;padding:6px 20px 16px;margin:16px 0}
+h2{font-size:19px;border-bottom:1px solid #e3e7ec;padding-bottom:4px}
+h3{font-size:16px;margin:18px 0 6px}
+table{border-collapse:collapse;font-size:13px;margin:6px 0}
+th,td{border:1px solid #d5dbe2;padding:3px 8px;text-align:left;vertical-align:top}
+th{background:#eef1f5}
+tr:nth-child(even) td{background:#fafbfc}
+td.n{text-align:right;font-variant-numeric:tabular-nums}
+code{font-size:12px;background:#f1f3f5;padding:1px 4px;border-radius:3px}
+.ok{color:#17803d;font-weight:600}.bad{color:#c62828;font-weight:600}.warn{color:#a15c00;font-weight:600}
+.cards{display:flex;gap:12px;flex-wrap:wrap}
+.card{border:1px solid #dde2e8;border-radius:6px;padding:8px 14px;min-width:150px;background:#fbfcfd}
+.card b{display:block;font-size:22px}
+.figs{display:grid;grid-template-columns:repeat(auto-fill,minmax(520px,1fr));gap:14px}
+figure{margin:0}
+figcaption{font-size:12px;color:#4a5563;margin-top:2px}
+img.px{width:100%;max-width:1024px;image-rendering:pixelated;border:1px solid #c9d0d8;display:block}
+img.legend{width:100%;max-width:512px;display:block}
+.pixmap{position:relative}
+.pixmap svg{position:absolute;left:0;top:0;width:100%;height:100%}
+.pixmap rect.mark{fill:none;stroke:#ffb000;stroke-width:1.2;vector-effect:non-scaling-stroke}
+.pixmap rect.mark:hover{stroke:#000;stroke-width:3}
+.swatch{display:inline-block;width:12px;height:12px;border:1px solid #888;vertical-align:middle}
+details summary{cursor:pointer;margin:6px 0}
+.problems li{color:#a15c00}
+tr:target td{background:#fff3c4}
+"#;
+
+/// Checks, once the page has loaded, that every image decoded, and records
+/// the counts on `<body>` (`data-images-loaded`, `data-images-total`) for
+/// tests and readers.
+const IMAGE_CHECK: &str = r#"
+window.addEventListener('load',function(){var imgs=document.querySelectorAll('img'),ok=0;
+imgs.forEach(function(i){if(i.complete&&i.naturalWidth>0){ok++}else{i.classList.add('broken');i.alt='missing: '+i.getAttribute('src')}});
+document.body.setAttribute('data-images-loaded',ok);document.body.setAttribute('data-images-total',imgs.length);});
+"#;
+
+/// Render the page for `report`, with the trend table from `history`
+/// (which should already hold this run's entry).
+pub fn render(report: &Report, history: &History) -> String {
+    let mut h = String::new();
+    let m = &report.meta;
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=en><head><meta charset=utf-8><meta name=viewport content=\"width=device-width\">\
+         <title>Divergence report {}</title><style>{STYLE}</style><script>{IMAGE_CHECK}</script></head><body>\n",
+        esc(&m.started_at)
+    );
+    let _ = write!(
+        h,
+        "<header><h1>Float316 raymarcher: nightly divergence report</h1><div class=meta>{} · commit <code>{}</code>{} · {} · {} CPUs · harness {} · report schema {}</div></header>\n",
+        esc(&m.started_at),
+        esc(&m.git_commit),
+        if m.git_dirty { " (uncommitted changes)" } else { "" },
+        seconds(m.duration_s),
+        m.cpus,
+        esc(&m.harness_version),
+        report.schema_version
+    );
+    h.push_str(
+        "<nav><a href=#summary>Summary</a><a href=#levels>Levels</a><a href=#renders>Renders</a><a href=#pairs>Image pairs</a>\
+         <a href=#cost>Cost map</a><a href=#speed>Speed vs error</a><a href=#stability>Stability</a><a href=#bench>Bench</a><a href=#trend>Trend</a></nav>\n<main>\n",
+    );
+    summary(&mut h, report);
+    levels(&mut h, report);
+    renders(&mut h, report);
+    pairs(&mut h, report);
+    cost_map(&mut h, report);
+    speed(&mut h, report);
+    stability(&mut h, report);
+    bench(&mut h, report);
+    trend(&mut h, history);
+    h.push_str("</main></body></html>\n");
+    h
+}
+
+fn summary(h: &mut String, r: &Report) {
+    let available = r.implementations.iter().filter(|i| i.available).count();
+    let pixel_pairs_differing = r.image_pairs.iter().filter(|p| p.differing_pixels > 0).count();
+    let exact = r.bit_exact_divergences();
+    let card = |h: &mut String, value: String, label: &str, class: &str| {
+        let _ = write!(h, "<div class=card><b class={class}>{value}</b>{label}</div>");
+    };
+    h.push_str("<section id=summary><h2>Summary</h2><div class=cards>");
+    card(h, format!("{available}/{}", r.implementations.len()), "implementations ran", "");
+    card(h, exact.to_string(), "bit-exact divergences (all levels)", if exact == 0 { "ok" } else { "bad" });
+    card(
+        h,
+        format!("{pixel_pairs_differing}/{}", r.image_pairs.len()),
+        "image pairs with differing pixels",
+        "",
+    );
+    match &r.selftest {
+        Some(t) => card(h, if t.passed { "pass" } else { "FAIL" }.into(), "self-test", if t.passed { "ok" } else { "bad" }),
+        None => card(h, "–".into(), "self-test not run", "warn"),
+    }
+    card(h, seconds(r.meta.duration_s), "run duration", "");
+    h.push_str("</div>\n");
+    if !r.problems.is_empty() {
+        h.push_str("<h3>Problems (steps that did not run or failed)</h3><ul class=problems>");
+        for p in &r.problems {
+            let _ = write!(h, "<li>{}</li>", esc(p));
+        }
+        h.push_str("</ul>");
+    }
+    h.push_str("<h3>Implementations</h3><table><tr><th>name</th><th>available</th><th>note</th></tr>");
+    for i in &r.implementations {
+        let _ = write!(
+            h,
+            "<tr><td><code>{}</code></td><td>{}</td><td>{}</td></tr>",
+            esc(&i.name),
+            yes_no(Some(i.available)),
+            esc(i.note.as_deref().unwrap_or(""))
+        );
+    }
+    h.push_str("</table>");
+    if let Some(t) = &r.selftest {
+        let _ = write!(h, "<details><summary>Self-test: {} checks</summary><pre>", t.lines.len());
+        for l in &t.lines {
+            let _ = writeln!(h, "{}", esc(l));
+        }
+        h.push_str("</pre></details>");
+    }
+    h.push_str("<h3>Steps</h3><table><tr><th>step</th><th>time</th></tr>");
+    for s in &r.meta.steps {
+        let _ = write!(h, "<tr><td>{}</td><td class=n>{}</td></tr>", esc(&s.step), seconds(s.seconds));
+    }
+    h.push_str("</table></section>\n");
+}
+
+fn levels(h: &mut String, r: &Report) {
+    h.push_str(
+        "<section id=levels><h2>Level comparisons</h2><p>Float316 implementations must agree bit for bit (any difference is a divergence); \
+         float implementations are measured against <code>ref-f64</code> (error figures, reported not hidden).</p>\
+         <table><tr><th>level</th><th>scope</th><th>A</th><th>B</th><th>policy</th><th>cases</th><th>divergences</th><th>mean |err|</th><th>max |err|</th></tr>",
+    );
+    for c in &r.comparisons {
+        let class = if c.divergences == 0 { "ok" } else if c.policy == crate::report::BIT_EXACT { "bad" } else { "warn" };
+        let _ = write!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td><code>{}</code></td><td><code>{}</code></td><td>{}</td><td class=n>{}</td><td class=\"n {class}\">{}</td><td class=n>{}</td><td class=n>{}</td></tr>",
+            esc(&c.level),
+            esc(&c.scope),
+            esc(&c.a),
+            esc(&c.b),
+            esc(&c.policy),
+            c.cases,
+            c.divergences,
+            opt_number(c.error.map(|e| e.mean_abs)),
+            opt_number(c.error.map(|e| e.max_abs)),
+        );
+    }
+    h.push_str("</table>");
+    let with_examples: Vec<&Comparison> = r.comparisons.iter().filter(|c| !c.examples.is_empty()).collect();
+    if !with_examples.is_empty() {
+        h.push_str("<h3>First divergent cases</h3>");
+        for c in with_examples {
+            let _ = write!(
+                h,
+                "<details><summary>{} {}: <code>{}</code> vs <code>{}</code> ({} shown)</summary><table><tr><th>case</th><th>A</th><th>B</th><th>first divergent operation</th><th>reproduce</th></tr>",
+                esc(&c.level),
+                esc(&c.scope),
+                esc(&c.a),
+                esc(&c.b),
+                c.examples.len()
+            );
+            for e in &c.examples {
+                let _ = write!(
+                    h,
+                    "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                    esc(&e.case),
+                    esc(&e.a),
+                    esc(&e.b),
+                    esc(e.first_op.as_deref().unwrap_or("–")),
+                    e.repro.as_deref().map(|c| format!("<code>{}</code>", esc(c))).unwrap_or_default()
+                );
+            }
+            h.push_str("</table></details>");
+        }
+    }
+    h.push_str("</section>\n");
+}
+
+fn renders(h: &mut String, r: &Report) {
+    h.push_str("<section id=renders><h2>Renders</h2><div class=figs>");
+    for x in &r.renders {
+        let spec = match x.identical_to_spec {
+            Some(true) => " · identical to the spec image",
+            Some(false) => " · differs from the spec image",
+            None => "",
+        };
+        let _ = write!(
+            h,
+            "<figure><img class=px src=\"{}\" alt=\"render of {}\"><figcaption><code>{}</code>: {} for {} pixels ({} per pixel{}){spec}</figcaption></figure>",
+            esc(&x.image),
+            esc(&x.label),
+            esc(&x.label),
+            seconds(x.render_s),
+            x.pixels,
+            seconds(per_pixel(x.render_s, x.pixels)),
+            x.vm_instructions
+                .map(|n| format!(", {} VM instructions per pixel", short_number(n as f64 / x.pixels.max(1) as f64)))
+                .unwrap_or_default(),
+        );
+    }
+    h.push_str("</div></section>\n");
+}
+
+fn per_pixel(total_s: f64, pixels: u64) -> f64 {
+    if pixels == 0 {
+        0.0
+    } else {
+        total_s / pixels as f64
+    }
+}
+
+fn pairs(h: &mut String, r: &Report) {
+    h.push_str(
+        "<section id=pairs><h2>Image pairs</h2><p>Overlay: the first image faded, pixels white in A and black in B in \
+         <span class=swatch style=background:rgb(230,0,60)></span> red, black in A and white in B in \
+         <span class=swatch style=background:rgb(0,90,230)></span> blue. Listed divergent pixels are boxed; hover a box for the pixel and its first divergent operation, click it for its row.</p>",
+    );
+    for p in &r.image_pairs {
+        let id = slug(&format!("{}-vs-{}", p.a, p.b));
+        let pct = 100.0 * p.differing_pixels as f64 / p.pixels.max(1) as f64;
+        let class = if p.differing_pixels == 0 { "ok" } else { "bad" };
+        let shades = p
+            .differing_shades
+            .map(|n| format!(", {n} shades differ"))
+            .unwrap_or_default();
+        let _ = write!(
+            h,
+            "<details id=\"{id}\"{}><summary><b><code>{}</code> vs <code>{}</code></b>: <span class={class}>{} of {} pixels differ ({pct:.3}%)</span>{shades}</summary>",
+            if p.differing_pixels > 0 { " open" } else { "" },
+            esc(&p.a),
+            esc(&p.b),
+            p.differing_pixels,
+            p.pixels
+        );
+        h.push_str("<div class=figs><figure><div class=pixmap>");
+        let _ = write!(h, "<img class=px src=\"{}\" alt=\"overlay {} vs {}\">", esc(&p.overlay), esc(&p.a), esc(&p.b));
+        marks(h, &id, p);
+        h.push_str("</div><figcaption>difference overlay</figcaption></figure>");
+        if let Some(heat) = &p.heat {
+            let _ = write!(
+                h,
+                "<figure><img class=px src=\"{}\" alt=\"shade error heat map\"><img class=legend src=\"{}\" alt=\"colour bar\"><figcaption>|shade A − shade B| per pixel, log scale, black = identical; mean {}, max {}</figcaption></figure>",
+                esc(&heat.image),
+                esc(&heat.legend),
+                short_number(heat.mean_abs),
+                short_number(heat.max_abs)
+            );
+        }
+        h.push_str("</div>");
+        if !p.divergences.is_empty() {
+            h.push_str("<table><tr><th>x</th><th>y</th><th>A</th><th>B</th><th>first divergent operation</th><th>reproduce</th></tr>");
+            for d in &p.divergences {
+                let _ = write!(
+                    h,
+                    "<tr id=\"{id}-{}-{}\"><td class=n>{}</td><td class=n>{}</td><td>{}</td><td>{}</td><td>{}</td><td><code>{}</code></td></tr>",
+                    d.x,
+                    d.y,
+                    d.x,
+                    d.y,
+                    pixel_text(d.a_white, d.a_shade),
+                    pixel_text(d.b_white, d.b_shade),
+                    esc(d.first_op.as_deref().unwrap_or("–")),
+                    esc(&d.repro)
+                );
+            }
+            h.push_str("</table>");
+            if p.unlisted > 0 {
+                let _ = write!(h, "<p>{} more divergent pixels not listed.</p>", p.unlisted);
+            }
+        }
+        h.push_str("</details>\n");
+    }
+    h.push_str("</section>\n");
+}
+
+fn pixel_text(white: bool, shade: Option<f64>) -> String {
+    let bit = if white { "white" } else { "black" };
+    match shade {
+        Some(s) => format!("{bit} ({s:.6})"),
+        None => bit.into(),
+    }
+}
+
+/// The hover layer over an overlay: one box per listed divergent pixel.
+fn marks(h: &mut String, id: &str, p: &ImagePair) {
+    if p.divergences.is_empty() {
+        return;
+    }
+    // The marks use the overlay's pixel grid.
+    let (w, hgt) = (p.width, p.height);
+    let _ = write!(h, "<svg viewBox=\"0 0 {w} {hgt}\" preserveAspectRatio=none>");
+    for d in &p.divergences {
+        let tip = format!(
+            "pixel ({}, {}): {} vs {}\n{}",
+            d.x,
+            d.y,
+            pixel_text(d.a_white, d.a_shade),
+            pixel_text(d.b_white, d.b_shade),
+            d.first_op.as_deref().unwrap_or("first divergent operation not localized")
+        );
+        let _ = write!(
+            h,
+            "<a href=\"#{id}-{}-{}\"><rect class=mark x=\"{}\" y=\"{}\" width=5 height=5><title>{}</title></rect></a>",
+            d.x,
+            d.y,
+            d.x as f64 - 2.0,
+            d.y as f64 - 2.0,
+            esc(&tip)
+        );
+    }
+    h.push_str("</svg>");
+}
+
+fn cost_map(h: &mut String, r: &Report) {
+    h.push_str("<section id=cost><h2>Jack program: VM instructions per pixel</h2>");
+    match &r.cost_map {
+        Some(c) => {
+            let _ = write!(
+                h,
+                "<div class=figs><figure><img class=px src=\"{}\" alt=\"cost map\"><img class=legend src=\"{}\" alt=\"colour bar\">\
+                 <figcaption>Hack VM instructions spent on each pixel: min {}, mean {}, max {}</figcaption></figure></div>",
+                esc(&c.image),
+                esc(&c.legend),
+                c.min,
+                short_number(c.mean),
+                c.max
+            );
+        }
+        None => h.push_str("<p class=warn>The Jack program did not run; no cost map.</p>"),
+    }
+    h.push_str("</section>\n");
+}
+
+fn speed(h: &mut String, r: &Report) {
+    let s = &r.speed_error;
+    h.push_str("<section id=speed><h2>Speed against error</h2>");
+    if !s.plot.is_empty() {
+        let _ = write!(h, "<img src=\"{}\" alt=\"speed against error plot\" style=max-width:100%>", esc(&s.plot));
+    }
+    match &s.cheapest_spec_identical {
+        Some(c) => {
+            let _ = write!(h, "<p>Cheapest precision variant whose dithered image is identical to the spec's: <b>{}</b>.</p>", esc(c));
+        }
+        None => h.push_str("<p class=warn>No precision variant reproduced the spec's image.</p>"),
+    }
+    h.push_str(
+        "<table><tr><th>implementation / variant</th><th>time per pixel</th><th>VM instr. per pixel</th><th>mean |shade err|</th><th>max |shade err|</th><th>pixel flips vs ref-f64</th><th>identical to spec</th></tr>",
+    );
+    for p in &s.points {
+        let _ = write!(
+            h,
+            "<tr><td><code>{}</code></td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td>{}</td></tr>",
+            esc(&p.label),
+            seconds(p.time_per_pixel_s),
+            opt_number(p.vm_instructions_per_pixel),
+            opt_number(p.mean_shade_error),
+            opt_number(p.max_shade_error),
+            p.pixel_flips,
+            yes_no(p.identical_to_spec)
+        );
+    }
+    h.push_str("</table></section>\n");
+}
+
+fn stability(h: &mut String, r: &Report) {
+    h.push_str(
+        "<section id=stability><h2>Numerical stability: hard cases</h2><p>Per category, how many vectors ended as a value (V), Sys.error (E), hang (H) or out of domain (D) on each implementation; \
+         <span class=bad>≠</span> counts outcomes that differ from <code>ref-f316</code> bit for bit.</p>",
+    );
+    let impls: std::collections::BTreeSet<&String> = r.stability.iter().flat_map(|s| s.outcomes.keys()).collect();
+    h.push_str("<table><tr><th>category</th><th>vectors</th>");
+    for i in &impls {
+        let _ = write!(h, "<th><code>{}</code></th>", esc(i));
+    }
+    h.push_str("<th>worst error vs f64</th></tr>");
+    for s in &r.stability {
+        let _ = write!(h, "<tr><td>{}</td><td class=n>{}</td>", esc(&s.category), s.vectors);
+        for i in &impls {
+            match s.outcomes.get(*i) {
+                Some(t) => {
+                    let _ = write!(h, "<td>V {} · E {} · H {} · D {}", t.value, t.sys_error, t.hang, t.out_of_domain);
+                    if t.diverging > 0 {
+                        let _ = write!(h, " <span class=bad>≠ {}</span>", t.diverging);
+                    }
+                    h.push_str("</td>");
+                }
+                None => h.push_str("<td>–</td>"),
+            }
+        }
+        match &s.worst {
+            Some(w) => {
+                let _ = write!(
+                    h,
+                    "<td>{} abs, {} rel (<code>{}</code> on <code>{}</code>)</td></tr>",
+                    short_number(w.abs),
+                    short_number(w.rel),
+                    esc(&w.implementation),
+                    esc(&w.case)
+                );
+            }
+            None => h.push_str("<td>–</td></tr>"),
+        }
+    }
+    h.push_str("</table></section>\n");
+}
+
+fn bench(h: &mut String, r: &Report) {
+    h.push_str(
+        "<section id=bench><h2>Benchmarks</h2><table><tr><th>implementation</th><th>set-up</th><th>full image</th><th>per pixel</th><th>pixels/s</th><th>VM instr. per pixel</th><th>mean |err|</th><th>max |err|</th><th>flips</th></tr>",
+    );
+    for b in &r.bench {
+        let _ = write!(
+            h,
+            "<tr><td><code>{}</code></td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td></tr>",
+            esc(&b.implementation),
+            seconds(b.setup_s),
+            seconds(b.image_s),
+            seconds(b.per_pixel_s),
+            short_number(b.pixels_per_s()),
+            opt_number(b.vm_instructions_per_pixel),
+            opt_number(b.mean_shade_error),
+            opt_number(b.max_shade_error),
+            b.pixel_flips
+        );
+    }
+    h.push_str("</table></section>\n");
+}
+
+/// Most recent runs shown in the trend table.
+const TREND_ROWS: usize = 30;
+
+fn trend(h: &mut String, history: &History) {
+    h.push_str("<section id=trend><h2>Trend</h2>");
+    if history.unreadable > 0 {
+        let _ = write!(h, "<p class=warn>{} unreadable history lines skipped.</p>", history.unreadable);
+    }
+    let recent: Vec<&HistoryEntry> = history.entries.iter().rev().take(TREND_ROWS).collect();
+    // Columns: the implementations (not variants) of the latest run.
+    let labels: Vec<&String> = recent
+        .first()
+        .map(|e| e.seconds_per_pixel.keys().filter(|k| !k.contains('/')).collect())
+        .unwrap_or_default();
+    h.push_str("<table><tr><th>date</th><th>commit</th><th>duration</th><th>bit-exact divergences</th><th>differing pixels</th><th>problems</th>");
+    for l in &labels {
+        let _ = write!(h, "<th><code>{}</code><br>flips · per pixel</th>", esc(l));
+    }
+    h.push_str("</tr>");
+    for e in &recent {
+        let pixels: u64 = e.pixel_divergences.values().sum();
+        let _ = write!(
+            h,
+            "<tr><td>{}</td><td><code>{}</code></td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td>",
+            esc(&e.date),
+            esc(e.commit.get(..10).unwrap_or(&e.commit)),
+            seconds(e.duration_s),
+            e.divergences,
+            pixels,
+            e.problems
+        );
+        for l in &labels {
+            let flips = e.errors.get(*l).map(|x| x.flips.to_string()).unwrap_or_else(|| "–".into());
+            let speed = e.seconds_per_pixel.get(*l).map(|s| seconds(*s)).unwrap_or_else(|| "–".into());
+            let _ = write!(h, "<td class=n>{flips} · {speed}</td>");
+        }
+        h.push_str("</tr>");
+    }
+    h.push_str("</table></section>\n");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escapes_markup() {
+        assert_eq!(esc("a<b>&\"c'"), "a&lt;b&gt;&amp;&quot;c&#39;");
+    }
+
+    #[test]
+    fn durations_read_naturally() {
+        assert_eq!(seconds(85e-9), "85 ns");
+        assert_eq!(seconds(3.25e-6), "3.2 µs");
+        assert_eq!(seconds(0.014), "14.0 ms");
+        assert_eq!(seconds(2.5), "2.5 s");
+        assert_eq!(seconds(250.0), "4m 10s");
+        assert_eq!(seconds(0.0), "–");
+    }
+
+    #[test]
+    fn page_has_every_section_and_escapes_labels() {
+        let mut r = Report::new(RunMeta { git_commit: "<x>".into(), ..RunMeta::default() });
+        r.image_pairs.push(ImagePair {
+            a: "ref-f316".into(),
+            b: "jack".into(),
+            width: 4,
+            height: 2,
+            pixels: 8,
+            differing_pixels: 1,
+            overlay: "images/o.png".into(),
+            divergences: vec![PixelDivergence {
+                x: 3,
+                y: 1,
+                first_op: Some("div((0,1,2), (0,1,3)) = (0,1,1) vs (0,1,2)".into()),
+                repro: "harness localize ref-f316 jack --pixel 3,1".into(),
+                ..PixelDivergence::default()
+            }],
+            ..ImagePair::default()
+        });
+        let page = render(&r, &History::default());
+        for id in ["summary", "levels", "renders", "pairs", "cost", "speed", "stability", "bench", "trend"] {
+            assert!(page.contains(&format!("<section id={id}>")), "section {id} missing");
+        }
+        assert!(page.contains("&lt;x&gt;") && !page.contains("<x>"));
+        assert!(page.contains("<title>pixel (3, 1): black vs black\ndiv((0,1,2)"));
+        assert!(page.contains("href=\"#ref-f316-vs-jack-3-1\"") && page.contains("<tr id=\"ref-f316-vs-jack-3-1\">"));
+    }
+}

@@ -1,0 +1,257 @@
+//! Reports: the model of what a run found ([`model`]), its images
+//! ([`images`]) and charts ([`plot`]), the HTML page ([`html`]), the run
+//! history ([`history`]) and atomic writing ([`atomic`]). [`ReportBuilder`]
+//! ties them together: it writes image files into a staging directory as
+//! results arrive and swaps the finished report into place.
+
+pub mod atomic;
+pub mod history;
+pub mod html;
+pub mod images;
+pub mod meta;
+pub mod model;
+pub mod plot;
+
+use anyhow::{ensure, Context, Result};
+use images::{Grid, Palette, Scale};
+use model::*;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Policy name of comparisons that require bit-exact agreement.
+pub const BIT_EXACT: &str = "bit-exact";
+/// Policy name of comparisons judged by error figures against an oracle.
+pub const ERROR_FIGURES: &str = "error figures";
+/// The implementation error figures are measured against.
+pub const ORACLE: &str = "ref-f64";
+/// Divergent pixels listed (and marked) per image pair.
+pub const LISTED_PIXELS: usize = 200;
+/// Decades below the largest error that a heat map shows.
+const HEAT_DECADES: f64 = 5.0;
+
+/// The images of one render, kept to compare it with later ones.
+#[derive(Clone, Debug)]
+pub struct RenderImages {
+    /// Dithered bits, `true` = white.
+    pub bits: Grid<bool>,
+    /// Shades before dithering, when the implementation exposes them.
+    pub shades: Option<Grid<f64>>,
+}
+
+/// Builds a report directory: images are written as they are added, the
+/// JSON, HTML and plot on [`ReportBuilder::finish`], which swaps the whole
+/// directory into place and appends the history line.
+pub struct ReportBuilder {
+    stage: atomic::StagingDir,
+    report: Report,
+    renders: BTreeMap<String, RenderImages>,
+}
+
+/// File-name-safe form of a label (`ref-f316/mul-low` -> `ref-f316_mul-low`).
+fn file_stem(label: &str) -> String {
+    label
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+        .collect()
+}
+
+impl ReportBuilder {
+    /// Start a report that will replace `target` when finished.
+    pub fn new(target: &Path, meta: RunMeta) -> Result<Self> {
+        let stage = atomic::StagingDir::new(target)?;
+        std::fs::create_dir(stage.path().join("images")).context("creating images/")?;
+        Ok(ReportBuilder { stage, report: Report::new(meta), renders: BTreeMap::new() })
+    }
+
+    /// The report being built, to fill in the parts that are plain data.
+    pub fn report_mut(&mut self) -> &mut Report {
+        &mut self.report
+    }
+
+    /// The report being built.
+    pub fn report(&self) -> &Report {
+        &self.report
+    }
+
+    fn write_png(&self, name: &str, img: &image::RgbImage) -> Result<String> {
+        let rel = format!("images/{name}");
+        images::save_png(img, &self.stage.path().join(&rel))?;
+        Ok(rel)
+    }
+
+    fn write_text(&self, name: &str, text: &str) -> Result<String> {
+        let rel = format!("images/{name}");
+        let path = self.stage.path().join(&rel);
+        std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))?;
+        Ok(rel)
+    }
+
+    /// Add a render: its dithered image is written and it joins the
+    /// renders that pairs and speed points are computed from. `render.image`
+    /// and `render.has_shades` are filled in here.
+    pub fn add_render(&mut self, mut render: Render, images: RenderImages) -> Result<()> {
+        ensure!(!self.renders.contains_key(&render.label), "render {} added twice", render.label);
+        if let Some(s) = &images.shades {
+            images.bits.same_size(s)?;
+        }
+        render.image = self.write_png(&format!("render-{}.png", file_stem(&render.label)), &images::dithered(&images.bits))?;
+        render.has_shades = images.shades.is_some();
+        self.renders.insert(render.label.clone(), images);
+        self.report.renders.push(render);
+        Ok(())
+    }
+
+    /// The images of a render added earlier.
+    pub fn render_images(&self, label: &str) -> Option<&RenderImages> {
+        self.renders.get(label)
+    }
+
+    fn render_of(&self, label: &str) -> Result<&RenderImages> {
+        self.renders.get(label).with_context(|| format!("no render named {label}"))
+    }
+
+    /// Compare two renders added earlier: overlay, heat map (when both have
+    /// shades) and the list of divergent pixels; `localize(x, y)` names the
+    /// first divergent operation of a listed pixel (or `None`), `repro(x, y)`
+    /// the command that reproduces it.
+    pub fn add_pair(
+        &mut self,
+        a: &str,
+        b: &str,
+        mut localize: impl FnMut(usize, usize) -> Option<String>,
+        repro: impl Fn(usize, usize) -> String,
+    ) -> Result<&ImagePair> {
+        let (ra, rb) = (self.render_of(a)?, self.render_of(b)?);
+        let differing = ra.bits.positions_where(&rb.bits, |p, q| p != q)?;
+        let stem = format!("{}-vs-{}", file_stem(a), file_stem(b));
+        let overlay = self.write_png(&format!("overlay-{stem}.png"), &images::overlay(&ra.bits, &rb.bits)?)?;
+        let mut differing_shades = None;
+        let mut heat = None;
+        if let (Some(sa), Some(sb)) = (&ra.shades, &rb.shades) {
+            let diff = images::abs_diff(sa, sb)?;
+            differing_shades = Some(diff.data().iter().filter(|d| **d != 0.0).count() as u64);
+            let (mean_abs, max_abs) = mean_max(diff.data());
+            if let Some(scale) = Scale::log_for(diff.data().iter().copied(), HEAT_DECADES) {
+                let img = self.write_png(&format!("heat-{stem}.png"), &images::heat_map(&diff, scale, Palette::Hot))?;
+                let bar = plot::colour_bar("|shade A − shade B| (log scale; black = 0)", scale, Palette::Hot)?;
+                let legend = self.write_text(&format!("heat-{stem}-legend.svg"), &bar)?;
+                heat = Some(HeatMap { image: img, legend, mean_abs, max_abs });
+            }
+        }
+        let shade = |r: &RenderImages, x: usize, y: usize| r.shades.as_ref().map(|s| *s.get(x, y));
+        let divergences = differing
+            .iter()
+            .take(LISTED_PIXELS)
+            .map(|&(x, y)| PixelDivergence {
+                x: x as u32,
+                y: y as u32,
+                a_white: *ra.bits.get(x, y),
+                b_white: *rb.bits.get(x, y),
+                a_shade: shade(ra, x, y),
+                b_shade: shade(rb, x, y),
+                first_op: localize(x, y),
+                repro: repro(x, y),
+            })
+            .collect();
+        self.report.image_pairs.push(ImagePair {
+            a: a.into(),
+            b: b.into(),
+            width: ra.bits.width() as u32,
+            height: ra.bits.height() as u32,
+            pixels: ra.bits.data().len() as u64,
+            differing_pixels: differing.len() as u64,
+            differing_shades,
+            overlay,
+            heat,
+            divergences,
+            unlisted: differing.len().saturating_sub(LISTED_PIXELS) as u64,
+        });
+        Ok(self.report.image_pairs.last().expect("just pushed"))
+    }
+
+    /// The speed point of a render against the [`ORACLE`] render (which
+    /// must have been added, with shades): time per pixel, VM instructions
+    /// per pixel, shade errors and dithered flips.
+    pub fn speed_point(&self, label: &str) -> Result<SpeedPoint> {
+        let render = self
+            .report
+            .renders
+            .iter()
+            .find(|r| r.label == label)
+            .with_context(|| format!("no render named {label}"))?;
+        let (r, oracle) = (self.render_of(label)?, self.render_of(ORACLE)?);
+        let flips = r.bits.positions_where(&oracle.bits, |p, q| p != q)?.len() as u64;
+        let errors = match (&r.shades, &oracle.shades) {
+            (Some(s), Some(o)) if label != ORACLE => Some(mean_max(images::abs_diff(s, o)?.data())),
+            _ => None,
+        };
+        let pixels = render.pixels.max(1) as f64;
+        Ok(SpeedPoint {
+            label: label.into(),
+            time_per_pixel_s: render.render_s / pixels,
+            vm_instructions_per_pixel: render.vm_instructions.map(|n| n as f64 / pixels),
+            mean_shade_error: errors.map(|e| e.0),
+            max_shade_error: errors.map(|e| e.1),
+            pixel_flips: flips,
+            identical_to_spec: render.identical_to_spec,
+        })
+    }
+
+    /// The per-pixel VM instruction cost of the Jack program.
+    pub fn set_cost_map(&mut self, costs: &Grid<u64>) -> Result<()> {
+        let values: Vec<f64> = costs.data().iter().map(|c| *c as f64).collect();
+        let (min, max) = (
+            costs.data().iter().copied().min().unwrap_or(0),
+            costs.data().iter().copied().max().unwrap_or(0),
+        );
+        let scale = Scale::Linear { lo: min as f64, hi: max as f64 };
+        let grid = Grid::new(costs.width(), costs.height(), values)?;
+        let image = self.write_png("cost-jack.png", &images::heat_map(&grid, scale, Palette::Viridis))?;
+        let bar = plot::colour_bar("Hack VM instructions per pixel", scale, Palette::Viridis)?;
+        let legend = self.write_text("cost-jack-legend.svg", &bar)?;
+        let mean = grid.data().iter().sum::<f64>() / grid.data().len().max(1) as f64;
+        self.report.cost_map = Some(CostMap { image, legend, min, max, mean });
+        Ok(())
+    }
+
+    /// Write the speed plot, `report.json` and `index.html`, swap the
+    /// directory into place, then append this run's line to `history_path`.
+    /// Returns the report directory.
+    pub fn finish(mut self, history_path: &Path) -> Result<PathBuf> {
+        let se = &mut self.report.speed_error;
+        se.cheapest_spec_identical = cheapest_spec_identical(&se.points);
+        if let Some(svg) = plot::speed_error(&self.report.speed_error.points)? {
+            self.report.speed_error.plot = self.write_text("speed-error.svg", &svg)?;
+        }
+        let entry = history::HistoryEntry::from_report(&self.report);
+        let mut past = history::read(history_path)?;
+        past.entries.push(entry.clone());
+        let dir = self.stage.path();
+        std::fs::write(dir.join("report.json"), self.report.to_json()?).context("writing report.json")?;
+        std::fs::write(dir.join("index.html"), html::render(&self.report, &past)).context("writing index.html")?;
+        let target = self.stage.commit()?;
+        history::append(history_path, &entry)?;
+        Ok(target)
+    }
+}
+
+/// Mean and maximum of non-negative values (0, 0 when empty).
+fn mean_max(values: &[f64]) -> (f64, f64) {
+    let max = values.iter().copied().fold(0f64, f64::max);
+    let mean = values.iter().sum::<f64>() / values.len().max(1) as f64;
+    (mean, max)
+}
+
+/// The cheapest Float316 reference variant (label `ref-f316` or
+/// `ref-f316/...`) whose dithered image equals the spec's, with its cost.
+pub fn cheapest_spec_identical(points: &[SpeedPoint]) -> Option<String> {
+    points
+        .iter()
+        .filter(|p| p.identical_to_spec == Some(true))
+        .filter(|p| p.label == "ref-f316" || p.label.starts_with("ref-f316/"))
+        .min_by(|a, b| a.time_per_pixel_s.total_cmp(&b.time_per_pixel_s))
+        .map(|p| format!("{} ({} per pixel)", p.label, html::seconds(p.time_per_pixel_s)))
+}
+
+#[cfg(test)]
+mod tests;

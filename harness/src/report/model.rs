@@ -1,0 +1,379 @@
+//! The report model: everything a nightly run found, as plain serialisable
+//! data. `report.json` is this structure; the HTML page and the history line
+//! are views of it. Field names are part of the JSON contract: bump
+//! [`SCHEMA_VERSION`] when one changes meaning or disappears.
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Version of the `report.json` layout.
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// A whole nightly report.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Report {
+    /// Always [`SCHEMA_VERSION`] when written by this build.
+    pub schema_version: u32,
+    /// When, where and how long.
+    pub meta: RunMeta,
+    /// Every implementation the harness knows, available here or not.
+    pub implementations: Vec<ImplStatus>,
+    /// Level comparisons (ops, sdf, pixels, image, exhaustive unary checks).
+    pub comparisons: Vec<Comparison>,
+    /// The harness self-test, when it ran.
+    pub selftest: Option<SelfTest>,
+    /// One full render per available implementation (and precision variant).
+    pub renders: Vec<Render>,
+    /// Every pair of image renders, with its diff images.
+    pub image_pairs: Vec<ImagePair>,
+    /// The Jack program's per-pixel VM instruction cost, when it ran.
+    pub cost_map: Option<CostMap>,
+    /// Speed against error, one point per implementation and variant.
+    pub speed_error: SpeedError,
+    /// Hard-case categories and their outcome on every implementation.
+    pub stability: Vec<StabilityRow>,
+    /// Benchmark table.
+    pub bench: Vec<BenchRow>,
+    /// Steps that could not run or failed, with the reason; the report is
+    /// still written, these are listed at its top.
+    pub problems: Vec<String>,
+}
+
+/// When, where and how long a run took.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RunMeta {
+    /// Start time, UTC, `YYYY-MM-DDTHH:MM:SSZ`.
+    pub started_at: String,
+    /// `git rev-parse HEAD` of the source tree, or `unknown`.
+    pub git_commit: String,
+    /// Whether the tree had uncommitted changes.
+    pub git_dirty: bool,
+    /// Wall-clock duration of the whole run, seconds.
+    pub duration_s: f64,
+    /// Logical CPUs of the machine.
+    pub cpus: usize,
+    /// The harness version (crate version).
+    pub harness_version: String,
+    /// Seconds spent in each step, in order.
+    pub steps: Vec<StepTiming>,
+}
+
+/// Time spent in one step of the run.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StepTiming {
+    /// Step name (`ops`, `image`, `bench`, ...).
+    pub step: String,
+    /// Seconds.
+    pub seconds: f64,
+}
+
+/// Whether an implementation could run here.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ImplStatus {
+    /// Command-line name (`ref-f64`, `jack`, ...).
+    pub name: String,
+    /// Whether it ran on this machine.
+    pub available: bool,
+    /// Why not, or a note on the device it ran on.
+    pub note: Option<String>,
+}
+
+/// The comparison of two implementations at one level.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Comparison {
+    /// `ops`, `sdf`, `pixels`, `image`, `unary-exhaustive`.
+    pub level: String,
+    /// What was compared within the level (vector set, op name, ...).
+    pub scope: String,
+    /// First implementation.
+    pub a: String,
+    /// Second implementation.
+    pub b: String,
+    /// The policy that judged the pair (`bit-exact`, `error figures`).
+    pub policy: String,
+    /// Cases compared.
+    pub cases: u64,
+    /// Cases that diverge under the policy.
+    pub divergences: u64,
+    /// Error figures, for float policies.
+    pub error: Option<ErrorFigures>,
+    /// A few divergent cases, in order.
+    pub examples: Vec<DivergenceExample>,
+}
+
+/// Error against an oracle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ErrorFigures {
+    /// Mean absolute error.
+    pub mean_abs: f64,
+    /// Maximum absolute error.
+    pub max_abs: f64,
+}
+
+/// One divergent case of a level comparison.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct DivergenceExample {
+    /// The input, as text (`add((0,127,8192), (1,126,8192))`, `pixel(3,4)`).
+    pub case: String,
+    /// What A produced.
+    pub a: String,
+    /// What B produced.
+    pub b: String,
+    /// The first divergent Float316 operation, when localized.
+    pub first_op: Option<String>,
+    /// A command that reproduces the divergence.
+    pub repro: Option<String>,
+}
+
+/// The harness self-test.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SelfTest {
+    /// Whether every check passed.
+    pub passed: bool,
+    /// One line per check.
+    pub lines: Vec<String>,
+}
+
+/// One full-image render.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Render {
+    /// `impl` or `impl/variant`.
+    pub label: String,
+    /// Implementation name.
+    pub implementation: String,
+    /// Precision variant of the reference, if any.
+    pub variant: Option<String>,
+    /// The dithered image, relative to the report directory.
+    pub image: String,
+    /// Set-up time (compile, device creation), seconds.
+    pub setup_s: f64,
+    /// Render time of the whole image, seconds.
+    pub render_s: f64,
+    /// Pixels rendered.
+    pub pixels: u64,
+    /// Hack VM instructions executed, for the Jack program.
+    pub vm_instructions: Option<u64>,
+    /// Whether the dithered image equals the spec's image bit for bit.
+    pub identical_to_spec: Option<bool>,
+    /// Whether shades (values before dithering) are available.
+    pub has_shades: bool,
+}
+
+/// The comparison of two renders.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ImagePair {
+    /// Label of the first render.
+    pub a: String,
+    /// Label of the second render.
+    pub b: String,
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Pixels compared.
+    pub pixels: u64,
+    /// Pixels whose dithered bit differs.
+    pub differing_pixels: u64,
+    /// Pixels whose shade differs (bit-exact for Float316 pairs).
+    pub differing_shades: Option<u64>,
+    /// The difference overlay image, relative path.
+    pub overlay: String,
+    /// Shade error heat map, when both renders have shades.
+    pub heat: Option<HeatMap>,
+    /// Divergent pixels (dithered bit differs), at most a bounded number.
+    pub divergences: Vec<PixelDivergence>,
+    /// How many divergent pixels are not listed.
+    pub unlisted: u64,
+}
+
+/// A heat map image and its colour bar.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct HeatMap {
+    /// The heat map image, relative path.
+    pub image: String,
+    /// The colour bar (SVG), relative path.
+    pub legend: String,
+    /// Mean absolute shade difference over all pixels.
+    pub mean_abs: f64,
+    /// Maximum absolute shade difference.
+    pub max_abs: f64,
+}
+
+/// One pixel whose dithered bit differs between two renders.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PixelDivergence {
+    /// Column.
+    pub x: u32,
+    /// Row.
+    pub y: u32,
+    /// A's bit (true = white).
+    pub a_white: bool,
+    /// B's bit.
+    pub b_white: bool,
+    /// A's shade before dithering, when known.
+    pub a_shade: Option<f64>,
+    /// B's shade before dithering, when known.
+    pub b_shade: Option<f64>,
+    /// The first divergent Float316 operation (Float316 pairs, localized).
+    pub first_op: Option<String>,
+    /// The command that reproduces it.
+    pub repro: String,
+}
+
+/// The Jack program's cost per pixel.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CostMap {
+    /// The cost map image, relative path.
+    pub image: String,
+    /// Its colour bar (SVG), relative path.
+    pub legend: String,
+    /// Fewest VM instructions for one pixel.
+    pub min: u64,
+    /// Most VM instructions for one pixel.
+    pub max: u64,
+    /// Mean VM instructions per pixel.
+    pub mean: f64,
+}
+
+/// Speed against error.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SpeedError {
+    /// One point per implementation and precision variant.
+    pub points: Vec<SpeedPoint>,
+    /// The plot (SVG), relative path; empty when there was nothing to plot.
+    pub plot: String,
+    /// The cheapest precision variant whose dithered image equals the
+    /// spec's, with its cost, e.g. `ref-f316/mul-low (1.9 µs/pixel)`.
+    pub cheapest_spec_identical: Option<String>,
+}
+
+/// Cost and error of one implementation or variant against `ref-f64`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SpeedPoint {
+    /// `impl` or `impl/variant`.
+    pub label: String,
+    /// Seconds per pixel.
+    pub time_per_pixel_s: f64,
+    /// Hack VM instructions per pixel (Jack program only).
+    pub vm_instructions_per_pixel: Option<f64>,
+    /// Mean absolute shade error against `ref-f64`.
+    pub mean_shade_error: Option<f64>,
+    /// Maximum absolute shade error against `ref-f64`.
+    pub max_shade_error: Option<f64>,
+    /// Dithered pixels that differ from `ref-f64`.
+    pub pixel_flips: u64,
+    /// Whether the dithered image equals the spec's image.
+    pub identical_to_spec: Option<bool>,
+}
+
+/// One hard-case category of the op vectors.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StabilityRow {
+    /// Category tag from the vectors crate.
+    pub category: String,
+    /// Vectors in the category.
+    pub vectors: u64,
+    /// Outcomes per implementation.
+    pub outcomes: BTreeMap<String, OutcomeTally>,
+    /// The worst error against f64 found in the category.
+    pub worst: Option<WorstError>,
+}
+
+/// How many vectors ended in each outcome kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct OutcomeTally {
+    /// Normal values.
+    pub value: u64,
+    /// `Sys.error` codes.
+    pub sys_error: u64,
+    /// Hangs (budget ran out).
+    pub hang: u64,
+    /// Out of domain.
+    pub out_of_domain: u64,
+    /// Vectors whose outcome differs from `ref-f316` (bit-exact).
+    pub diverging: u64,
+}
+
+/// The worst error against f64 of a category.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct WorstError {
+    /// Which implementation.
+    pub implementation: String,
+    /// The input.
+    pub case: String,
+    /// Absolute error.
+    pub abs: f64,
+    /// Relative error.
+    pub rel: f64,
+}
+
+/// One row of `harness bench`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct BenchRow {
+    /// Implementation (or `impl/variant`).
+    pub implementation: String,
+    /// Set-up time, seconds.
+    pub setup_s: f64,
+    /// Full image time, seconds.
+    pub image_s: f64,
+    /// Pixels rendered.
+    pub pixels: u64,
+    /// Seconds per pixel.
+    pub per_pixel_s: f64,
+    /// Hack VM instructions per pixel (Jack program only).
+    pub vm_instructions_per_pixel: Option<f64>,
+    /// Mean absolute shade error against `ref-f64`.
+    pub mean_shade_error: Option<f64>,
+    /// Maximum absolute shade error against `ref-f64`.
+    pub max_shade_error: Option<f64>,
+    /// Dithered pixels that differ from `ref-f64`.
+    pub pixel_flips: u64,
+}
+
+impl BenchRow {
+    /// Pixels per second.
+    pub fn pixels_per_s(&self) -> f64 {
+        if self.per_pixel_s > 0.0 {
+            1.0 / self.per_pixel_s
+        } else {
+            0.0
+        }
+    }
+}
+
+impl Report {
+    /// An empty report of the current schema.
+    pub fn new(meta: RunMeta) -> Self {
+        Report {
+            schema_version: SCHEMA_VERSION,
+            meta,
+            ..Report::default()
+        }
+    }
+
+    /// Divergences over every level comparison whose policy is bit-exact
+    /// (float comparisons report error figures, not divergences to fix).
+    pub fn bit_exact_divergences(&self) -> u64 {
+        self.comparisons
+            .iter()
+            .filter(|c| c.policy == crate::report::BIT_EXACT)
+            .map(|c| c.divergences)
+            .sum()
+    }
+
+    /// Serialise as pretty JSON.
+    pub fn to_json(&self) -> serde_json::Result<String> {
+        serde_json::to_string_pretty(self)
+    }
+
+    /// Parse `report.json`, refusing another schema version.
+    pub fn from_json(text: &str) -> anyhow::Result<Self> {
+        let value: serde_json::Value = serde_json::from_str(text)?;
+        let version = value.get("schema_version").and_then(|v| v.as_u64());
+        anyhow::ensure!(
+            version == Some(SCHEMA_VERSION as u64),
+            "report schema_version {version:?}, this harness reads {SCHEMA_VERSION}"
+        );
+        Ok(serde_json::from_value(value)?)
+    }
+}
