@@ -21,8 +21,15 @@ fn sibling(target: &Path, suffix: &str) -> Result<PathBuf> {
     let name = target
         .file_name()
         .with_context(|| format!("{} has no final component", target.display()))?;
-    let parent = target.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    Ok(parent.join(format!(".{}.{suffix}-{}", name.to_string_lossy(), std::process::id())))
+    let parent = target
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    Ok(parent.join(format!(
+        ".{}.{suffix}-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    )))
 }
 
 impl StagingDir {
@@ -34,10 +41,15 @@ impl StagingDir {
             fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
         }
         if staging.exists() {
-            fs::remove_dir_all(&staging).with_context(|| format!("removing stale {}", staging.display()))?;
+            fs::remove_dir_all(&staging)
+                .with_context(|| format!("removing stale {}", staging.display()))?;
         }
         fs::create_dir(&staging).with_context(|| format!("creating {}", staging.display()))?;
-        Ok(StagingDir { staging, target: target.to_path_buf(), committed: false })
+        Ok(StagingDir {
+            staging,
+            target: target.to_path_buf(),
+            committed: false,
+        })
     }
 
     /// Where to write the files.
@@ -55,11 +67,20 @@ impl StagingDir {
             exchange(&self.staging, &self.target)?;
             // The staging path now holds the previous report.
             self.committed = true;
-            fs::remove_dir_all(&self.staging)
-                .with_context(|| format!("removing the previous report moved to {}", self.staging.display()))?;
+            fs::remove_dir_all(&self.staging).with_context(|| {
+                format!(
+                    "removing the previous report moved to {}",
+                    self.staging.display()
+                )
+            })?;
         } else {
-            fs::rename(&self.staging, &self.target)
-                .with_context(|| format!("renaming {} to {}", self.staging.display(), self.target.display()))?;
+            fs::rename(&self.staging, &self.target).with_context(|| {
+                format!(
+                    "renaming {} to {}",
+                    self.staging.display(),
+                    self.target.display()
+                )
+            })?;
             self.committed = true;
         }
         Ok(self.target.clone())
@@ -98,10 +119,14 @@ fn exchange(a: &Path, b: &Path) -> Result<()> {
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     let tmp = sibling(path, "tmp")?;
     let result = (|| {
-        let mut f = fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
-        f.write_all(bytes).with_context(|| format!("writing {}", tmp.display()))?;
-        f.sync_all().with_context(|| format!("syncing {}", tmp.display()))?;
-        fs::rename(&tmp, path).with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
+        let mut f =
+            fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
+        f.write_all(bytes)
+            .with_context(|| format!("writing {}", tmp.display()))?;
+        f.sync_all()
+            .with_context(|| format!("syncing {}", tmp.display()))?;
+        fs::rename(&tmp, path)
+            .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
     })();
     if result.is_err() {
         let _ = fs::remove_file(&tmp);
@@ -143,7 +168,11 @@ mod tests {
         fs::write(stage.path().join("new.txt"), "new").unwrap();
         stage.commit().unwrap();
         assert_eq!(entries(&target), vec!["new.txt"]);
-        assert_eq!(entries(root.path()), vec!["nightly"], "no staging leftovers");
+        assert_eq!(
+            entries(root.path()),
+            vec!["nightly"],
+            "no staging leftovers"
+        );
     }
 
     #[test]

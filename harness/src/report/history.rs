@@ -59,7 +59,11 @@ impl HistoryEntry {
                 .points
                 .iter()
                 .map(|p| {
-                    let e = HistoryError { mean: p.mean_shade_error, max: p.max_shade_error, flips: p.pixel_flips };
+                    let e = HistoryError {
+                        mean: p.mean_shade_error,
+                        max: p.max_shade_error,
+                        flips: p.pixel_flips,
+                    };
                     (p.label.clone(), e)
                 })
                 .collect(),
@@ -77,7 +81,10 @@ impl HistoryEntry {
 /// Where the history of a report directory lives: beside it,
 /// `DIR/../history.jsonl`.
 pub fn path_for(report_dir: &Path) -> PathBuf {
-    let parent = report_dir.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let parent = report_dir
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     parent.join("history.jsonl")
 }
 
@@ -137,10 +144,23 @@ mod tests {
             ..RunMeta::default()
         });
         r.comparisons = vec![
-            Comparison { policy: crate::report::BIT_EXACT.into(), divergences: 3, ..Comparison::default() },
-            Comparison { policy: crate::report::ERROR_FIGURES.into(), divergences: 40, ..Comparison::default() },
+            Comparison {
+                policy: crate::report::BIT_EXACT.into(),
+                divergences: 3,
+                ..Comparison::default()
+            },
+            Comparison {
+                policy: crate::report::ERROR_FIGURES.into(),
+                divergences: 40,
+                ..Comparison::default()
+            },
         ];
-        r.image_pairs = vec![ImagePair { a: "ref-f316".into(), b: "jack".into(), differing_pixels: 2, ..ImagePair::default() }];
+        r.image_pairs = vec![ImagePair {
+            a: "ref-f316".into(),
+            b: "jack".into(),
+            differing_pixels: 2,
+            ..ImagePair::default()
+        }];
         r.speed_error.points = vec![SpeedPoint {
             label: "ref-f32".into(),
             time_per_pixel_s: 1e-6,
@@ -160,7 +180,10 @@ mod tests {
         assert_eq!(e.pixel_divergences["ref-f316 vs jack"], 2);
         assert_eq!(e.errors["ref-f32"].flips, 4);
         assert_eq!(e.seconds_per_pixel["ref-f32"], 1e-6);
-        assert_eq!((e.commit.as_str(), e.problems, e.duration_s), ("abc123", 1, 321.5));
+        assert_eq!(
+            (e.commit.as_str(), e.problems, e.duration_s),
+            ("abc123", 1, 321.5)
+        );
     }
 
     #[test]
@@ -172,7 +195,11 @@ mod tests {
         assert_eq!(read(&path).unwrap(), History::default());
         let e = HistoryEntry::from_report(&report());
         append(&path, &e).unwrap();
-        std::fs::write(&path, format!("{}not json", std::fs::read_to_string(&path).unwrap())).unwrap();
+        std::fs::write(
+            &path,
+            format!("{}not json", std::fs::read_to_string(&path).unwrap()),
+        )
+        .unwrap();
         append(&path, &e).unwrap();
         let h = read(&path).unwrap();
         assert_eq!(h.entries, vec![e.clone(), e]);
@@ -184,7 +211,11 @@ mod tests {
     fn old_lines_with_fewer_fields_still_read() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("history.jsonl");
-        std::fs::write(&path, "{\"date\":\"2026-01-01T00:00:00Z\",\"divergences\":7}\n").unwrap();
+        std::fs::write(
+            &path,
+            "{\"date\":\"2026-01-01T00:00:00Z\",\"divergences\":7}\n",
+        )
+        .unwrap();
         let h = read(&path).unwrap();
         assert_eq!(h.entries[0].divergences, 7);
         assert_eq!(path_for(Path::new("nightly")), Path::new("./history.jsonl"));

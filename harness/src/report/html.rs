@@ -56,7 +56,9 @@ fn yes_no(v: Option<bool>) -> &'static str {
 
 /// Anchor-safe id fragment of a label.
 fn slug(s: &str) -> String {
-    s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '-' }).collect()
+    s.chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect()
 }
 
 const STYLE: &str = r#"
@@ -115,9 +117,9 @@ pub fn render(report: &Report, history: &History) -> String {
          <title>Divergence report {}</title><style>{STYLE}</style><script>{IMAGE_CHECK}</script></head><body>\n",
         esc(&m.started_at)
     );
-    let _ = write!(
+    let _ = writeln!(
         h,
-        "<header><h1>Float316 raymarcher: nightly divergence report</h1><div class=meta>{} · commit <code>{}</code>{} · {} · {} CPUs · harness {} · report schema {}</div></header>\n",
+        "<header><h1>Float316 raymarcher: nightly divergence report</h1><div class=meta>{} · commit <code>{}</code>{} · {} · {} CPUs · harness {} · report schema {}</div></header>",
         esc(&m.started_at),
         esc(&m.git_commit),
         if m.git_dirty { " (uncommitted changes)" } else { "" },
@@ -145,14 +147,31 @@ pub fn render(report: &Report, history: &History) -> String {
 
 fn summary(h: &mut String, r: &Report) {
     let available = r.implementations.iter().filter(|i| i.available).count();
-    let pixel_pairs_differing = r.image_pairs.iter().filter(|p| p.differing_pixels > 0).count();
+    let pixel_pairs_differing = r
+        .image_pairs
+        .iter()
+        .filter(|p| p.differing_pixels > 0)
+        .count();
     let exact = r.bit_exact_divergences();
     let card = |h: &mut String, value: String, label: &str, class: &str| {
-        let _ = write!(h, "<div class=card><b class={class}>{value}</b>{label}</div>");
+        let _ = write!(
+            h,
+            "<div class=card><b class={class}>{value}</b>{label}</div>"
+        );
     };
     h.push_str("<section id=summary><h2>Summary</h2><div class=cards>");
-    card(h, format!("{available}/{}", r.implementations.len()), "implementations ran", "");
-    card(h, exact.to_string(), "bit-exact divergences (all levels)", if exact == 0 { "ok" } else { "bad" });
+    card(
+        h,
+        format!("{available}/{}", r.implementations.len()),
+        "implementations ran",
+        "",
+    );
+    card(
+        h,
+        exact.to_string(),
+        "bit-exact divergences (all levels)",
+        if exact == 0 { "ok" } else { "bad" },
+    );
     card(
         h,
         format!("{pixel_pairs_differing}/{}", r.image_pairs.len()),
@@ -160,7 +179,12 @@ fn summary(h: &mut String, r: &Report) {
         "",
     );
     match &r.selftest {
-        Some(t) => card(h, if t.passed { "pass" } else { "FAIL" }.into(), "self-test", if t.passed { "ok" } else { "bad" }),
+        Some(t) => card(
+            h,
+            if t.passed { "pass" } else { "FAIL" }.into(),
+            "self-test",
+            if t.passed { "ok" } else { "bad" },
+        ),
         None => card(h, "–".into(), "self-test not run", "warn"),
     }
     card(h, seconds(r.meta.duration_s), "run duration", "");
@@ -172,7 +196,9 @@ fn summary(h: &mut String, r: &Report) {
         }
         h.push_str("</ul>");
     }
-    h.push_str("<h3>Implementations</h3><table><tr><th>name</th><th>available</th><th>note</th></tr>");
+    h.push_str(
+        "<h3>Implementations</h3><table><tr><th>name</th><th>available</th><th>note</th></tr>",
+    );
     for i in &r.implementations {
         let _ = write!(
             h,
@@ -184,7 +210,11 @@ fn summary(h: &mut String, r: &Report) {
     }
     h.push_str("</table>");
     if let Some(t) = &r.selftest {
-        let _ = write!(h, "<details><summary>Self-test: {} checks</summary><pre>", t.lines.len());
+        let _ = write!(
+            h,
+            "<details><summary>Self-test: {} checks</summary><pre>",
+            t.lines.len()
+        );
         for l in &t.lines {
             let _ = writeln!(h, "{}", esc(l));
         }
@@ -192,7 +222,12 @@ fn summary(h: &mut String, r: &Report) {
     }
     h.push_str("<h3>Steps</h3><table><tr><th>step</th><th>time</th></tr>");
     for s in &r.meta.steps {
-        let _ = write!(h, "<tr><td>{}</td><td class=n>{}</td></tr>", esc(&s.step), seconds(s.seconds));
+        let _ = write!(
+            h,
+            "<tr><td>{}</td><td class=n>{}</td></tr>",
+            esc(&s.step),
+            seconds(s.seconds)
+        );
     }
     h.push_str("</table></section>\n");
 }
@@ -204,7 +239,13 @@ fn levels(h: &mut String, r: &Report) {
          <table><tr><th>level</th><th>scope</th><th>A</th><th>B</th><th>policy</th><th>cases</th><th>divergences</th><th>mean |err|</th><th>max |err|</th></tr>",
     );
     for c in &r.comparisons {
-        let class = if c.divergences == 0 { "ok" } else if c.policy == crate::report::BIT_EXACT { "bad" } else { "warn" };
+        let class = if c.divergences == 0 {
+            "ok"
+        } else if c.policy == crate::report::BIT_EXACT {
+            "bad"
+        } else {
+            "warn"
+        };
         let _ = write!(
             h,
             "<tr><td>{}</td><td>{}</td><td><code>{}</code></td><td><code>{}</code></td><td>{}</td><td class=n>{}</td><td class=\"n {class}\">{}</td><td class=n>{}</td><td class=n>{}</td></tr>",
@@ -220,7 +261,11 @@ fn levels(h: &mut String, r: &Report) {
         );
     }
     h.push_str("</table>");
-    let with_examples: Vec<&Comparison> = r.comparisons.iter().filter(|c| !c.examples.is_empty()).collect();
+    let with_examples: Vec<&Comparison> = r
+        .comparisons
+        .iter()
+        .filter(|c| !c.examples.is_empty())
+        .collect();
     if !with_examples.is_empty() {
         h.push_str("<h3>First divergent cases</h3>");
         for c in with_examples {
@@ -241,7 +286,10 @@ fn levels(h: &mut String, r: &Report) {
                     esc(&e.a),
                     esc(&e.b),
                     esc(e.first_op.as_deref().unwrap_or("–")),
-                    e.repro.as_deref().map(|c| format!("<code>{}</code>", esc(c))).unwrap_or_default()
+                    e.repro
+                        .as_deref()
+                        .map(|c| format!("<code>{}</code>", esc(c)))
+                        .unwrap_or_default()
                 );
             }
             h.push_str("</table></details>");
@@ -307,7 +355,13 @@ fn pairs(h: &mut String, r: &Report) {
             p.pixels
         );
         h.push_str("<div class=figs><figure><div class=pixmap>");
-        let _ = write!(h, "<img class=px src=\"{}\" alt=\"overlay {} vs {}\">", esc(&p.overlay), esc(&p.a), esc(&p.b));
+        let _ = write!(
+            h,
+            "<img class=px src=\"{}\" alt=\"overlay {} vs {}\">",
+            esc(&p.overlay),
+            esc(&p.a),
+            esc(&p.b)
+        );
         marks(h, &id, p);
         h.push_str("</div><figcaption>difference overlay</figcaption></figure>");
         if let Some(heat) = &p.heat {
@@ -362,7 +416,10 @@ fn marks(h: &mut String, id: &str, p: &ImagePair) {
     }
     // The marks use the overlay's pixel grid.
     let (w, hgt) = (p.width, p.height);
-    let _ = write!(h, "<svg viewBox=\"0 0 {w} {hgt}\" preserveAspectRatio=none>");
+    let _ = write!(
+        h,
+        "<svg viewBox=\"0 0 {w} {hgt}\" preserveAspectRatio=none>"
+    );
     for d in &p.divergences {
         let tip = format!(
             "pixel ({}, {}): {} vs {}\n{}",
@@ -370,7 +427,9 @@ fn marks(h: &mut String, id: &str, p: &ImagePair) {
             d.y,
             pixel_text(d.a_white, d.a_shade),
             pixel_text(d.b_white, d.b_shade),
-            d.first_op.as_deref().unwrap_or("first divergent operation not localized")
+            d.first_op
+                .as_deref()
+                .unwrap_or("first divergent operation not localized")
         );
         let _ = write!(
             h,
@@ -409,7 +468,11 @@ fn speed(h: &mut String, r: &Report) {
     let s = &r.speed_error;
     h.push_str("<section id=speed><h2>Speed against error</h2>");
     if !s.plot.is_empty() {
-        let _ = write!(h, "<img src=\"{}\" alt=\"speed against error plot\" style=max-width:100%>", esc(&s.plot));
+        let _ = write!(
+            h,
+            "<img src=\"{}\" alt=\"speed against error plot\" style=max-width:100%>",
+            esc(&s.plot)
+        );
     }
     match &s.cheapest_spec_identical {
         Some(c) => {
@@ -441,18 +504,28 @@ fn stability(h: &mut String, r: &Report) {
         "<section id=stability><h2>Numerical stability: hard cases</h2><p>Per category, how many vectors ended as a value (V), Sys.error (E), hang (H) or out of domain (D) on each implementation; \
          <span class=bad>≠</span> counts outcomes that differ from <code>ref-f316</code> bit for bit.</p>",
     );
-    let impls: std::collections::BTreeSet<&String> = r.stability.iter().flat_map(|s| s.outcomes.keys()).collect();
+    let impls: std::collections::BTreeSet<&String> =
+        r.stability.iter().flat_map(|s| s.outcomes.keys()).collect();
     h.push_str("<table><tr><th>category</th><th>vectors</th>");
     for i in &impls {
         let _ = write!(h, "<th><code>{}</code></th>", esc(i));
     }
     h.push_str("<th>worst error vs f64</th></tr>");
     for s in &r.stability {
-        let _ = write!(h, "<tr><td>{}</td><td class=n>{}</td>", esc(&s.category), s.vectors);
+        let _ = write!(
+            h,
+            "<tr><td>{}</td><td class=n>{}</td>",
+            esc(&s.category),
+            s.vectors
+        );
         for i in &impls {
             match s.outcomes.get(*i) {
                 Some(t) => {
-                    let _ = write!(h, "<td>V {} · E {} · H {} · D {}", t.value, t.sys_error, t.hang, t.out_of_domain);
+                    let _ = write!(
+                        h,
+                        "<td>V {} · E {} · H {} · D {}",
+                        t.value, t.sys_error, t.hang, t.out_of_domain
+                    );
                     if t.diverging > 0 {
                         let _ = write!(h, " <span class=bad>≠ {}</span>", t.diverging);
                     }
@@ -506,13 +579,22 @@ const TREND_ROWS: usize = 30;
 fn trend(h: &mut String, history: &History) {
     h.push_str("<section id=trend><h2>Trend</h2>");
     if history.unreadable > 0 {
-        let _ = write!(h, "<p class=warn>{} unreadable history lines skipped.</p>", history.unreadable);
+        let _ = write!(
+            h,
+            "<p class=warn>{} unreadable history lines skipped.</p>",
+            history.unreadable
+        );
     }
     let recent: Vec<&HistoryEntry> = history.entries.iter().rev().take(TREND_ROWS).collect();
     // Columns: the implementations (not variants) of the latest run.
     let labels: Vec<&String> = recent
         .first()
-        .map(|e| e.seconds_per_pixel.keys().filter(|k| !k.contains('/')).collect())
+        .map(|e| {
+            e.seconds_per_pixel
+                .keys()
+                .filter(|k| !k.contains('/'))
+                .collect()
+        })
         .unwrap_or_default();
     h.push_str("<table><tr><th>date</th><th>commit</th><th>duration</th><th>bit-exact divergences</th><th>differing pixels</th><th>problems</th>");
     for l in &labels {
@@ -532,8 +614,16 @@ fn trend(h: &mut String, history: &History) {
             e.problems
         );
         for l in &labels {
-            let flips = e.errors.get(*l).map(|x| x.flips.to_string()).unwrap_or_else(|| "–".into());
-            let speed = e.seconds_per_pixel.get(*l).map(|s| seconds(*s)).unwrap_or_else(|| "–".into());
+            let flips = e
+                .errors
+                .get(*l)
+                .map(|x| x.flips.to_string())
+                .unwrap_or_else(|| "–".into());
+            let speed = e
+                .seconds_per_pixel
+                .get(*l)
+                .map(|s| seconds(*s))
+                .unwrap_or_else(|| "–".into());
             let _ = write!(h, "<td class=n>{flips} · {speed}</td>");
         }
         h.push_str("</tr>");
@@ -562,7 +652,10 @@ mod tests {
 
     #[test]
     fn page_has_every_section_and_escapes_labels() {
-        let mut r = Report::new(RunMeta { git_commit: "<x>".into(), ..RunMeta::default() });
+        let mut r = Report::new(RunMeta {
+            git_commit: "<x>".into(),
+            ..RunMeta::default()
+        });
         r.image_pairs.push(ImagePair {
             a: "ref-f316".into(),
             b: "jack".into(),
@@ -581,11 +674,27 @@ mod tests {
             ..ImagePair::default()
         });
         let page = render(&r, &History::default());
-        for id in ["summary", "levels", "renders", "pairs", "cost", "speed", "stability", "bench", "trend"] {
-            assert!(page.contains(&format!("<section id={id}>")), "section {id} missing");
+        for id in [
+            "summary",
+            "levels",
+            "renders",
+            "pairs",
+            "cost",
+            "speed",
+            "stability",
+            "bench",
+            "trend",
+        ] {
+            assert!(
+                page.contains(&format!("<section id={id}>")),
+                "section {id} missing"
+            );
         }
         assert!(page.contains("&lt;x&gt;") && !page.contains("<x>"));
         assert!(page.contains("<title>pixel (3, 1): black vs black\ndiv((0,1,2)"));
-        assert!(page.contains("href=\"#ref-f316-vs-jack-3-1\"") && page.contains("<tr id=\"ref-f316-vs-jack-3-1\">"));
+        assert!(
+            page.contains("href=\"#ref-f316-vs-jack-3-1\"")
+                && page.contains("<tr id=\"ref-f316-vs-jack-3-1\">")
+        );
     }
 }

@@ -29,7 +29,10 @@ pub fn utc_timestamp(unix_s: u64) -> String {
 
 /// The current time as [`utc_timestamp`].
 pub fn now_utc() -> String {
-    let secs = SystemTime::now().duration_since(UNIX_EPOCH).map(|d| d.as_secs()).unwrap_or(0);
+    let secs = SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map(|d| d.as_secs())
+        .unwrap_or(0);
     utc_timestamp(secs)
 }
 
@@ -46,7 +49,8 @@ pub fn git_state() -> (String, bool) {
     };
     match run(&["rev-parse", "HEAD"]) {
         Some(commit) => {
-            let dirty = run(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty());
+            let dirty = run(&["status", "--porcelain", "--untracked-files=no"])
+                .is_some_and(|s| !s.is_empty());
             (commit, dirty)
         }
         None => ("unknown".into(), false),
@@ -62,7 +66,9 @@ impl RunMeta {
             git_commit,
             git_dirty,
             duration_s: 0.0,
-            cpus: std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1),
+            cpus: std::thread::available_parallelism()
+                .map(|n| n.get())
+                .unwrap_or(1),
             harness_version: env!("CARGO_PKG_VERSION").into(),
             steps: Vec::new(),
         }

@@ -51,7 +51,13 @@ pub struct ReportBuilder {
 fn file_stem(label: &str) -> String {
     label
         .chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect()
 }
 
@@ -60,7 +66,11 @@ impl ReportBuilder {
     pub fn new(target: &Path, meta: RunMeta) -> Result<Self> {
         let stage = atomic::StagingDir::new(target)?;
         std::fs::create_dir(stage.path().join("images")).context("creating images/")?;
-        Ok(ReportBuilder { stage, report: Report::new(meta), renders: BTreeMap::new() })
+        Ok(ReportBuilder {
+            stage,
+            report: Report::new(meta),
+            renders: BTreeMap::new(),
+        })
     }
 
     /// The report being built, to fill in the parts that are plain data.
@@ -90,11 +100,18 @@ impl ReportBuilder {
     /// renders that pairs and speed points are computed from. `render.image`
     /// and `render.has_shades` are filled in here.
     pub fn add_render(&mut self, mut render: Render, images: RenderImages) -> Result<()> {
-        ensure!(!self.renders.contains_key(&render.label), "render {} added twice", render.label);
+        ensure!(
+            !self.renders.contains_key(&render.label),
+            "render {} added twice",
+            render.label
+        );
         if let Some(s) = &images.shades {
             images.bits.same_size(s)?;
         }
-        render.image = self.write_png(&format!("render-{}.png", file_stem(&render.label)), &images::dithered(&images.bits))?;
+        render.image = self.write_png(
+            &format!("render-{}.png", file_stem(&render.label)),
+            &images::dithered(&images.bits),
+        )?;
         render.has_shades = images.shades.is_some();
         self.renders.insert(render.label.clone(), images);
         self.report.renders.push(render);
@@ -107,7 +124,9 @@ impl ReportBuilder {
     }
 
     fn render_of(&self, label: &str) -> Result<&RenderImages> {
-        self.renders.get(label).with_context(|| format!("no render named {label}"))
+        self.renders
+            .get(label)
+            .with_context(|| format!("no render named {label}"))
     }
 
     /// Compare two renders added earlier: overlay, heat map (when both have
@@ -124,7 +143,10 @@ impl ReportBuilder {
         let (ra, rb) = (self.render_of(a)?, self.render_of(b)?);
         let differing = ra.bits.positions_where(&rb.bits, |p, q| p != q)?;
         let stem = format!("{}-vs-{}", file_stem(a), file_stem(b));
-        let overlay = self.write_png(&format!("overlay-{stem}.png"), &images::overlay(&ra.bits, &rb.bits)?)?;
+        let overlay = self.write_png(
+            &format!("overlay-{stem}.png"),
+            &images::overlay(&ra.bits, &rb.bits)?,
+        )?;
         let mut differing_shades = None;
         let mut heat = None;
         if let (Some(sa), Some(sb)) = (&ra.shades, &rb.shades) {
@@ -132,10 +154,22 @@ impl ReportBuilder {
             differing_shades = Some(diff.data().iter().filter(|d| **d != 0.0).count() as u64);
             let (mean_abs, max_abs) = mean_max(diff.data());
             if let Some(scale) = Scale::log_for(diff.data().iter().copied(), HEAT_DECADES) {
-                let img = self.write_png(&format!("heat-{stem}.png"), &images::heat_map(&diff, scale, Palette::Hot))?;
-                let bar = plot::colour_bar("|shade A − shade B| (log scale; black = 0)", scale, Palette::Hot)?;
+                let img = self.write_png(
+                    &format!("heat-{stem}.png"),
+                    &images::heat_map(&diff, scale, Palette::Hot),
+                )?;
+                let bar = plot::colour_bar(
+                    "|shade A − shade B| (log scale; black = 0)",
+                    scale,
+                    Palette::Hot,
+                )?;
                 let legend = self.write_text(&format!("heat-{stem}-legend.svg"), &bar)?;
-                heat = Some(HeatMap { image: img, legend, mean_abs, max_abs });
+                heat = Some(HeatMap {
+                    image: img,
+                    legend,
+                    mean_abs,
+                    max_abs,
+                });
             }
         }
         let shade = |r: &RenderImages, x: usize, y: usize| r.shades.as_ref().map(|s| *s.get(x, y));
@@ -204,13 +238,25 @@ impl ReportBuilder {
             costs.data().iter().copied().min().unwrap_or(0),
             costs.data().iter().copied().max().unwrap_or(0),
         );
-        let scale = Scale::Linear { lo: min as f64, hi: max as f64 };
+        let scale = Scale::Linear {
+            lo: min as f64,
+            hi: max as f64,
+        };
         let grid = Grid::new(costs.width(), costs.height(), values)?;
-        let image = self.write_png("cost-jack.png", &images::heat_map(&grid, scale, Palette::Viridis))?;
+        let image = self.write_png(
+            "cost-jack.png",
+            &images::heat_map(&grid, scale, Palette::Viridis),
+        )?;
         let bar = plot::colour_bar("Hack VM instructions per pixel", scale, Palette::Viridis)?;
         let legend = self.write_text("cost-jack-legend.svg", &bar)?;
         let mean = grid.data().iter().sum::<f64>() / grid.data().len().max(1) as f64;
-        self.report.cost_map = Some(CostMap { image, legend, min, max, mean });
+        self.report.cost_map = Some(CostMap {
+            image,
+            legend,
+            min,
+            max,
+            mean,
+        });
         Ok(())
     }
 
@@ -227,8 +273,10 @@ impl ReportBuilder {
         let mut past = history::read(history_path)?;
         past.entries.push(entry.clone());
         let dir = self.stage.path();
-        std::fs::write(dir.join("report.json"), self.report.to_json()?).context("writing report.json")?;
-        std::fs::write(dir.join("index.html"), html::render(&self.report, &past)).context("writing index.html")?;
+        std::fs::write(dir.join("report.json"), self.report.to_json()?)
+            .context("writing report.json")?;
+        std::fs::write(dir.join("index.html"), html::render(&self.report, &past))
+            .context("writing index.html")?;
         let target = self.stage.commit()?;
         history::append(history_path, &entry)?;
         Ok(target)
@@ -250,7 +298,13 @@ pub fn cheapest_spec_identical(points: &[SpeedPoint]) -> Option<String> {
         .filter(|p| p.identical_to_spec == Some(true))
         .filter(|p| p.label == "ref-f316" || p.label.starts_with("ref-f316/"))
         .min_by(|a, b| a.time_per_pixel_s.total_cmp(&b.time_per_pixel_s))
-        .map(|p| format!("{} ({} per pixel)", p.label, html::seconds(p.time_per_pixel_s)))
+        .map(|p| {
+            format!(
+                "{} ({} per pixel)",
+                p.label,
+                html::seconds(p.time_per_pixel_s)
+            )
+        })
 }
 
 #[cfg(test)]

@@ -3,8 +3,8 @@
 
 use crate::report::images::{Palette, Scale};
 use crate::report::model::SpeedPoint;
-use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// Width of a colour bar, pixels (matches the 512-pixel images).
 const BAR_WIDTH: u32 = 512;
@@ -39,59 +39,72 @@ pub fn colour_bar(title: &str, scale: Scale, palette: Palette) -> anyhow::Result
     {
         let root = SVGBackend::with_string(&mut svg, (BAR_WIDTH, 84)).into_drawing_area();
         root.fill(&WHITE).map_err(to_anyhow)?;
-        let (lo, hi) = scale.bounds();
-        let swatch = |t0: f64, t1: f64| {
-            let [r, g, b] = palette.rgb((t0 + t1) / 2.0);
-            RGBColor(r, g, b).filled()
-        };
-        let steps = (0..BAR_STEPS).map(|i| (i as f64 / BAR_STEPS as f64, (i + 1) as f64 / BAR_STEPS as f64));
-        match scale {
-            Scale::Linear { .. } => {
-                let (lo, hi) = if hi > lo { (lo, hi) } else { (lo - 0.5, hi + 0.5) };
-                let mut chart = bar_chart(&root, title, lo..hi)?;
-                let at = |t: f64| lo + (hi - lo) * t;
-                chart
-                    .draw_series(steps.map(|(t0, t1)| Rectangle::new([(at(t0), 0.0), (at(t1), 1.0)], swatch(t0, t1))))
-                    .map_err(to_anyhow)?;
-            }
-            Scale::Log { .. } => {
-                let mut chart = bar_chart(&root, title, (lo..hi).log_scale())?;
-                let at = |t: f64| 10f64.powf(lo.log10() + (hi.log10() - lo.log10()) * t);
-                chart
-                    .draw_series(steps.map(|(t0, t1)| Rectangle::new([(at(t0), 0.0), (at(t1), 1.0)], swatch(t0, t1))))
-                    .map_err(to_anyhow)?;
-            }
+        // The chart runs over positions 0..1 of the scale; ticks are placed
+        // at round values of the scale itself.
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 17))
+            .margin_left(20)
+            .margin_right(28)
+            .build_cartesian_2d(0.0..1.0, -0.6..1.0)
+            .map_err(to_anyhow)?;
+        chart
+            .draw_series((0..BAR_STEPS).map(|i| {
+                let (t0, t1) = (
+                    i as f64 / BAR_STEPS as f64,
+                    (i + 1) as f64 / BAR_STEPS as f64,
+                );
+                let [r, g, b] = palette.rgb((t0 + t1) / 2.0);
+                Rectangle::new([(t0, 0.0), (t1, 1.0)], RGBColor(r, g, b).filled())
+            }))
+            .map_err(to_anyhow)?;
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(0.0, 0.0), (1.0, 1.0)],
+                BLACK.stroke_width(1),
+            )))
+            .map_err(to_anyhow)?;
+        let label = ("sans-serif", 15)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Center, VPos::Top));
+        for v in ticks(scale) {
+            let Some(t) = scale.position(v) else { continue };
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(t, 0.0), (t, -0.15)],
+                    BLACK,
+                )))
+                .map_err(to_anyhow)?;
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    short_number(v),
+                    (t, -0.2),
+                    label.clone(),
+                )))
+                .map_err(to_anyhow)?;
         }
         root.present().map_err(to_anyhow)?;
     }
     Ok(svg)
 }
 
-/// The chart of a colour bar: x carries the scale, y is 0..1 and unlabelled.
-fn bar_chart<'a, 'b, X>(
-    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
-    title: &str,
-    x: X,
-) -> anyhow::Result<ChartContext<'a, SVGBackend<'b>, Cartesian2d<X::CoordDescType, plotters::coord::types::RangedCoordf64>>>
-where
-    X: AsRangedCoord<Value = f64>,
-{
-    let mut chart = ChartBuilder::on(root)
-        .caption(title, ("sans-serif", 14))
-        .margin_left(16)
-        .margin_right(24)
-        .x_label_area_size(24)
-        .build_cartesian_2d(x, 0.0..1.0)
-        .map_err(to_anyhow)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .disable_y_axis()
-        .x_labels(6)
-        .x_label_formatter(&|v| short_number(*v))
-        .draw()
-        .map_err(to_anyhow)?;
-    Ok(chart)
+/// Round values to label on a colour bar: the decades of a log scale (or
+/// its ends when it spans less than two), five steps of a linear one.
+fn ticks(scale: Scale) -> Vec<f64> {
+    let (lo, hi) = scale.bounds();
+    match scale {
+        Scale::Linear { .. } => (0..5).map(|i| lo + (hi - lo) * i as f64 / 4.0).collect(),
+        Scale::Log { .. } => {
+            let decades: Vec<f64> = (lo.log10().ceil() as i32..=hi.log10().floor() as i32)
+                .map(|k| 10f64.powi(k))
+                .collect();
+            if decades.len() >= 2 {
+                decades
+            } else {
+                vec![lo, hi]
+            }
+        }
+    }
 }
 
 /// Colours of the plot's series.
@@ -114,11 +127,14 @@ pub fn speed_error(points: &[SpeedPoint]) -> anyhow::Result<Option<String>> {
     }
     let us = |p: &SpeedPoint| p.time_per_pixel_s * 1e6;
     let (xlo, xhi) = padded_log_range(pts.iter().map(|p| us(p)));
-    let errors = pts.iter().flat_map(|p| [p.mean_shade_error, p.max_shade_error]).flatten();
+    let errors = pts
+        .iter()
+        .flat_map(|p| [p.mean_shade_error, p.max_shade_error])
+        .flatten();
     let (ylo, yhi) = padded_log_range(errors.filter(|e| *e > 0.0));
     let on_axis = |e: f64| e.max(ylo);
     let max_flips = pts.iter().map(|p| p.pixel_flips).max().unwrap_or(0) as f64;
-    let label_style = ("sans-serif", 12).into_font().color(&BLACK);
+    let label_style = ("sans-serif", 15).into_font().color(&BLACK);
 
     let mut svg = String::new();
     {
@@ -127,7 +143,7 @@ pub fn speed_error(points: &[SpeedPoint]) -> anyhow::Result<Option<String>> {
         let (left, right) = root.split_horizontally(520);
 
         let mut chart = ChartBuilder::on(&left)
-            .caption("Shade error against ref-f64", ("sans-serif", 16))
+            .caption("Shade error against ref-f64", ("sans-serif", 19))
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(64)
@@ -144,28 +160,41 @@ pub fn speed_error(points: &[SpeedPoint]) -> anyhow::Result<Option<String>> {
         chart
             .draw_series(pts.iter().filter_map(|p| {
                 let (mean, max) = (p.mean_shade_error?, p.max_shade_error?);
-                Some(PathElement::new(vec![(us(p), on_axis(mean)), (us(p), on_axis(max))], BLACK.mix(0.3)))
+                Some(PathElement::new(
+                    vec![(us(p), on_axis(mean)), (us(p), on_axis(max))],
+                    BLACK.mix(0.3),
+                ))
             }))
             .map_err(to_anyhow)?;
         chart
-            .draw_series(
-                pts.iter()
-                    .filter_map(|p| Some(Circle::new((us(p), on_axis(p.mean_shade_error?)), 5, MEAN_COLOUR.filled()))),
-            )
+            .draw_series(pts.iter().filter_map(|p| {
+                Some(Circle::new(
+                    (us(p), on_axis(p.mean_shade_error?)),
+                    5,
+                    MEAN_COLOUR.filled(),
+                ))
+            }))
             .map_err(to_anyhow)?
             .label("mean")
             .legend(|(x, y)| Circle::new((x, y), 5, MEAN_COLOUR.filled()));
         chart
-            .draw_series(
-                pts.iter()
-                    .filter_map(|p| Some(TriangleMarker::new((us(p), on_axis(p.max_shade_error?)), 6, MAX_COLOUR.filled()))),
-            )
+            .draw_series(pts.iter().filter_map(|p| {
+                Some(TriangleMarker::new(
+                    (us(p), on_axis(p.max_shade_error?)),
+                    6,
+                    MAX_COLOUR.filled(),
+                ))
+            }))
             .map_err(to_anyhow)?
             .label("max")
             .legend(|(x, y)| TriangleMarker::new((x, y), 6, MAX_COLOUR.filled()));
         chart
             .draw_series(pts.iter().filter_map(|p| {
-                Some(Text::new(format!(" {}", p.label), (us(p), on_axis(p.max_shade_error?)), label_style.clone()))
+                Some(Text::new(
+                    format!(" {}", p.label),
+                    (us(p), on_axis(p.max_shade_error?)),
+                    label_style.clone(),
+                ))
             }))
             .map_err(to_anyhow)?;
         chart
@@ -177,7 +206,7 @@ pub fn speed_error(points: &[SpeedPoint]) -> anyhow::Result<Option<String>> {
             .map_err(to_anyhow)?;
 
         let mut flips = ChartBuilder::on(&right)
-            .caption("Dithered pixels differing from ref-f64", ("sans-serif", 16))
+            .caption("Dithered pixels differing from ref-f64", ("sans-serif", 19))
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(56)
@@ -192,13 +221,19 @@ pub fn speed_error(points: &[SpeedPoint]) -> anyhow::Result<Option<String>> {
             .draw()
             .map_err(to_anyhow)?;
         flips
-            .draw_series(pts.iter().map(|p| Circle::new((us(p), p.pixel_flips as f64), 5, FLIP_COLOUR.filled())))
-            .map_err(to_anyhow)?;
-        flips
             .draw_series(
                 pts.iter()
-                    .map(|p| Text::new(format!(" {}", p.label), (us(p), p.pixel_flips as f64), label_style.clone())),
+                    .map(|p| Circle::new((us(p), p.pixel_flips as f64), 5, FLIP_COLOUR.filled())),
             )
+            .map_err(to_anyhow)?;
+        flips
+            .draw_series(pts.iter().map(|p| {
+                Text::new(
+                    format!(" {}", p.label),
+                    (us(p), p.pixel_flips as f64),
+                    label_style.clone(),
+                )
+            }))
             .map_err(to_anyhow)?;
         root.present().map_err(to_anyhow)?;
     }
@@ -243,13 +278,34 @@ mod tests {
 
     #[test]
     fn colour_bars_are_svg_with_their_title_and_ends() {
-        let svg = colour_bar("VM instructions per pixel", Scale::Linear { lo: 1000.0, hi: 9000.0 }, Palette::Viridis).unwrap();
+        let svg = colour_bar(
+            "VM instructions per pixel",
+            Scale::Linear {
+                lo: 1000.0,
+                hi: 9000.0,
+            },
+            Palette::Viridis,
+        )
+        .unwrap();
         assert!(svg.starts_with("<svg"), "{}", &svg[..60]);
         assert!(svg.contains("VM instructions per pixel"));
-        assert!(svg.contains(">1.0k<") && svg.contains(">9.0k<"), "tick labels missing");
+        assert!(
+            svg.contains("\n1.0k\n") && svg.contains("\n9.0k\n") && svg.contains("\n5.0k\n"),
+            "tick labels missing"
+        );
         assert!(svg.matches("<rect").count() >= BAR_STEPS);
-        let log = colour_bar("shade error", Scale::Log { lo: 1e-5, hi: 1e-1 }, Palette::Hot).unwrap();
+        let log = colour_bar(
+            "shade error",
+            Scale::Log { lo: 1e-5, hi: 1e-1 },
+            Palette::Hot,
+        )
+        .unwrap();
         assert!(log.contains("shade error"));
+        assert!(
+            log.contains("\n1.0e-5\n") && log.contains("\n1.0e-3\n") && log.contains("\n0.1\n"),
+            "decade ticks missing"
+        );
+        assert_eq!(ticks(Scale::Log { lo: 2e-3, hi: 5e-3 }), vec![2e-3, 5e-3]);
         assert!(log.matches("<rect").count() >= BAR_STEPS);
     }
 
@@ -264,7 +320,7 @@ mod tests {
         let svg = speed_error(&points).unwrap().unwrap();
         assert!(svg.contains("ref-f316") && svg.contains("jack") && svg.contains("ref-f32"));
         // Only the two captions name the oracle: it has no error to plot.
-        assert_eq!(svg.matches("ref-f64<").count(), 2);
+        assert_eq!(svg.matches("ref-f64\n").count(), 2);
         // 3 mean circles + 3 flip circles + 1 legend circle.
         assert_eq!(svg.matches("<circle").count(), 7);
         assert!(speed_error(&points[..1]).unwrap().is_none());

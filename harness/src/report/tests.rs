@@ -3,7 +3,13 @@
 use super::*;
 
 fn render(label: &str, render_s: f64, pixels: u64) -> Render {
-    Render { label: label.into(), implementation: label.into(), render_s, pixels, ..Render::default() }
+    Render {
+        label: label.into(),
+        implementation: label.into(),
+        render_s,
+        pixels,
+        ..Render::default()
+    }
 }
 
 fn images(bits: &[u8], shades: Option<&[f64]>) -> RenderImages {
@@ -16,13 +22,32 @@ fn images(bits: &[u8], shades: Option<&[f64]>) -> RenderImages {
 const ORACLE_SHADES: [f64; 8] = [0.1, 0.9, 0.2, 0.8, 0.3, 0.7, 0.4, 0.6];
 
 fn builder(target: &Path) -> ReportBuilder {
-    let mut b = ReportBuilder::new(target, RunMeta { started_at: "2026-11-21T00:00:00Z".into(), ..RunMeta::default() }).unwrap();
-    b.add_render(render(ORACLE, 8e-6, 8), images(&[0, 1, 0, 1, 0, 1, 0, 1], Some(&ORACLE_SHADES))).unwrap();
+    let mut b = ReportBuilder::new(
+        target,
+        RunMeta {
+            started_at: "2026-11-21T00:00:00Z".into(),
+            ..RunMeta::default()
+        },
+    )
+    .unwrap();
+    b.add_render(
+        render(ORACLE, 8e-6, 8),
+        images(&[0, 1, 0, 1, 0, 1, 0, 1], Some(&ORACLE_SHADES)),
+    )
+    .unwrap();
     let mut shades = ORACLE_SHADES;
     shades[2] = 0.6;
     shades[5] = 0.7 + 1e-4;
-    b.add_render(render("ref-f316", 16e-6, 8), images(&[0, 1, 1, 1, 0, 1, 0, 1], Some(&shades))).unwrap();
-    b.add_render(render("jack", 8.0, 8), images(&[0, 1, 1, 1, 0, 1, 0, 0], None)).unwrap();
+    b.add_render(
+        render("ref-f316", 16e-6, 8),
+        images(&[0, 1, 1, 1, 0, 1, 0, 1], Some(&shades)),
+    )
+    .unwrap();
+    b.add_render(
+        render("jack", 8.0, 8),
+        images(&[0, 1, 1, 1, 0, 1, 0, 0], None),
+    )
+    .unwrap();
     b
 }
 
@@ -31,32 +56,56 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
     let dir = tempfile::tempdir().unwrap();
     let mut b = builder(&dir.path().join("nightly"));
     let pair = b
-        .add_pair(ORACLE, "ref-f316", |x, y| Some(format!("op at {x},{y}")), |x, y| format!("repro {x},{y}"))
+        .add_pair(
+            ORACLE,
+            "ref-f316",
+            |x, y| Some(format!("op at {x},{y}")),
+            |x, y| format!("repro {x},{y}"),
+        )
         .unwrap()
         .clone();
-    assert_eq!((pair.pixels, pair.differing_pixels, pair.differing_shades), (8, 1, Some(2)));
+    assert_eq!(
+        (pair.pixels, pair.differing_pixels, pair.differing_shades),
+        (8, 1, Some(2))
+    );
     let d = &pair.divergences[0];
     assert_eq!((d.x, d.y, d.a_white, d.b_white), (2, 0, false, true));
     assert_eq!((d.a_shade, d.b_shade), (Some(0.2), Some(0.6)));
-    assert_eq!((d.first_op.as_deref(), d.repro.as_str()), (Some("op at 2,0"), "repro 2,0"));
+    assert_eq!(
+        (d.first_op.as_deref(), d.repro.as_str()),
+        (Some("op at 2,0"), "repro 2,0")
+    );
     let heat = pair.heat.unwrap();
     assert!((heat.max_abs - 0.4).abs() < 1e-12);
     assert!((heat.mean_abs - (0.4 + 1e-4) / 8.0).abs() < 1e-9);
     for rel in [&pair.overlay, &heat.image, &heat.legend] {
         assert!(b.stage.path().join(rel).is_file(), "{rel} not written");
     }
-    let no_shades = b.add_pair("ref-f316", "jack", |_, _| None, |_, _| String::new()).unwrap();
-    assert_eq!((no_shades.differing_pixels, no_shades.differing_shades), (1, None));
+    let no_shades = b
+        .add_pair("ref-f316", "jack", |_, _| None, |_, _| String::new())
+        .unwrap();
+    assert_eq!(
+        (no_shades.differing_pixels, no_shades.differing_shades),
+        (1, None)
+    );
     assert!(no_shades.heat.is_none());
-    assert!(b.add_pair("ref-f316", "gpu-f32", |_, _| None, |_, _| String::new()).is_err());
+    assert!(b
+        .add_pair("ref-f316", "gpu-f32", |_, _| None, |_, _| String::new())
+        .is_err());
 }
 
 #[test]
 fn identical_shades_give_no_heat_map() {
     let dir = tempfile::tempdir().unwrap();
     let mut b = builder(&dir.path().join("nightly"));
-    b.add_render(render("ref-f32", 1e-6, 8), images(&[0, 1, 0, 1, 0, 1, 0, 1], Some(&ORACLE_SHADES))).unwrap();
-    let pair = b.add_pair(ORACLE, "ref-f32", |_, _| None, |_, _| String::new()).unwrap();
+    b.add_render(
+        render("ref-f32", 1e-6, 8),
+        images(&[0, 1, 0, 1, 0, 1, 0, 1], Some(&ORACLE_SHADES)),
+    )
+    .unwrap();
+    let pair = b
+        .add_pair(ORACLE, "ref-f32", |_, _| None, |_, _| String::new())
+        .unwrap();
     assert_eq!((pair.differing_pixels, pair.differing_shades), (0, Some(0)));
     assert!(pair.heat.is_none() && pair.divergences.is_empty());
 }
@@ -70,7 +119,14 @@ fn speed_points_measure_against_the_oracle() {
     assert_eq!((p.time_per_pixel_s, p.pixel_flips), (2e-6, 1));
     assert!((p.max_shade_error.unwrap() - 0.4).abs() < 1e-12);
     let jack = b.speed_point("jack").unwrap();
-    assert_eq!((jack.pixel_flips, jack.mean_shade_error, jack.vm_instructions_per_pixel), (2, None, Some(1000.0)));
+    assert_eq!(
+        (
+            jack.pixel_flips,
+            jack.mean_shade_error,
+            jack.vm_instructions_per_pixel
+        ),
+        (2, None, Some(1000.0))
+    );
     let oracle = b.speed_point(ORACLE).unwrap();
     assert_eq!((oracle.pixel_flips, oracle.max_shade_error), (0, None));
     assert!(b.speed_point("gpu-f32").is_err());
@@ -80,7 +136,9 @@ fn speed_points_measure_against_the_oracle() {
 fn renders_must_be_unique_and_match_their_shades() {
     let dir = tempfile::tempdir().unwrap();
     let mut b = builder(&dir.path().join("nightly"));
-    assert!(b.add_render(render("jack", 1.0, 8), images(&[0; 8], None)).is_err());
+    assert!(b
+        .add_render(render("jack", 1.0, 8), images(&[0; 8], None))
+        .is_err());
     let bad = RenderImages {
         bits: Grid::new(4, 2, vec![false; 8]).unwrap(),
         shades: Some(Grid::new(2, 4, vec![0.0; 8]).unwrap()),
@@ -102,7 +160,10 @@ fn cheapest_variant_is_the_fastest_identical_float316_reference() {
         p("ref-f316/mul-low", 2e-6, Some(true)),
         p("gpu-f316", 1e-9, Some(true)),
     ];
-    assert_eq!(cheapest_spec_identical(&points).as_deref(), Some("ref-f316/mul-low (2.0 µs per pixel)"));
+    assert_eq!(
+        cheapest_spec_identical(&points).as_deref(),
+        Some("ref-f316/mul-low (2.0 µs per pixel)")
+    );
     assert_eq!(cheapest_spec_identical(&points[1..2]), None);
 }
 
@@ -113,29 +174,50 @@ fn finish_writes_everything_then_swaps_and_appends_history() {
     let history = history::path_for(&target);
     for run in 0..2 {
         let mut b = builder(&target);
-        b.add_pair(ORACLE, "ref-f316", |_, _| None, |x, y| format!("harness localize ref-f64 ref-f316 --pixel {x},{y}"))
+        b.add_pair(
+            ORACLE,
+            "ref-f316",
+            |_, _| None,
+            |x, y| format!("harness localize ref-f64 ref-f316 --pixel {x},{y}"),
+        )
+        .unwrap();
+        b.set_cost_map(&Grid::new(4, 2, vec![10, 20, 30, 40, 50, 60, 70, 80 + run]).unwrap())
             .unwrap();
-        b.set_cost_map(&Grid::new(4, 2, vec![10, 20, 30, 40, 50, 60, 70, 80 + run]).unwrap()).unwrap();
-        let points: Vec<SpeedPoint> = ["ref-f316", "jack"].iter().map(|l| b.speed_point(l).unwrap()).collect();
+        let points: Vec<SpeedPoint> = ["ref-f316", "jack"]
+            .iter()
+            .map(|l| b.speed_point(l).unwrap())
+            .collect();
         b.report_mut().speed_error.points = points;
         assert_eq!(b.finish(&history).unwrap(), target);
     }
-    let report = Report::from_json(&std::fs::read_to_string(target.join("report.json")).unwrap()).unwrap();
+    let report =
+        Report::from_json(&std::fs::read_to_string(target.join("report.json")).unwrap()).unwrap();
     assert_eq!(report.schema_version, SCHEMA_VERSION);
     assert_eq!(report.cost_map.as_ref().unwrap().max, 81);
     assert_eq!(report.cost_map.as_ref().unwrap().mean, 45.125);
     assert_eq!(report.speed_error.plot, "images/speed-error.svg");
     let page = std::fs::read_to_string(target.join("index.html")).unwrap();
     // Every file the page references exists beside it.
-    for src in page.split("src=\"").skip(1).map(|s| &s[..s.find('"').unwrap()]) {
+    for src in page
+        .split("src=\"")
+        .skip(1)
+        .map(|s| &s[..s.find('"').unwrap()])
+    {
         assert!(target.join(src).is_file(), "{src} referenced but missing");
     }
-    assert_eq!(page.matches("src=\"").count(), 3 + 1 + 2 + 2 + 1, "renders, overlay, heat+bar, cost+bar, plot");
+    assert_eq!(
+        page.matches("src=\"").count(),
+        3 + 1 + 2 + 2 + 1,
+        "renders, overlay, heat+bar, cost+bar, plot"
+    );
     let h = history::read(&history).unwrap();
     assert_eq!(h.entries.len(), 2);
     assert_eq!(h.entries[1].pixel_divergences["ref-f64 vs ref-f316"], 1);
     // The staging directory is gone; only the report and the history remain.
-    let mut names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let mut names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     names.sort();
     assert_eq!(names, ["history.jsonl", "nightly"]);
 }
