@@ -2,7 +2,10 @@
 //! on a Float316-like workload (`benches/workload/*.vm`, hand-compiled with
 //! the Jack compiler's templates: field access through `this`, array reads
 //! and writes through `that`, Math.multiply/divide, small methods, loops):
-//! one machine, and many clones of a snapshot in parallel with rayon.
+//! one machine, and many clones of a snapshot in parallel with rayon. Also
+//! the real thing: the Jack raymarcher (`impls/jack/raymarcher`, compiled
+//! with jack-compiler) computing pixels from a snapshot taken after
+//! `Main.init`.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use hack_vm::{Config, Exit, Machine, Program};
@@ -55,5 +58,43 @@ fn emulator(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, emulator);
+fn raymarcher() -> Arc<Program> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../raymarcher");
+    let classes = jack_compiler::compile_dir(&dir, jack_compiler::Profile::Desktop)
+        .expect("the raymarcher compiles");
+    let sources: Vec<(String, String)> = classes
+        .into_iter()
+        .map(|c| (format!("{}.vm", c.class_name), c.code))
+        .collect();
+    Program::from_sources(&sources).expect("the raymarcher loads")
+}
+
+/// Pixels (x, 100) for x = 0, 16, .., 496 from clones of `snapshot`.
+fn pixels(snapshot: &Machine) -> u64 {
+    (0..32)
+        .map(|i| {
+            let mut m = snapshot.clone();
+            let exit = m
+                .call("Image.pixel", &[i * 16, 100], None)
+                .expect("Image.pixel exists");
+            assert!(matches!(exit, Exit::Returned(_)), "{exit}");
+            m.steps() - snapshot.steps()
+        })
+        .sum()
+}
+
+fn jack_raymarcher(c: &mut Criterion) {
+    let mut init = Machine::new(raymarcher(), Config::default());
+    let exit = init.call("Main.init", &[], None).expect("Main.init exists");
+    assert_eq!(exit, Exit::Returned(0));
+    let steps = pixels(&init);
+    let mut g = c.benchmark_group("hack-vm");
+    g.throughput(Throughput::Elements(steps));
+    g.bench_function("raymarcher, 32 pixels, single thread", |b| {
+        b.iter(|| pixels(&init))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, emulator, jack_raymarcher);
 criterion_main!(benches);

@@ -82,7 +82,14 @@ proptest! {
 
 /// One VM command of the random programs.
 fn command() -> impl Strategy<Value = String> {
-    let value = prop_oneof![0u16..8, 250u16..262, 3000u16..3004, 16380u16..16390, 24570u16..24578, Just(32767)];
+    let value = prop_oneof![
+        0u16..8,
+        250u16..262,
+        3000u16..3004,
+        16380u16..16390,
+        24570u16..24578,
+        Just(32767)
+    ];
     let seg = prop::sample::select(vec!["local", "argument", "this", "that", "temp", "static"]);
     prop_oneof![
         4 => value.clone().prop_map(|v| format!("push constant {v}")),
