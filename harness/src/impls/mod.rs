@@ -1,6 +1,7 @@
 //! One adapter module per implementation, and [`open`] to get any of the
 //! six by name.
 
+pub mod gpu;
 pub mod reference;
 
 use crate::implementation::{ImplError, ImplName, Implementation, UnknownImpl};
@@ -12,7 +13,8 @@ pub fn open(name: ImplName) -> Result<Box<dyn Implementation>, ImplError> {
         ImplName::RefF64 | ImplName::RefF32 | ImplName::RefF316 => {
             Box::new(reference::RefAdapter::new(name)?)
         }
-        ImplName::Jack | ImplName::GpuF32 | ImplName::GpuF316 => {
+        ImplName::GpuF32 | ImplName::GpuF316 => Box::new(gpu::GpuAdapter::new(name)?),
+        ImplName::Jack => {
             return Err(ImplError::Unavailable(format!(
                 "{name}: its crate has no harness entry points in this build yet"
             )))

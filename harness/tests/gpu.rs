@@ -1,0 +1,78 @@
+//! gpu-f316 agrees bit for bit with ref-f316 on the small sets, and a
+//! divergence against it is localized by replaying ref-f316's trace through
+//! its ops kernel (it cannot trace). Needs a wgpu adapter (lavapipe will
+//! do); set F316_SKIP_GPU to skip where there is none.
+
+use common::{Op, F316};
+use harness::implementation::{ImplError, ImplName, Implementation};
+use harness::impls::{self, reference::RefAdapter};
+use harness::localize::{localize, replay};
+use harness::runner::{diff_set, RunOptions};
+use reference::Variant;
+use vectors::{Level, OpVector, Vector};
+
+fn gpu_f316() -> Option<Box<dyn Implementation>> {
+    match impls::open(ImplName::GpuF316) {
+        Ok(g) => Some(g),
+        Err(ImplError::Unavailable(why)) if std::env::var_os(gpu::SKIP_ENV).is_some() => {
+            eprintln!("GPU leg skipped: {why}");
+            None
+        }
+        Err(e) => panic!("gpu-f316: {e} (set {} to skip)", gpu::SKIP_ENV),
+    }
+}
+
+#[test]
+fn gpu_f316_agrees_with_ref_f316_on_the_small_sets() {
+    let Some(gpu) = gpu_f316() else { return };
+    let reference = impls::open(ImplName::RefF316).unwrap();
+    for level in [Level::Ops, Level::Sdf, Level::Pixels] {
+        let set = vectors::load_named(vectors::named::small_set_name(level)).unwrap();
+        let report = diff_set(
+            &[reference.as_ref(), gpu.as_ref()],
+            &set,
+            RunOptions::default(),
+        );
+        assert!(
+            !report.diverged(),
+            "{}",
+            harness::text::level_report(&report)
+        );
+        assert_eq!(report.comparisons.len(), 1);
+    }
+}
+
+#[test]
+fn a_divergence_with_gpu_f316_is_localized_against_ref_f316s_trace() {
+    let Some(gpu) = gpu_f316() else { return };
+    let clean = impls::open(ImplName::RefF316).unwrap();
+    let faulty = RefAdapter::with_variant(ImplName::RefF316, Variant::SqrtFloorDiv).unwrap();
+    let input = Vector::Op(OpVector {
+        category: "t".into(),
+        op: Op::Sqrt,
+        a: F316::new(0, 120, 15576),
+        b: None,
+    });
+    let l = localize(&faulty, gpu.as_ref(), clean.as_ref(), &input).unwrap();
+    assert!(l.differs());
+    assert!(
+        l.method.contains("gpu-f316: agrees with ref-f316"),
+        "{}",
+        l.method
+    );
+    assert_eq!(l.blamed_op(), Some(Op::Sqrt), "{l}");
+}
+
+#[test]
+fn replaying_a_pixel_trace_through_gpu_f316_reproduces_every_operation() {
+    let Some(gpu) = gpu_f316() else { return };
+    let clean = impls::open(ImplName::RefF316).unwrap();
+    let pixel = Vector::Pixel(vectors::PixelVector {
+        category: "t".into(),
+        x: 312,
+        y: 87,
+    });
+    let trace = clean.trace(&pixel).unwrap();
+    assert!(trace.len() > 100);
+    assert_eq!(replay(gpu.as_ref(), &trace).unwrap(), trace);
+}
