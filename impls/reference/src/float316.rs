@@ -26,6 +26,34 @@ const M_MIN: i16 = 8192;
 /// Largest normalised mantissa.
 const M_MAX: i16 = 16383;
 
+/// `F316::is_zero`, inlined here (the hot path crosses no crate boundary).
+#[inline(always)]
+fn is_zero(a: F316) -> bool {
+    a.e == 0 && a.m == 0
+}
+
+/// Double a positive word until it reaches `M_MIN`, subtracting the number
+/// of doublings from `e` (Jack's `while (m < 8192)` loop, in one step: a
+/// positive word never wraps before reaching `M_MIN`).
+#[inline(always)]
+fn normalise_positive(m: i16, e: i16) -> (i16, i16) {
+    debug_assert!(m > 0);
+    if m >= M_MIN {
+        return (m, e);
+    }
+    let k = (m as u16).leading_zeros() as i16 - 2;
+    (m << k, j::sub(e, k))
+}
+
+/// `m` halved `shift` times, each halving truncating toward zero (none when
+/// `shift <= 0`): one truncating division by `2^shift`, done with shifts.
+#[inline(always)]
+fn trunc_shift(m: i16, shift: i16) -> i16 {
+    let n = shift.clamp(0, 16) as u32;
+    let v = i32::from(m);
+    (if v >= 0 { v >> n } else { -((-v) >> n) }) as i16
+}
+
 /// `2^i` for `i` in 0..=13 (Jack: a table of powers of two).
 fn pow2(i: i16) -> i16 {
     debug_assert!((0..=13).contains(&i));
@@ -158,7 +186,7 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
     } else {
         (a, b)
     };
-    if small.is_zero() {
+    if is_zero(small) {
         return Ok(big);
     }
     if big.s != small.s && big.e == small.e && big.m == small.m {
@@ -168,13 +196,9 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
     if arith.add_alignment_off_by_one && shift > 0 {
         shift = j::add(shift, 1);
     }
-    let mut sm = small.m;
-    let mut done: i16 = 0;
-    // Once sm is 0 further halvings change nothing: stop early.
-    while done < shift && sm != 0 {
-        sm = j::halve(sm);
-        done += 1;
-    }
+    // Halving `shift` times, each truncating toward zero, equals one
+    // truncating division by 2^shift; after 16 halvings any word is 0.
+    let sm = trunc_shift(small.m, shift);
     let mut e = big.e;
     let mut m;
     if big.s == small.s {
@@ -185,22 +209,28 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
         }
     } else {
         m = j::sub(big.m, sm);
-        while m < M_MIN {
-            if m == 0 {
-                return Err(Trap::Hang);
+        if m > 0 {
+            (m, e) = normalise_positive(m, e);
+        } else {
+            // Doubling a negative word reaches 0 (a hang) or wraps to a
+            // value of at least M_MIN within 16 steps.
+            while m < M_MIN {
+                if m == 0 {
+                    return Err(Trap::Hang);
+                }
+                m = j::mul(m, 2);
+                e = j::sub(e, 1);
             }
-            m = j::mul(m, 2);
-            e = j::sub(e, 1);
         }
     }
-    Ok(F316::new(big.s, e, m))
+    Ok(F316 { s: big.s, e, m })
 }
 
 /// `mul(a, b)`: the product of the 7-bit halves, low*low dropped unless
 /// the configuration keeps it.
 fn mul(arith: &Arith, a: F316, b: F316) -> F316 {
     let sign = j::and(j::add(a.s, b.s), 1);
-    if a.is_zero() || b.is_zero() {
+    if is_zero(a) || is_zero(b) {
         return F316::new(sign, 0, 0);
     }
     let mut e = j::sub(j::add(a.e, b.e), 126);
@@ -213,40 +243,35 @@ fn mul(arith: &Arith, a: F316, b: F316) -> F316 {
     }
     let mut m = j::add(j::mul(ah, bh), j::div(mid, 128).unwrap_or(0));
     if m > 0 {
-        while m < M_MIN {
-            m = j::mul(m, 2);
-            e = j::sub(e, 1);
-        }
+        (m, e) = normalise_positive(m, e);
     }
-    F316::new(sign, e, m)
+    F316 { s: sign, e, m }
 }
 
 /// `div(a, b)`: long division with a shrinking divisor.
 fn div(a: F316, b: F316) -> R<F316> {
     let sign = j::and(j::add(a.s, b.s), 1);
-    if a.is_zero() {
+    if is_zero(a) {
         return Ok(F316::new(sign, 0, 0));
     }
-    if b.is_zero() {
+    if is_zero(b) {
         return Err(Trap::SysError(1));
     }
-    let mut e = j::sub(j::add(a.e, 127), b.e);
+    let e = j::sub(j::add(a.e, 127), b.e);
     let (mut r, mut d, mut q) = (a.m, b.m, 0i16);
     for i in (0..=13).rev() {
-        if r >= d {
-            q = j::add(q, pow2(i));
-            r = j::sub(r, d);
-        }
+        // Branch-free form of `if (r >= d) { q += 2^i; r -= d }`.
+        let taken = j::neg(i16::from(r >= d));
+        q = j::add(q, j::and(pow2(i), taken));
+        r = j::sub(r, j::and(d, taken));
         d = j::halve(d);
     }
-    while q < M_MIN {
-        if q == 0 {
-            return Err(Trap::Hang);
-        }
-        q = j::mul(q, 2);
-        e = j::sub(e, 1);
+    // q is a sum of distinct powers 2^0..2^13: 0 <= q <= 16383.
+    if q == 0 {
+        return Err(Trap::Hang);
     }
-    Ok(F316::new(sign, e, q))
+    let (q, e) = normalise_positive(q, e);
+    Ok(F316 { s: sign, e, m: q })
 }
 
 /// `halve`, `double`, `quarter`: add `delta` to the exponent when `a.e > 0`.
@@ -421,5 +446,32 @@ impl Engine for F316Engine<'_> {
 
     fn dither_value(&mut self, k: &Consts<F316>, v: F316, b: usize) -> R<F316> {
         self.add(v, k.bayer_centred[b])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The closed forms used for speed equal Jack's loops for every word.
+    #[test]
+    fn closed_forms_equal_the_jack_loops() {
+        for m in i16::MIN..=i16::MAX {
+            let mut h = m;
+            assert_eq!(trunc_shift(m, -3), m);
+            for shift in 0..=20i16 {
+                let fast = trunc_shift(m, shift);
+                assert_eq!(fast, h, "m = {m}, shift = {shift}");
+                h = j::halve(h);
+            }
+            if m > 0 {
+                let (mut lm, mut le) = (m, 0i16);
+                while lm < M_MIN {
+                    lm = j::mul(lm, 2);
+                    le = j::sub(le, 1);
+                }
+                assert_eq!(normalise_positive(m, 0), (lm, le), "m = {m}");
+            }
+        }
     }
 }
