@@ -10,6 +10,7 @@
 pub mod cli;
 pub mod commands;
 pub mod compare;
+pub mod exhaustive;
 pub mod implementation;
 pub mod impls;
 pub mod localize;

@@ -76,3 +76,22 @@ fn replaying_a_pixel_trace_through_gpu_f316_reproduces_every_operation() {
     assert!(trace.len() > 100);
     assert_eq!(replay(gpu.as_ref(), &trace).unwrap(), trace);
 }
+
+#[test]
+fn a_slice_of_the_exhaustive_unary_check_agrees() {
+    let Some(gpu) = gpu_f316() else { return };
+    let reference = impls::open(ImplName::RefF316).unwrap();
+    // Every 997th input: about 4,200 per operation, both signs, all exponents.
+    for report in harness::exhaustive::unary(
+        &[reference.as_ref(), gpu.as_ref()],
+        997,
+        RunOptions::default(),
+    ) {
+        assert!(report.vectors > 4000);
+        assert!(
+            !report.diverged(),
+            "{}",
+            harness::text::level_report(&report)
+        );
+    }
+}
