@@ -27,6 +27,8 @@ pub enum Command {
     Localize(commands::localize::LocalizeArgs),
     /// Inject each fault of the catalogue and check that it is detected and localized.
     Selftest(commands::selftest::SelftestArgs),
+    /// For `git bisect run`: exit 0 when the comparison holds, 1 when it fails, 125 when undecidable.
+    Check(commands::check::CheckArgs),
     /// Vector sets: regenerate the committed ones, check a file.
     #[command(subcommand)]
     Vectors(commands::vectors::VectorsCommand),
@@ -42,5 +44,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Localize(args) => commands::localize::run(args),
         Command::Selftest(args) => commands::selftest::run(args),
         Command::Vectors(cmd) => commands::vectors::run(cmd),
+        Command::Check(args) => commands::check::run(args),
     }
 }

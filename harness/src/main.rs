@@ -4,7 +4,17 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = harness::cli::Cli::parse();
+    let cli = match harness::cli::Cli::try_parse() {
+        Ok(cli) => cli,
+        // `check` runs under `git bisect run`: bad input there means
+        // "cannot decide" (125), not a usage error.
+        Err(err) if err.use_stderr() && std::env::args().nth(1).as_deref() == Some("check") => {
+            eprintln!("{err}");
+            println!("skip: bad arguments to check");
+            return ExitCode::from(harness::commands::check::UNDECIDABLE);
+        }
+        Err(err) => err.exit(),
+    };
     match harness::cli::run(cli) {
         Ok(code) => code,
         Err(err) => {

@@ -8,6 +8,7 @@ pub mod atomic;
 pub mod history;
 pub mod html;
 pub mod images;
+pub mod measure;
 pub mod meta;
 pub mod model;
 pub mod plot;

@@ -1,0 +1,210 @@
+//! `harness check`: one yes/no question about the tree, for `git bisect
+//! run`. Exit 0 when the comparison holds, 1 when it fails, 125 when it
+//! cannot be decided (an implementation unavailable or failing, bad input);
+//! always one line saying why. See `scripts/bisect-check.sh`, which maps a
+//! build failure to 125 too.
+//!
+//! - `--no-divergence A B [--level L]`: the runner's policy finds no
+//!   divergence between A and B on the level's small set (default: all).
+//! - `--max-error IMPL THRESHOLD [--metric max|mean|flips]`: IMPL's whole
+//!   image against `ref-f64` stays within THRESHOLD.
+//! - `--min-speed IMPL PIXELS_PER_SEC`: IMPL renders the whole image at
+//!   least that fast (wall clock, this machine).
+
+use crate::commands::diff::{sets_for, LevelArg};
+use crate::implementation::ImplError;
+use crate::impls;
+use crate::report::{measure, ORACLE};
+use crate::runner::{diff_set, RunOptions};
+use anyhow::{Context, Result};
+use std::process::ExitCode;
+
+/// Exit status of `check` when the question cannot be decided.
+pub const UNDECIDABLE: u8 = 125;
+
+/// Arguments of `harness check`.
+#[derive(Debug, clap::Args)]
+pub struct CheckArgs {
+    /// A and B agree under the comparison policy.
+    #[arg(long, num_args = 2, value_names = ["A", "B"], conflicts_with_all = ["max_error", "min_speed"])]
+    pub no_divergence: Option<Vec<String>>,
+    /// IMPL's error against ref-f64 is at most THRESHOLD.
+    #[arg(long, num_args = 2, value_names = ["IMPL", "THRESHOLD"], conflicts_with = "min_speed")]
+    pub max_error: Option<Vec<String>>,
+    /// IMPL renders at least PIXELS_PER_SEC pixels per second.
+    #[arg(long, num_args = 2, value_names = ["IMPL", "PIXELS_PER_SEC"])]
+    pub min_speed: Option<Vec<String>>,
+    /// Level for --no-divergence (its small committed set); default all.
+    #[arg(long, value_enum)]
+    pub level: Option<LevelArg>,
+    /// Error figure for --max-error.
+    #[arg(long, value_enum, default_value = "max")]
+    pub metric: Metric,
+}
+
+/// Which error figure `--max-error` bounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Metric {
+    /// Largest absolute shade error.
+    Max,
+    /// Mean absolute shade error.
+    Mean,
+    /// Dithered pixels that differ.
+    Flips,
+}
+
+/// The answer to a check.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// The comparison holds.
+    Good(String),
+    /// It fails.
+    Bad(String),
+    /// It cannot be decided here.
+    Undecidable(String),
+}
+
+impl Verdict {
+    /// The exit status for `git bisect run`: 0, 1 or 125.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Verdict::Good(_) => 0,
+            Verdict::Bad(_) => 1,
+            Verdict::Undecidable(_) => UNDECIDABLE,
+        }
+    }
+
+    /// The one line printed.
+    pub fn line(&self) -> String {
+        match self {
+            Verdict::Good(why) => format!("good: {why}"),
+            Verdict::Bad(why) => format!("bad: {why}"),
+            Verdict::Undecidable(why) => format!("skip: {why}"),
+        }
+    }
+}
+
+fn parse_number(what: &str, text: &str) -> Result<f64> {
+    let v: f64 = text
+        .parse()
+        .with_context(|| format!("{what} `{text}` is not a number"))?;
+    anyhow::ensure!(
+        v.is_finite() && v >= 0.0,
+        "{what} must be a non-negative number, got {text}"
+    );
+    Ok(v)
+}
+
+/// Decide the question; every failure to decide is [`Verdict::Undecidable`].
+pub fn decide(args: &CheckArgs) -> Verdict {
+    let result = if let Some(ab) = &args.no_divergence {
+        no_divergence(&ab[0], &ab[1], args.level)
+    } else if let Some(v) = &args.max_error {
+        parse_number("threshold", &v[1]).and_then(|t| max_error(&v[0], t, args.metric))
+    } else if let Some(v) = &args.min_speed {
+        parse_number("pixels per second", &v[1]).and_then(|t| min_speed(&v[0], t))
+    } else {
+        Err(anyhow::anyhow!("no question given"))
+    };
+    result.unwrap_or_else(|e| Verdict::Undecidable(format!("{e:#}")))
+}
+
+fn no_divergence(a: &str, b: &str, level: Option<LevelArg>) -> Result<Verdict> {
+    let sets = sets_for(level, None)?;
+    let ia = impls::open_label(a).with_context(|| format!("implementation `{a}`"))?;
+    let ib = impls::open_label(b).with_context(|| format!("implementation `{b}`"))?;
+    let mut compared = 0;
+    for set in &sets {
+        let report = diff_set(
+            &[ia.as_ref(), ib.as_ref()],
+            set,
+            RunOptions { progress: false },
+        );
+        if let Some((label, e)) = report.failures().next() {
+            if matches!(e, ImplError::Unsupported(_)) {
+                continue;
+            }
+            anyhow::bail!("{label} on {}: {e}", set.name);
+        }
+        for c in &report.comparisons {
+            compared += c.vectors;
+            if c.diverged {
+                let first = c
+                    .divergences
+                    .iter()
+                    .find(|d| !d.tolerated)
+                    .or(c.divergences.first());
+                let at = first
+                    .map(|d| format!(", first at {}", d.input))
+                    .unwrap_or_default();
+                return Ok(Verdict::Bad(format!(
+                    "{a} and {b} diverge on {} ({} level){at}",
+                    set.name, set.level
+                )));
+            }
+        }
+    }
+    anyhow::ensure!(compared > 0, "{a} and {b} share no level to compare");
+    Ok(Verdict::Good(format!(
+        "{a} and {b} agree on {compared} vectors"
+    )))
+}
+
+fn max_error(imp: &str, threshold: f64, metric: Metric) -> Result<Verdict> {
+    let set = measure::full_image_set();
+    let subject = measure::render(imp, &set, false)?;
+    let oracle = measure::render(ORACLE, &set, false)?;
+    let (errors, flips) = measure::error_against(&subject.images, &oracle.images)?;
+    let value = match metric {
+        Metric::Flips => flips as f64,
+        Metric::Max => errors.context("no shades to compare")?.1,
+        Metric::Mean => errors.context("no shades to compare")?.0,
+    };
+    let what =
+        format!("{imp}: {metric:?} error against {ORACLE} {value:e}, threshold {threshold:e}")
+            .to_lowercase();
+    Ok(if value <= threshold {
+        Verdict::Good(what)
+    } else {
+        Verdict::Bad(what)
+    })
+}
+
+fn min_speed(imp: &str, threshold: f64) -> Result<Verdict> {
+    let r = measure::render(imp, &measure::full_image_set(), false)?;
+    let speed = r.pixels() as f64 / r.render_s.max(1e-9);
+    let what = format!("{imp}: {speed:.0} pixels/s, threshold {threshold:.0}");
+    Ok(if speed >= threshold {
+        Verdict::Good(what)
+    } else {
+        Verdict::Bad(what)
+    })
+}
+
+/// Run `harness check`: print the verdict's line and exit with its code.
+pub fn run(args: CheckArgs) -> Result<ExitCode> {
+    let verdict = decide(&args);
+    println!("{}", verdict.line());
+    Ok(ExitCode::from(verdict.exit_code()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exit_codes_follow_git_bisect() {
+        assert_eq!(Verdict::Good("x".into()).exit_code(), 0);
+        assert_eq!(Verdict::Bad("x".into()).exit_code(), 1);
+        assert_eq!(Verdict::Undecidable("x".into()).exit_code(), 125);
+        assert_eq!(Verdict::Undecidable("no GPU".into()).line(), "skip: no GPU");
+    }
+
+    #[test]
+    fn numbers_are_checked() {
+        assert!(parse_number("t", "1e-3").is_ok());
+        assert!(parse_number("t", "-1").is_err());
+        assert!(parse_number("t", "fast").is_err());
+        assert!(parse_number("t", "NaN").is_err());
+    }
+}
