@@ -4,6 +4,7 @@ pub mod check;
 pub mod diff;
 pub mod jack;
 pub mod localize;
+pub mod nightly;
 pub mod render;
 pub mod selftest;
 pub mod vectors;
