@@ -1,0 +1,31 @@
+//! The Jack sources of the raymarcher, embedded in the crate, and their
+//! compilation to a loaded VM [`Program`].
+
+use crate::JackError;
+use hack_vm::Program;
+use jack_compiler::Profile;
+use std::sync::Arc;
+
+/// Every class of the raymarcher as (file name, source), in file name order
+/// (the order `harness jack run impls/jack/raymarcher` loads them).
+pub const SOURCES: [(&str, &str); 8] = [
+    ("Camera.jack", include_str!("../raymarcher/Camera.jack")),
+    ("Float316.jack", include_str!("../raymarcher/Float316.jack")),
+    ("Image.jack", include_str!("../raymarcher/Image.jack")),
+    ("Main.jack", include_str!("../raymarcher/Main.jack")),
+    ("March.jack", include_str!("../raymarcher/March.jack")),
+    ("Scene.jack", include_str!("../raymarcher/Scene.jack")),
+    ("Shade.jack", include_str!("../raymarcher/Shade.jack")),
+    ("Vec.jack", include_str!("../raymarcher/Vec.jack")),
+];
+
+/// Compile the embedded sources under the compiler profile `profile` and
+/// load the VM code.
+pub fn program(profile: Profile) -> Result<Arc<Program>, JackError> {
+    let classes = jack_compiler::compile_sources(&SOURCES, profile)?;
+    let vm: Vec<(String, String)> = classes
+        .into_iter()
+        .map(|c| (format!("{}.vm", c.class_name), c.code))
+        .collect();
+    Ok(Program::from_sources(&vm)?)
+}
