@@ -57,3 +57,36 @@ fn pixels_outside_the_image_are_refused() {
     let err = jack().pixel(512, 0).unwrap_err();
     assert!(err.to_string().contains("outside the 512x256 image"), "{err}");
 }
+
+/// The whole image through the entry points (about 20 billion VM
+/// instructions: a minute or more on two cores, so the nightly job runs it:
+/// `cargo test --release -p jack -- --ignored`).
+#[test]
+#[ignore = "full image: nightly"]
+fn the_whole_image_matches_the_reference() {
+    let render = jack().render().unwrap();
+    let differing: Vec<(usize, usize)> = render
+        .pixels
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (i % WIDTH, i / WIDTH, p.outcome.value().map(|s| s.white)))
+        .filter(|&(x, y, w)| w != Some(reference_white(x, y)))
+        .map(|(x, y, _)| (x, y))
+        .collect();
+    assert!(differing.is_empty(), "{} pixels differ, first {:?}", differing.len(), differing.first());
+}
+
+/// `Main.main` run unattended (SPACE scripted), read from screen memory:
+/// the slow path of `harness jack run impls/jack/raymarcher --keys SPACE`.
+#[test]
+#[ignore = "full program run: nightly"]
+fn the_whole_program_draws_the_reference() {
+    let screen = jack::run_main(Profile::Desktop, 200_000_000_000)
+        .unwrap()
+        .value()
+        .expect("Main.main returns");
+    for (i, &w) in screen.white.iter().enumerate() {
+        let (x, y) = (i % WIDTH, i / WIDTH);
+        assert_eq!(w, reference_white(x, y), "pixel ({x},{y})");
+    }
+}

@@ -124,3 +124,13 @@ fn operations_are_counted_and_a_hang_stops_at_the_budget() {
     assert_eq!(hang.outcome, Outcome::Hang);
     assert!(hang.instructions >= 10_000);
 }
+
+#[test]
+fn the_web_profile_rounds_a_negative_halving_down() {
+    // A non-normalised small operand with a negative mantissa: halving -3
+    // gives -1 with the desktop's truncating Math.divide, -2 on the web IDE.
+    let args = [ONE, f(0, 126, -3)];
+    let web = Raymarcher::new(Profile::Web, Budgets::default()).unwrap();
+    assert_eq!(jack().op(Op::Add, &args).unwrap().outcome, num(f(0, 127, 8191)));
+    assert_eq!(web.op(Op::Add, &args).unwrap().outcome, num(f(0, 127, 8190)));
+}
