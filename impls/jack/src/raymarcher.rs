@@ -10,7 +10,7 @@
 use crate::{sources, JackError};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{Op, OpValue, Outcome, F316};
-use hack_vm::{Config, Exit, FnId, Machine, Profile, Program, Ram, Watcher};
+use hack_vm::{Config, Exit, Machine, Profile, Program, Ram, Watcher};
 use rayon::prelude::*;
 use std::sync::Arc;
 

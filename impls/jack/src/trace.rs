@@ -95,18 +95,12 @@ impl Raymarcher {
         root: String,
     ) -> Result<(Outcome<i16>, Vec<TraceRecord>), JackError> {
         let program = std::sync::Arc::clone(machine.program());
-        let id = program
-            .function_id(name)
-            .ok_or_else(|| JackError::MissingFunction(name.to_string()))?;
         let watch = vec![true; program.functions().len()];
         let mut recorder = Recorder::new(&program, root);
-        // The emulator reports the calls the program makes; the host's call
-        // of the entry function is recorded here.
-        recorder.on_call(&program, id, args, machine.ram());
         let exit = machine.call_watched(name, args, Some(budget), &watch, &mut recorder)?;
         let outcome = outcome_of(exit, || format!("{name}{args:?}"))?;
         match outcome {
-            Outcome::Value(v) => recorder.on_return(&program, id, v, machine.ram()),
+            Outcome::Value(_) => {}
             Outcome::SysError(c) => recorder.close_all(Outcome::SysError(c)),
             Outcome::Hang => recorder.close_all(Outcome::Hang),
             Outcome::OutOfDomain => recorder.close_all(Outcome::OutOfDomain),
