@@ -43,11 +43,16 @@ fn cpu_seconds() -> Option<f64> {
 
 fn stats(counts: &[u64]) -> (f64, u64) {
     let sum: u64 = counts.iter().sum();
-    (sum as f64 / counts.len() as f64, counts.iter().copied().max().unwrap_or(0))
+    (
+        sum as f64 / counts.len() as f64,
+        counts.iter().copied().max().unwrap_or(0),
+    )
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let map_path = std::env::args().nth(1).unwrap_or_else(|| "jack-cost-map.png".to_string());
+    let map_path = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "jack-cost-map.png".to_string());
     let jack = Raymarcher::new(Profile::Desktop, Budgets::default())?;
     let mut gen = Gen(0x5eed_f316);
 
@@ -60,12 +65,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let mut a = gen.value(signed);
             if op == Op::Mod2 {
                 // An integral operand: floor of a value below 2^8.
-                a = jack.op(Op::Floor, &[a])?.outcome.value().and_then(|v| match v {
-                    common::OpValue::Num(n) => Some(n),
-                    common::OpValue::Bool(_) => None,
-                }).unwrap_or(F316::ZERO);
+                a = jack
+                    .op(Op::Floor, &[a])?
+                    .outcome
+                    .value()
+                    .and_then(|v| match v {
+                        common::OpValue::Num(n) => Some(n),
+                        common::OpValue::Bool(_) => None,
+                    })
+                    .unwrap_or(F316::ZERO);
             }
-            let args: Vec<F316> = if op.arity() == 2 { vec![a, gen.value(true)] } else { vec![a] };
+            let args: Vec<F316> = if op.arity() == 2 {
+                vec![a, gen.value(true)]
+            } else {
+                vec![a]
+            };
             counts.push(jack.op(op, &args)?.instructions);
         }
         let (mean, max) = stats(&counts);
@@ -74,7 +88,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let mut sdf_counts = Vec::new();
     for _ in 0..2000 {
-        let c = |g: &mut Gen| F316::from_f64_truncating((g.next() % 8000) as f64 / 1000.0 - 4.0).unwrap_or(F316::ZERO);
+        let c = |g: &mut Gen| {
+            F316::from_f64_truncating((g.next() % 8000) as f64 / 1000.0 - 4.0).unwrap_or(F316::ZERO)
+        };
         let p = [c(&mut gen), c(&mut gen), c(&mut gen)];
         sdf_counts.push(jack.sdf(p)?.instructions);
     }
@@ -100,7 +116,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             cpu / threads as f64
         );
     }
-    let reference = concat!(env!("CARGO_MANIFEST_DIR"), "/../../vectors/images/seed-float316-512x256.png");
+    let reference = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../vectors/images/seed-float316-512x256.png"
+    );
     let reference = image::open(reference)?.to_luma8();
     let differing = render
         .pixels
@@ -128,7 +147,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         },
         Budgets::default(),
     )?;
-    let sample: Vec<(usize, usize)> = (0..HEIGHT).step_by(8).flat_map(|y| (0..WIDTH).step_by(8).map(move |x| (x, y))).collect();
+    let sample: Vec<(usize, usize)> = (0..HEIGHT)
+        .step_by(8)
+        .flat_map(|y| (0..WIDTH).step_by(8).map(move |x| (x, y)))
+        .collect();
     let profile = profiling.profile_pixels(&sample)?;
     let total: u64 = profile.iter().map(|(_, n)| n).sum();
     println!("\n| Jack function (exclusive) | share of a pixel's instructions |");

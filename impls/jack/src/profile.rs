@@ -10,22 +10,28 @@ impl Raymarcher {
     /// `pixels`, largest first. Needs a raymarcher made with
     /// `Config::profile_functions` (see [`Raymarcher::with_config`]);
     /// otherwise the list is empty.
-    pub fn profile_pixels(&self, pixels: &[(usize, usize)]) -> Result<Vec<(String, u64)>, JackError> {
+    pub fn profile_pixels(
+        &self,
+        pixels: &[(usize, usize)],
+    ) -> Result<Vec<(String, u64)>, JackError> {
         let base: HashMap<String, u64> = self.machine().function_profile().into_iter().collect();
         let totals = pixels
             .par_iter()
             .map(|&(x, y)| {
                 let args = Raymarcher::pixel_args(x, y)?;
                 let mut m = self.machine();
-                self.run_call(&mut m, "Image.pixel", &args, self.budgets().pixel, None)?;
+                self.run_call(&mut m, "Image.pixel", &args, self.budgets().pixel)?;
                 Ok(m.function_profile())
             })
-            .try_fold(HashMap::new, |mut acc: HashMap<String, u64>, p: Result<_, JackError>| {
-                for (f, n) in p? {
-                    *acc.entry(f).or_default() += n;
-                }
-                Ok::<_, JackError>(acc)
-            })
+            .try_fold(
+                HashMap::new,
+                |mut acc: HashMap<String, u64>, p: Result<_, JackError>| {
+                    for (f, n) in p? {
+                        *acc.entry(f).or_default() += n;
+                    }
+                    Ok::<_, JackError>(acc)
+                },
+            )
             .try_reduce(HashMap::new, |mut a, b| {
                 for (f, n) in b {
                     *a.entry(f).or_default() += n;

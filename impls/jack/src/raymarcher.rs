@@ -10,7 +10,7 @@
 use crate::{sources, JackError};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{Op, OpValue, Outcome, F316};
-use hack_vm::{Config, Exit, Machine, Profile, Program, Ram, Watcher};
+use hack_vm::{Config, Exit, Machine, Profile, Program, Ram};
 use rayon::prelude::*;
 use std::sync::Arc;
 
@@ -157,10 +157,16 @@ pub(crate) fn and_then<T, U>(
 
 /// The outcome of a call from its [`Exit`], or an error for an end that is
 /// no Float316 outcome.
-pub(crate) fn outcome_of(exit: Exit, what: impl FnOnce() -> String) -> Result<Outcome<i16>, JackError> {
+pub(crate) fn outcome_of(
+    exit: Exit,
+    what: impl FnOnce() -> String,
+) -> Result<Outcome<i16>, JackError> {
     match exit {
         Exit::Returned(v) => Ok(Outcome::Value(v)),
-        Exit::SysError { code: OUT_OF_DOMAIN_CODE, .. } => Ok(Outcome::OutOfDomain),
+        Exit::SysError {
+            code: OUT_OF_DOMAIN_CODE,
+            ..
+        } => Ok(Outcome::OutOfDomain),
         Exit::SysError { code, .. } => Ok(Outcome::SysError(code)),
         Exit::Budget { .. } | Exit::Hang { .. } => Ok(Outcome::Hang),
         exit @ (Exit::Halted | Exit::RuntimeError { .. } | Exit::BlockedForever { .. }) => {
@@ -187,15 +193,15 @@ impl Raymarcher {
     /// [`Raymarcher::new`] with a full machine configuration (for example
     /// with per-function instruction profiling).
     pub fn with_config(config: Config, budgets: Budgets) -> Result<Raymarcher, JackError> {
-        let compiler_profile = match config.profile {
-            Profile::Desktop => jack_compiler::Profile::Desktop,
-            Profile::Web => jack_compiler::Profile::Web,
-        };
-        let program = sources::program(compiler_profile)?;
+        let program = sources::program(config.profile)?;
         Raymarcher::from_program(program, config, budgets)
     }
 
-    fn from_program(program: Arc<Program>, config: Config, budgets: Budgets) -> Result<Raymarcher, JackError> {
+    fn from_program(
+        program: Arc<Program>,
+        config: Config,
+        budgets: Budgets,
+    ) -> Result<Raymarcher, JackError> {
         let mut machine = Machine::new(program, config);
         let mut call = |name: &str| -> Result<i16, JackError> {
             let exit = machine.call(name, &[], Some(10_000_000))?;
@@ -241,28 +247,28 @@ impl Raymarcher {
         self.snapshot.clone()
     }
 
-    /// Run `name(args)` on `machine`, watched by `watcher` when given, and
-    /// count its instructions.
+    /// Run `name(args)` on `machine` and count its instructions.
     pub(crate) fn run_call(
         &self,
         machine: &mut Machine,
         name: &str,
         args: &[i16],
         budget: u64,
-        watch: Option<(&[bool], &mut dyn Watcher)>,
     ) -> Result<(Outcome<i16>, u64), JackError> {
         let start = machine.steps();
-        let exit = match watch {
-            Some((w, watcher)) => machine.call_watched(name, args, Some(budget), w, watcher)?,
-            None => machine.call(name, args, Some(budget))?,
-        };
+        let exit = machine.call(name, args, Some(budget))?;
         let outcome = outcome_of(exit, || format!("{name}{args:?}"))?;
         Ok((outcome, machine.steps() - start))
     }
 
     /// Prepare `machine` for `op` on `args` and return the function name and
     /// its arguments.
-    pub(crate) fn prepare_op(&self, machine: &mut Machine, op: Op, args: &[F316]) -> Result<(&'static str, Vec<i16>, OpShape), JackError> {
+    pub(crate) fn prepare_op(
+        &self,
+        machine: &mut Machine,
+        op: Op,
+        args: &[F316],
+    ) -> Result<(&'static str, Vec<i16>, OpShape), JackError> {
         if args.len() != op.arity() {
             return Err(JackError::BadArgument(format!(
                 "{op} takes {} operand(s), got {}",
@@ -298,7 +304,7 @@ impl Raymarcher {
     pub fn op(&self, op: Op, args: &[F316]) -> Result<Counted<OpValue>, JackError> {
         let mut m = self.machine();
         let (name, call_args, shape) = self.prepare_op(&mut m, op, args)?;
-        let (outcome, instructions) = self.run_call(&mut m, name, &call_args, self.budgets.op, None)?;
+        let (outcome, instructions) = self.run_call(&mut m, name, &call_args, self.budgets.op)?;
         Ok(Counted {
             outcome: outcome.map(|ret| self.op_value(&m, shape, ret)),
             instructions,
@@ -335,9 +341,13 @@ impl Raymarcher {
     pub fn sdf(&self, p: [F316; 3]) -> Result<Counted<(F316, F316)>, JackError> {
         let mut m = self.machine();
         let arg = self.prepare_sdf(&mut m, p);
-        let (outcome, instructions) = self.run_call(&mut m, "Scene.eval", &[arg], self.budgets.sdf, None)?;
+        let (outcome, instructions) =
+            self.run_call(&mut m, "Scene.eval", &[arg], self.budgets.sdf)?;
         let outcome = and_then(outcome, |_| self.sdf_value(&mut m))?;
-        Ok(Counted { outcome, instructions })
+        Ok(Counted {
+            outcome,
+            instructions,
+        })
     }
 
     /// Check pixel coordinates and convert them to Jack words.
@@ -365,14 +375,19 @@ impl Raymarcher {
     pub fn pixel(&self, x: usize, y: usize) -> Result<Counted<Shaded>, JackError> {
         let args = Raymarcher::pixel_args(x, y)?;
         let mut m = self.machine();
-        let (outcome, instructions) = self.run_call(&mut m, "Image.pixel", &args, self.budgets.pixel, None)?;
+        let (outcome, instructions) =
+            self.run_call(&mut m, "Image.pixel", &args, self.budgets.pixel)?;
         let outcome = and_then(outcome, |w| self.shaded(&mut m, w))?;
-        Ok(Counted { outcome, instructions })
+        Ok(Counted {
+            outcome,
+            instructions,
+        })
     }
 
     /// The rows `rows` of the image, pixels in parallel.
     pub fn render_rows(&self, rows: std::ops::Range<usize>) -> Result<Render, JackError> {
-        let coords: Vec<(usize, usize)> = rows.flat_map(|y| (0..WIDTH).map(move |x| (x, y))).collect();
+        let coords: Vec<(usize, usize)> =
+            rows.flat_map(|y| (0..WIDTH).map(move |x| (x, y))).collect();
         let pixels = coords
             .par_iter()
             .map(|&(x, y)| self.pixel(x, y))

@@ -23,19 +23,26 @@ pub struct ScreenImage {
 
 /// Rows `rows` of the screen (black = a 1 bit).
 pub fn read_screen(ram: &Ram, rows: Range<usize>) -> Vec<bool> {
-    rows.flat_map(|y| (0..WIDTH).map(move |x| !ram.pixel(x, y))).collect()
+    rows.flat_map(|y| (0..WIDTH).map(move |x| !ram.pixel(x, y)))
+        .collect()
 }
 
 impl Raymarcher {
     /// Draw the rows `rows` with `Image.render(y0, y1)`: the image loop with
     /// its Float316 counters, a cropped version of `Main.main`.
-    pub fn render_band_on_screen(&self, rows: Range<usize>, budget: u64) -> Result<Outcome<ScreenImage>, JackError> {
+    pub fn render_band_on_screen(
+        &self,
+        rows: Range<usize>,
+        budget: u64,
+    ) -> Result<Outcome<ScreenImage>, JackError> {
         if rows.start > rows.end || rows.end > HEIGHT {
-            return Err(JackError::BadArgument(format!("rows {rows:?} are outside 0..{HEIGHT}")));
+            return Err(JackError::BadArgument(format!(
+                "rows {rows:?} are outside 0..{HEIGHT}"
+            )));
         }
         let mut m = self.machine();
         let args = [rows.start as i16, rows.end as i16];
-        let (outcome, instructions) = self.run_call(&mut m, "Image.render", &args, budget, None)?;
+        let (outcome, instructions) = self.run_call(&mut m, "Image.render", &args, budget)?;
         Ok(outcome.map(|_| ScreenImage {
             white: read_screen(m.ram(), rows.clone()),
             rows,
@@ -46,12 +53,11 @@ impl Raymarcher {
 
 /// Run the whole program as a user would: `Main.main` from the start,
 /// SPACE pressed, until it returns (or `max_instructions` run out: a hang).
-pub fn run_main(profile: Profile, max_instructions: u64) -> Result<Outcome<ScreenImage>, JackError> {
-    let compiler_profile = match profile {
-        Profile::Desktop => jack_compiler::Profile::Desktop,
-        Profile::Web => jack_compiler::Profile::Web,
-    };
-    let program = sources::program(compiler_profile)?;
+pub fn run_main(
+    profile: Profile,
+    max_instructions: u64,
+) -> Result<Outcome<ScreenImage>, JackError> {
+    let program = sources::program(profile)?;
     let keys = KeyScript::parse("SPACE", KeyScript::DEFAULT_HOLD).expect("SPACE is a key name");
     let mut m = Machine::new(
         program,

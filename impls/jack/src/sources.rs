@@ -2,8 +2,7 @@
 //! compilation to a loaded VM [`Program`].
 
 use crate::JackError;
-use hack_vm::Program;
-use jack_compiler::Profile;
+use hack_vm::{Profile, Program};
 use std::sync::Arc;
 
 /// Every class of the raymarcher as (file name, source), in file name order
@@ -19,10 +18,14 @@ pub const SOURCES: [(&str, &str); 8] = [
     ("Vec.jack", include_str!("../raymarcher/Vec.jack")),
 ];
 
-/// Compile the embedded sources under the compiler profile `profile` and
-/// load the VM code.
+/// Compile the embedded sources with the compiler of the official tool
+/// `profile` names (desktop or web IDE) and load the VM code.
 pub fn program(profile: Profile) -> Result<Arc<Program>, JackError> {
-    let classes = jack_compiler::compile_sources(&SOURCES, profile)?;
+    let compiler = match profile {
+        Profile::Desktop => jack_compiler::Profile::Desktop,
+        Profile::Web => jack_compiler::Profile::Web,
+    };
+    let classes = jack_compiler::compile_sources(&SOURCES, compiler)?;
     let vm: Vec<(String, String)> = classes
         .into_iter()
         .map(|c| (format!("{}.vm", c.class_name), c.code))

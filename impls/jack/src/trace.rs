@@ -54,7 +54,11 @@ impl Watcher for Recorder {
     fn on_call(&mut self, program: &Program, function: FnId, args: &[i16], ram: &Ram) {
         let name = program.function_name(function).to_string();
         let op = self.ops[function as usize].map(|(op, shape)| {
-            let operands: Vec<F316> = args.iter().take(op.arity()).map(|&a| read_f316(ram, a)).collect();
+            let operands: Vec<F316> = args
+                .iter()
+                .take(op.arity())
+                .map(|&a| read_f316(ram, a))
+                .collect();
             let result_addr = match shape {
                 OpShape::Binary => args[2],
                 OpShape::Unary => args[1],
@@ -74,7 +78,10 @@ impl Watcher for Recorder {
 
     fn on_return(&mut self, _program: &Program, _function: FnId, value: i16, ram: &Ram) {
         self.path.pop();
-        if let Some(Open { op: Some((index, shape, addr)) }) = self.open.pop() {
+        if let Some(Open {
+            op: Some((index, shape, addr)),
+        }) = self.open.pop()
+        {
             self.records[index].result = Outcome::Value(match shape {
                 OpShape::Compare => OpValue::Bool(value != 0),
                 _ => OpValue::Num(read_f316(ram, addr)),
@@ -114,7 +121,9 @@ impl Raymarcher {
         let mut m = self.machine();
         let (name, call_args, _) = self.prepare_op(&mut m, op, args)?;
         let root = format!("{op}");
-        Ok(self.traced(&mut m, name, &call_args, self.budgets().op, root)?.1)
+        Ok(self
+            .traced(&mut m, name, &call_args, self.budgets().op, root)?
+            .1)
     }
 
     /// The op trace of one SDF evaluation at `p`.
@@ -122,7 +131,9 @@ impl Raymarcher {
         let mut m = self.machine();
         let arg = self.prepare_sdf(&mut m, p);
         let root = format!("sdf({:?},{:?},{:?})", p[0], p[1], p[2]);
-        Ok(self.traced(&mut m, "Scene.eval", &[arg], self.budgets().sdf, root)?.1)
+        Ok(self
+            .traced(&mut m, "Scene.eval", &[arg], self.budgets().sdf, root)?
+            .1)
     }
 
     /// The op trace of pixel (x, y), from its screen coordinates to its
@@ -131,6 +142,8 @@ impl Raymarcher {
         let args = Raymarcher::pixel_args(x, y)?;
         let mut m = self.machine();
         let root = format!("pixel({x},{y})");
-        Ok(self.traced(&mut m, "Image.pixel", &args, self.budgets().pixel, root)?.1)
+        Ok(self
+            .traced(&mut m, "Image.pixel", &args, self.budgets().pixel, root)?
+            .1)
     }
 }

@@ -8,21 +8,30 @@ use std::sync::OnceLock;
 
 fn jack() -> &'static Raymarcher {
     static R: OnceLock<Raymarcher> = OnceLock::new();
-    R.get_or_init(|| Raymarcher::new(Profile::Desktop, Budgets::default()).expect("the raymarcher builds"))
+    R.get_or_init(|| {
+        Raymarcher::new(Profile::Desktop, Budgets::default()).expect("the raymarcher builds")
+    })
 }
 
 fn reference_white(x: usize, y: usize) -> bool {
     static IMG: OnceLock<image::GrayImage> = OnceLock::new();
     let img = IMG.get_or_init(|| {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../vectors/images/seed-float316-512x256.png");
-        image::open(path).expect("the committed reference image").to_luma8()
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../vectors/images/seed-float316-512x256.png"
+        );
+        image::open(path)
+            .expect("the committed reference image")
+            .to_luma8()
     });
     img.get_pixel(x as u32, y as u32)[0] == 255
 }
 
 #[test]
 fn a_spread_of_pixels_matches_the_reference_image() {
-    let pixels: Vec<(usize, usize)> = (0..600).map(|i| ((i * 97 + 13) % 512, (i * 53 + 7) % 256)).collect();
+    let pixels: Vec<(usize, usize)> = (0..600)
+        .map(|i| ((i * 97 + 13) % 512, (i * 53 + 7) % 256))
+        .collect();
     let differing: Vec<_> = pixels
         .iter()
         .filter(|&&(x, y)| {
@@ -31,7 +40,10 @@ fn a_spread_of_pixels_matches_the_reference_image() {
             white != reference_white(x, y)
         })
         .collect();
-    assert!(differing.is_empty(), "pixels differing from the reference: {differing:?}");
+    assert!(
+        differing.is_empty(),
+        "pixels differing from the reference: {differing:?}"
+    );
 }
 
 #[test]
@@ -44,7 +56,11 @@ fn the_image_loop_on_screen_equals_the_entry_point() {
         .value()
         .expect("the band renders");
     let fast = jack().render_rows(rows.clone()).unwrap();
-    let fast_white: Vec<bool> = fast.pixels.iter().map(|p| p.outcome.value().unwrap().white).collect();
+    let fast_white: Vec<bool> = fast
+        .pixels
+        .iter()
+        .map(|p| p.outcome.value().unwrap().white)
+        .collect();
     assert_eq!(screen.white, fast_white);
     for (i, &w) in screen.white.iter().enumerate() {
         let (x, y) = (i % WIDTH, rows.start + i / WIDTH);
@@ -55,7 +71,10 @@ fn the_image_loop_on_screen_equals_the_entry_point() {
 #[test]
 fn pixels_outside_the_image_are_refused() {
     let err = jack().pixel(512, 0).unwrap_err();
-    assert!(err.to_string().contains("outside the 512x256 image"), "{err}");
+    assert!(
+        err.to_string().contains("outside the 512x256 image"),
+        "{err}"
+    );
 }
 
 /// The whole image through the entry points (about 20 billion VM
@@ -73,7 +92,12 @@ fn the_whole_image_matches_the_reference() {
         .filter(|&(x, y, w)| w != Some(reference_white(x, y)))
         .map(|(x, y, _)| (x, y))
         .collect();
-    assert!(differing.is_empty(), "{} pixels differ, first {:?}", differing.len(), differing.first());
+    assert!(
+        differing.is_empty(),
+        "{} pixels differ, first {:?}",
+        differing.len(),
+        differing.first()
+    );
 }
 
 /// `Main.main` run unattended (SPACE scripted), read from screen memory:

@@ -7,7 +7,9 @@ use std::sync::OnceLock;
 
 fn jack() -> &'static Raymarcher {
     static R: OnceLock<Raymarcher> = OnceLock::new();
-    R.get_or_init(|| Raymarcher::new(Profile::Desktop, Budgets::default()).expect("the raymarcher builds"))
+    R.get_or_init(|| {
+        Raymarcher::new(Profile::Desktop, Budgets::default()).expect("the raymarcher builds")
+    })
 }
 
 const fn f(s: i16, e: i16, m: i16) -> F316 {
@@ -45,11 +47,19 @@ fn hard_cases_agree_with_the_spec() {
         (Op::Add, vec![MINUS_ONE, ONE], num(ZERO)),
         (Op::Add, vec![f(1, 131, 13184), f(0, 131, 13184)], num(ZERO)),
         // Catastrophic cancellation: 1.0001220703125 - 1 = 2^-13.
-        (Op::Add, vec![f(0, 127, 8193), MINUS_ONE], num(f(0, 114, 8192))),
+        (
+            Op::Add,
+            vec![f(0, 127, 8193), MINUS_ONE],
+            num(f(0, 114, 8192)),
+        ),
         // The small operand's bits are shifted out entirely.
         (Op::Add, vec![ONE, f(0, 100, 8192)], num(ONE)),
         // A carry: 1.5 + 1.5 = 3.
-        (Op::Add, vec![f(0, 127, 12288), f(0, 127, 12288)], num(f(0, 128, 12288))),
+        (
+            Op::Add,
+            vec![f(0, 127, 12288), f(0, 127, 12288)],
+            num(f(0, 128, 12288)),
+        ),
         // The difference's mantissa reaches 0 without equal operands: a hang.
         (Op::Add, vec![TWO, f(1, 127, 16384)], Outcome::Hang),
         (Op::Sub, vec![ONE, ONE], num(ZERO)),
@@ -64,7 +74,11 @@ fn hard_cases_agree_with_the_spec() {
         (Op::Div, vec![ZERO, ZERO], num(ZERO)),
         (Op::Div, vec![NEG_ZERO, ONE], num(NEG_ZERO)),
         (Op::Div, vec![ONE, TWO], num(HALF)),
-        (Op::Div, vec![f(0, 129, 10240), MINUS_ONE], num(f(1, 129, 10240))),
+        (
+            Op::Div,
+            vec![f(0, 129, 10240), MINUS_ONE],
+            num(f(1, 129, 10240)),
+        ),
         // A non-canonical dividend with m = 0: the quotient stays 0.
         (Op::Div, vec![f(0, 130, 0), ONE], Outcome::Hang),
         // sqrt: negatives (and -0) are Sys.error(2), sqrt(0) is (0,61,0).
@@ -107,7 +121,10 @@ fn hard_cases_agree_with_the_spec() {
 #[test]
 fn wrong_operand_count_is_an_error() {
     let err = jack().op(Op::Add, &[ONE]).unwrap_err();
-    assert!(err.to_string().contains("add takes 2 operand(s), got 1"), "{err}");
+    assert!(
+        err.to_string().contains("add takes 2 operand(s), got 1"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -119,7 +136,11 @@ fn operations_are_counted_and_a_hang_stops_at_the_budget() {
     let jack = Raymarcher::new(Profile::Desktop, small).unwrap();
     let add = jack.op(Op::Add, &[ONE, HALF]).unwrap();
     assert_eq!(add.outcome, num(f(0, 127, 12288)));
-    assert!((20..1_000).contains(&add.instructions), "{}", add.instructions);
+    assert!(
+        (20..1_000).contains(&add.instructions),
+        "{}",
+        add.instructions
+    );
     let hang = jack.op(Op::Div, &[f(0, 130, 0), ONE]).unwrap();
     assert_eq!(hang.outcome, Outcome::Hang);
     assert!(hang.instructions >= 10_000);
@@ -131,6 +152,12 @@ fn the_web_profile_rounds_a_negative_halving_down() {
     // gives -1 with the desktop's truncating Math.divide, -2 on the web IDE.
     let args = [ONE, f(0, 126, -3)];
     let web = Raymarcher::new(Profile::Web, Budgets::default()).unwrap();
-    assert_eq!(jack().op(Op::Add, &args).unwrap().outcome, num(f(0, 127, 8191)));
-    assert_eq!(web.op(Op::Add, &args).unwrap().outcome, num(f(0, 127, 8190)));
+    assert_eq!(
+        jack().op(Op::Add, &args).unwrap().outcome,
+        num(f(0, 127, 8191))
+    );
+    assert_eq!(
+        web.op(Op::Add, &args).unwrap().outcome,
+        num(f(0, 127, 8190))
+    );
 }

@@ -43,8 +43,16 @@ impl Gen {
     fn operand(&mut self) -> F316 {
         match self.next() % 10 {
             0 => F316::new(self.pick(0, 1), 0, 0),
-            1 => F316::new(self.pick(0, 1), self.pick(-200, 400), self.pick(-32768, 32767)),
-            2 => F316::new(self.pick(0, 1), self.pick(127, 141), self.pick(8192, 16383) & !127),
+            1 => F316::new(
+                self.pick(0, 1),
+                self.pick(-200, 400),
+                self.pick(-32768, 32767),
+            ),
+            2 => F316::new(
+                self.pick(0, 1),
+                self.pick(127, 141),
+                self.pick(8192, 16383) & !127,
+            ),
             _ => F316::new(self.pick(0, 1), self.pick(110, 145), self.pick(8192, 16383)),
         }
     }
@@ -64,7 +72,12 @@ fn operations_agree_on_generated_operands() {
             }
         }
     }
-    assert!(failures.is_empty(), "{} differences:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} differences:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 #[test]
@@ -73,11 +86,16 @@ fn operation_traces_agree() {
     for op in [Op::Sub, Op::Floor, Op::Sqrt, Op::InvSqrt] {
         for _ in 0..50 {
             let args: Vec<F316> = (0..op.arity()).map(|_| gen.operand()).collect();
-            let want = reference::trace_op(op, &args, Arith::default()).unwrap().records;
+            let want = reference::trace_op(op, &args, Arith::default())
+                .unwrap()
+                .records;
             let got = jack().trace_op(op, &args).unwrap();
             assert_eq!(got.len(), want.len(), "{op}{args:?}");
             for (g, w) in got.iter().zip(&want) {
-                assert!(g.same_computation(w), "{op}{args:?}: jack {g} vs ref-f316 {w}");
+                assert!(
+                    g.same_computation(w),
+                    "{op}{args:?}: jack {g} vs ref-f316 {w}"
+                );
             }
         }
     }
@@ -86,10 +104,13 @@ fn operation_traces_agree() {
 #[test]
 fn sdf_queries_agree() {
     let mut gen = Gen(0x5df);
-    let mut coord = |g: &mut Gen| F316::from_f64_truncating(g.pick(-4000, 4000) as f64 / 1000.0).unwrap();
+    let coord =
+        |g: &mut Gen| F316::from_f64_truncating(g.pick(-4000, 4000) as f64 / 1000.0).unwrap();
     for _ in 0..300 {
         let p = [coord(&mut gen), coord(&mut gen), coord(&mut gen)];
-        let want = seed().sdf(p).map(|v| (v.sd.triple.unwrap(), v.col.triple.unwrap()));
+        let want = seed()
+            .sdf(p)
+            .map(|v| (v.sd.triple.unwrap(), v.col.triple.unwrap()));
         let got = jack().sdf(p).unwrap().outcome;
         assert_eq!(got, want, "sdf at {p:?}");
     }
@@ -99,8 +120,14 @@ fn sdf_queries_agree() {
 fn pixels_agree() {
     for i in 0..150 {
         let (x, y) = ((i * 173 + 5) % 512, (i * 71 + 3) % 256);
-        let want = seed().pixel(x, y).map(|p| (p.value.triple.unwrap(), p.white));
-        let got = jack().pixel(x, y).unwrap().outcome.map(|p| (p.value, p.white));
+        let want = seed()
+            .pixel(x, y)
+            .map(|p| (p.value.triple.unwrap(), p.white));
+        let got = jack()
+            .pixel(x, y)
+            .unwrap()
+            .outcome
+            .map(|p| (p.value, p.white));
         assert_eq!(got, want, "pixel ({x},{y})");
     }
 }
@@ -111,9 +138,18 @@ fn pixel_traces_agree_op_by_op() {
     for (x, y) in [(10, 10), (160, 120), (130, 150), (330, 150), (300, 230)] {
         let want = seed().trace_pixel(x, y).unwrap().records;
         let got = jack().trace_pixel(x, y).unwrap();
-        let first = got.iter().zip(&want).position(|(g, w)| !g.same_computation(w));
-        assert_eq!(first, None, "pixel ({x},{y}): first difference at record {first:?}");
+        let first = got
+            .iter()
+            .zip(&want)
+            .position(|(g, w)| !g.same_computation(w));
+        assert_eq!(
+            first, None,
+            "pixel ({x},{y}): first difference at record {first:?}"
+        );
         assert_eq!(got.len(), want.len(), "pixel ({x},{y})");
     }
-    assert!(matches!(seed().trace_pixel(0, 0).unwrap().outcome, Outcome::Value(_)));
+    assert!(matches!(
+        seed().trace_pixel(0, 0).unwrap().outcome,
+        Outcome::Value(_)
+    ));
 }

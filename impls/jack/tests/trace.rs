@@ -7,19 +7,33 @@ use std::sync::OnceLock;
 
 fn jack() -> &'static Raymarcher {
     static R: OnceLock<Raymarcher> = OnceLock::new();
-    R.get_or_init(|| Raymarcher::new(Profile::Desktop, Budgets::default()).expect("the raymarcher builds"))
+    R.get_or_init(|| {
+        Raymarcher::new(Profile::Desktop, Budgets::default()).expect("the raymarcher builds")
+    })
 }
 
 #[test]
 fn sqrt_calls_div_add_halve_twice() {
-    let records = jack().trace_op(Op::Sqrt, &[F316::new(0, 129, 8192)]).unwrap();
+    let records = jack()
+        .trace_op(Op::Sqrt, &[F316::new(0, 129, 8192)])
+        .unwrap();
     let ops: Vec<Op> = records.iter().map(|r| r.op).collect();
     use Op::*;
     assert_eq!(ops, [Sqrt, Div, Add, Halve, Div, Add, Halve]);
-    assert_eq!(records[0].result, Outcome::Value(OpValue::Num(F316::new(0, 128, 8192))));
+    assert_eq!(
+        records[0].result,
+        Outcome::Value(OpValue::Num(F316::new(0, 128, 8192)))
+    );
     // The guess (0,128,8192) divides 4.0.
-    assert_eq!(records[1].args, [F316::new(0, 129, 8192), F316::new(0, 128, 8192)]);
-    assert!(records[1].path.last().is_some_and(|f| f == "Float316.sqrt"), "{:?}", records[1].path);
+    assert_eq!(
+        records[1].args,
+        [F316::new(0, 129, 8192), F316::new(0, 128, 8192)]
+    );
+    assert!(
+        records[1].path.last().is_some_and(|f| f == "Float316.sqrt"),
+        "{:?}",
+        records[1].path
+    );
 }
 
 #[test]
@@ -34,7 +48,9 @@ fn sub_records_the_add_of_the_negated_operand() {
 
 #[test]
 fn a_trap_fills_every_open_record() {
-    let records = jack().trace_op(Op::Sqrt, &[F316::new(1, 127, 8192)]).unwrap();
+    let records = jack()
+        .trace_op(Op::Sqrt, &[F316::new(1, 127, 8192)])
+        .unwrap();
     assert_eq!(records.len(), 1);
     assert_eq!(records[0].result, Outcome::SysError(2));
 }
@@ -62,7 +78,11 @@ fn an_sdf_trace_starts_with_the_floor() {
     let records = jack().trace_sdf(p).unwrap();
     assert_eq!(records[0].op, Op::Add);
     assert_eq!(records[0].args, [F316::ZERO, F316::ONE]);
-    assert!(records[0].path.iter().any(|f| f == "Scene.floorPlane"), "{:?}", records[0].path);
+    assert!(
+        records[0].path.iter().any(|f| f == "Scene.floorPlane"),
+        "{:?}",
+        records[0].path
+    );
     let sdf = jack().sdf(p).unwrap();
     assert!(matches!(sdf.outcome, Outcome::Value(_)));
 }
