@@ -8,7 +8,7 @@
 use anyhow::{bail, Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::Outcome;
-use reference::{PixelValue, RefImpl, Reference, Scene, Settings, Variant};
+use reference::{PixelValue, RefImpl, Reference, Scalar, Scene, Settings, Variant};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -16,7 +16,7 @@ use std::process::ExitCode;
 /// Arguments of `harness render`.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// Implementation: ref-f316, ref-f64, ref-f32.
+    /// Implementation: ref-f316, ref-f64, ref-f32, jack.
     #[arg(long = "impl", value_name = "IMPL")]
     pub implementation: String,
     /// Scene parameters (JSON); the seed scene when left out.
@@ -67,7 +67,40 @@ pub fn render_image(name: &str, scene: &Scene, settings: Settings) -> Result<Ren
             values: img.pixels,
         });
     }
-    bail!("unknown implementation `{name}` (expected ref-f316, ref-f64 or ref-f32)")
+    if name == "jack" {
+        return render_jack(scene, settings);
+    }
+    bail!("unknown implementation `{name}` (expected ref-f316, ref-f64, ref-f32 or jack)")
+}
+
+/// `jack`: the Jack program on the emulator, every pixel through its entry
+/// point `Image.pixel` from one initialised snapshot, in parallel. The Jack
+/// sources hold the seed scene and the spec's settings, nothing else.
+fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
+    if *scene != Scene::default() || settings != Settings::default() {
+        bail!("jack renders the seed scene of impls/jack/raymarcher only (no --scene, no --variant)");
+    }
+    let jack = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
+    let values: Vec<Outcome<PixelValue>> = jack
+        .render()?
+        .pixels
+        .into_iter()
+        .map(|p| {
+            p.outcome.map(|s| PixelValue {
+                value: Scalar {
+                    value: s.value.to_f64(),
+                    triple: Some(s.value),
+                },
+                white: s.white,
+            })
+        })
+        .collect();
+    // A trapped pixel is never drawn: white, as the reference counts it.
+    let white = values
+        .iter()
+        .map(|v| !matches!(v, Outcome::Value(p) if !p.white))
+        .collect();
+    Ok(Rendered { white, values })
 }
 
 /// Write `bytes` to `path` through a temporary file in the same directory
