@@ -78,7 +78,9 @@ pub fn render_image(name: &str, scene: &Scene, settings: Settings) -> Result<Ren
 /// sources hold the seed scene and the spec's settings, nothing else.
 fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
     if *scene != Scene::default() || settings != Settings::default() {
-        bail!("jack renders the seed scene of impls/jack/raymarcher only (no --scene, no --variant)");
+        bail!(
+            "jack renders the seed scene of impls/jack/raymarcher only (no --scene, no --variant)"
+        );
     }
     let jack = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
     let values: Vec<Outcome<PixelValue>> = jack

@@ -530,7 +530,9 @@ impl Machine {
                                 for k in (1..=n).rev() {
                                     scratch.push(rd!(regs.sp.wrapping_sub(k)));
                                 }
-                                watcher.on_call(program, callee as u32, scratch);
+                                regs.store(w);
+                                watcher.on_call(program, callee as u32, scratch, ram);
+                                w = words(ram);
                                 watched = true;
                             }
                         }

@@ -62,8 +62,10 @@ pub struct Config {
 
 /// Observer of calls to chosen functions (see [`Machine::run_watched`]).
 pub trait Watcher {
-    /// `function` is being called with `args` (VM order: `this` first).
-    fn on_call(&mut self, program: &Program, function: FnId, args: &[i16]);
+    /// `function` is being called with `args` (VM order: `this` first);
+    /// `ram` is the memory at the call, so objects the arguments point to
+    /// can be read before the callee changes them.
+    fn on_call(&mut self, program: &Program, function: FnId, args: &[i16], ram: &Ram);
     /// `function` returned `value`; `ram` is the memory after the return.
     fn on_return(&mut self, program: &Program, function: FnId, value: i16, ram: &Ram);
 }
@@ -261,7 +263,7 @@ impl Machine {
         let mut watched = false;
         if let Some((set, watcher)) = &mut watch {
             if set.get(callee as usize).copied().unwrap_or(false) {
-                watcher.on_call(&self.program, callee, args);
+                watcher.on_call(&self.program, callee, args, &self.ram);
                 watched = true;
             }
         }

@@ -459,7 +459,7 @@ fn load_time_checks_name_file_and_line() {
 struct Log(Vec<String>);
 
 impl Watcher for Log {
-    fn on_call(&mut self, program: &Program, function: FnId, args: &[i16]) {
+    fn on_call(&mut self, program: &Program, function: FnId, args: &[i16], _ram: &Ram) {
         self.0
             .push(format!("call {}{args:?}", program.function_name(function)));
     }
