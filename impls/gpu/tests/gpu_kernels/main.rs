@@ -5,4 +5,6 @@
 mod device;
 mod f316_image;
 mod f316_ops;
+mod f316_vs_reference;
+mod f32_errors;
 mod support;
