@@ -76,6 +76,14 @@ pub fn catalogue() -> Vec<Fault> {
             expect: Expect::Op(&[Op::Sqrt]),
         },
         Fault {
+            name: "jack-web-divide",
+            description: "emulator: the web IDE's Math.divide, which floors instead of truncating",
+            faulty: || Ok((impls::jack::open_web_profile()?, open(ImplName::RefF316)?)),
+            clean: || Ok((open(ImplName::Jack)?, open(ImplName::RefF316)?)),
+            set: "ops-small",
+            expect: Expect::Op(&[Op::Sqrt, Op::InvSqrt]),
+        },
+        Fault {
             name: "add-align-off-by-one",
             description: "reference: add shifts the smaller mantissa once too often",
             faulty: || ref_variant(Variant::AddAlignOffByOne),

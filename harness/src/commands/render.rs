@@ -16,7 +16,7 @@ use std::process::ExitCode;
 /// Arguments of `harness render`.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// Implementation: ref-f316, ref-f64, ref-f32, jack.
+    /// Implementation: ref-f316, ref-f64, ref-f32, jack, gpu-f316, gpu-f32.
     #[arg(long = "impl", value_name = "IMPL")]
     pub implementation: String,
     /// Scene parameters (JSON); the seed scene when left out.
@@ -67,21 +67,75 @@ pub fn render_image(name: &str, scene: &Scene, settings: Settings) -> Result<Ren
             values: img.pixels,
         });
     }
-    if name == "jack" {
-        return render_jack(scene, settings);
+    match name {
+        "jack" => render_jack(scene, settings),
+        "gpu-f316" | "gpu-f32" => render_gpu(name, scene, settings),
+        _ => bail!(
+            "unknown implementation `{name}` (expected ref-f316, ref-f64, ref-f32, jack, gpu-f316 or gpu-f32)"
+        ),
     }
-    bail!("unknown implementation `{name}` (expected ref-f316, ref-f64, ref-f32 or jack)")
+}
+
+/// Implementations whose sources hold the seed scene and the spec's
+/// settings only refuse anything else.
+fn require_seed_scene(name: &str, scene: &Scene, settings: Settings) -> Result<()> {
+    if *scene != Scene::default() || settings != Settings::default() {
+        bail!("{name} renders the seed scene with the spec's settings only (no --scene, no --variant)");
+    }
+    Ok(())
+}
+
+/// The render's white bits: a trapped pixel is never drawn, so it is white,
+/// as the reference counts it.
+fn white_bits(values: &[Outcome<PixelValue>]) -> Vec<bool> {
+    values
+        .iter()
+        .map(|v| !matches!(v, Outcome::Value(p) if !p.white))
+        .collect()
+}
+
+/// `gpu-f316` / `gpu-f32`: the WGSL kernels, one invocation per pixel.
+fn render_gpu(name: &str, scene: &Scene, settings: Settings) -> Result<Rendered> {
+    require_seed_scene(name, scene, settings)?;
+    let gpu = gpu::Gpu::new()?;
+    let values: Vec<Outcome<PixelValue>> = if name == "gpu-f316" {
+        gpu.render_f316()?
+            .into_iter()
+            .map(|o| {
+                o.map(|(v, white)| PixelValue {
+                    value: Scalar {
+                        value: v.to_f64(),
+                        triple: Some(v),
+                    },
+                    white,
+                })
+            })
+            .collect()
+    } else {
+        gpu.render_f32()?
+            .into_iter()
+            .map(|(v, white)| {
+                Outcome::Value(PixelValue {
+                    value: Scalar {
+                        value: f64::from(v),
+                        triple: None,
+                    },
+                    white,
+                })
+            })
+            .collect()
+    };
+    Ok(Rendered {
+        white: white_bits(&values),
+        values,
+    })
 }
 
 /// `jack`: the Jack program on the emulator, every pixel through its entry
 /// point `Image.pixel` from one initialised snapshot, in parallel. The Jack
 /// sources hold the seed scene and the spec's settings, nothing else.
 fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
-    if *scene != Scene::default() || settings != Settings::default() {
-        bail!(
-            "jack renders the seed scene of impls/jack/raymarcher only (no --scene, no --variant)"
-        );
-    }
+    require_seed_scene("jack", scene, settings)?;
     let jack = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
     let values: Vec<Outcome<PixelValue>> = jack
         .render()?
@@ -97,12 +151,10 @@ fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
             })
         })
         .collect();
-    // A trapped pixel is never drawn: white, as the reference counts it.
-    let white = values
-        .iter()
-        .map(|v| !matches!(v, Outcome::Value(p) if !p.white))
-        .collect();
-    Ok(Rendered { white, values })
+    Ok(Rendered {
+        white: white_bits(&values),
+        values,
+    })
 }
 
 /// Write `bytes` to `path` through a temporary file in the same directory

@@ -2,6 +2,7 @@
 //! six by name.
 
 pub mod gpu;
+pub mod jack;
 pub mod reference;
 
 use crate::implementation::{ImplError, ImplName, Implementation, UnknownImpl};
@@ -14,11 +15,7 @@ pub fn open(name: ImplName) -> Result<Box<dyn Implementation>, ImplError> {
             Box::new(reference::RefAdapter::new(name)?)
         }
         ImplName::GpuF32 | ImplName::GpuF316 => Box::new(gpu::GpuAdapter::new(name)?),
-        ImplName::Jack => {
-            return Err(ImplError::Unavailable(format!(
-                "{name}: its crate has no harness entry points in this build yet"
-            )))
-        }
+        ImplName::Jack => Box::new(jack::JackAdapter::new(jack::Profile::Desktop)?),
     })
 }
 
@@ -43,6 +40,7 @@ pub fn open_label(label: &str) -> Result<Box<dyn Implementation>, OpenError> {
                 .map_err(|e: ::reference::UnknownVariant| OpenError::Fault(e.to_string()))?;
             Box::new(reference::RefAdapter::with_variant(name, variant)?)
         }
+        (ImplName::Jack, Some("web-divide")) => jack::open_web_profile()?,
         (_, Some(f)) => return Err(OpenError::Fault(format!("{name} has no fault `{f}`"))),
     })
 }

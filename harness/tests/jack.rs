@@ -1,0 +1,65 @@
+//! The Jack raymarcher on the emulator agrees bit for bit with ref-f316 on
+//! the committed small sets, and a pixel trace of both lines up record for
+//! record so localization has nothing to report.
+
+use harness::implementation::{ImplName, Implementation};
+use harness::impls;
+use harness::localize::localize;
+use harness::runner::{diff_set, RunOptions};
+use vectors::{Level, PixelVector, Vector};
+
+#[test]
+fn jack_agrees_with_ref_f316_on_the_small_sets() {
+    let reference = impls::open(ImplName::RefF316).unwrap();
+    let jack = impls::open(ImplName::Jack).unwrap();
+    for level in [Level::Ops, Level::Sdf, Level::Pixels] {
+        let set = vectors::load_named(vectors::named::small_set_name(level)).unwrap();
+        let report = diff_set(
+            &[reference.as_ref(), jack.as_ref()],
+            &set,
+            RunOptions::default(),
+        );
+        assert!(
+            !report.diverged(),
+            "{}",
+            harness::text::level_report(&report)
+        );
+        assert_eq!(report.comparisons.len(), 1);
+    }
+}
+
+#[test]
+fn web_divide_profile_is_a_divergence_of_the_jack_program() {
+    let reference = impls::open(ImplName::RefF316).unwrap();
+    let web = impls::open_label("jack+web-divide").unwrap();
+    let set = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();
+    let report = diff_set(
+        &[reference.as_ref(), web.as_ref()],
+        &set,
+        RunOptions::default(),
+    );
+    assert!(
+        report.diverged(),
+        "{}",
+        harness::text::level_report(&report)
+    );
+}
+
+#[test]
+fn pixel_traces_of_jack_and_ref_f316_line_up() {
+    let reference = impls::open(ImplName::RefF316).unwrap();
+    let jack = impls::open(ImplName::Jack).unwrap();
+    let input = Vector::Pixel(PixelVector {
+        category: "t".into(),
+        x: 312,
+        y: 87,
+    });
+    let l = localize(
+        reference.as_ref(),
+        jack.as_ref(),
+        reference.as_ref(),
+        &input,
+    )
+    .unwrap();
+    assert!(!l.differs(), "{l:?}");
+}
