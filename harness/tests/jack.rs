@@ -2,7 +2,7 @@
 //! the committed small sets, and a pixel trace of both lines up record for
 //! record so localization has nothing to report.
 
-use harness::implementation::{ImplName, Implementation};
+use harness::implementation::ImplName;
 use harness::impls;
 use harness::localize::localize;
 use harness::runner::{diff_set, RunOptions};
