@@ -1,0 +1,97 @@
+//! The HTML report opens in a real browser: a report built from real
+//! renders (ref-f316 and ref-f64, a pair and speed points) is loaded in
+//! headless Chromium, and the DOM it produces must show the main sections
+//! and every image decoded. Chromium comes from Debian (`scripts/setup.sh`
+//! installs it); without it the test fails and says so.
+
+use harness::report::measure;
+use harness::report::model::{Render, RunMeta};
+use harness::report::ReportBuilder;
+use std::process::Command;
+
+const CHROMIUM: &str = "/usr/bin/chromium";
+
+fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
+    let set = measure::full_image_set();
+    let mut builder = ReportBuilder::new(&dir.join("report"), RunMeta::collect()).unwrap();
+    for label in ["ref-f316", "ref-f64"] {
+        let full = measure::render(label, &set, false).unwrap();
+        builder
+            .add_render(
+                Render {
+                    label: label.into(),
+                    implementation: label.into(),
+                    setup_s: full.setup_s,
+                    render_s: full.render_s,
+                    pixels: full.pixels(),
+                    ..Render::default()
+                },
+                full.images,
+            )
+            .unwrap();
+    }
+    builder
+        .add_pair(
+            "ref-f316",
+            "ref-f64",
+            |_, _| None,
+            |x, y| format!("harness localize ref-f316 ref-f64 --pixel {x},{y}"),
+        )
+        .unwrap();
+    for label in ["ref-f316", "ref-f64"] {
+        let point = builder.speed_point(label).unwrap();
+        builder.report_mut().speed_error.points.push(point);
+    }
+    builder.finish(&dir.join("history.jsonl")).unwrap()
+}
+
+#[test]
+fn the_report_opens_in_headless_chromium_with_its_sections_and_images() {
+    assert!(
+        std::path::Path::new(CHROMIUM).exists(),
+        "{CHROMIUM} is missing: run scripts/setup.sh (Debian package chromium)"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let report = build_report(tmp.path());
+    let profile = tmp.path().join("chromium-profile");
+    let out = Command::new(CHROMIUM)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--allow-file-access-from-files",
+            &format!("--user-data-dir={}", profile.display()),
+            "--dump-dom",
+        ])
+        .arg(format!("file://{}", report.join("index.html").display()))
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "chromium failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for section in ["summary", "levels", "renders", "pairs", "speed", "trend"] {
+        assert!(
+            dom.contains(&format!("<section id=\"{section}\">")),
+            "section {section} missing from the DOM"
+        );
+    }
+    let attr = |name: &str| -> usize {
+        let key = format!("{name}=\"");
+        let start = dom
+            .find(&key)
+            .unwrap_or_else(|| panic!("no {name} on <body>"))
+            + key.len();
+        dom[start..].split('"').next().unwrap().parse().unwrap()
+    };
+    let (loaded, total) = (attr("data-images-loaded"), attr("data-images-total"));
+    assert!(total >= 4, "only {total} images on the page");
+    assert_eq!(loaded, total, "{loaded} of {total} images decoded");
+}
