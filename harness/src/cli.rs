@@ -29,6 +29,8 @@ pub enum Command {
     Selftest(commands::selftest::SelftestArgs),
     /// For `git bisect run`: exit 0 when the comparison holds, 1 when it fails, 125 when undecidable.
     Check(commands::check::CheckArgs),
+    /// Speed and error table: every implementation renders the whole image.
+    Bench(commands::bench::BenchArgs),
     /// Everything: levels, unary checks, self-test, renders, speed and error; HTML + JSON report.
     Nightly(commands::nightly::NightlyArgs),
     /// Vector sets: regenerate the committed ones, check a file.
@@ -47,6 +49,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Selftest(args) => commands::selftest::run(args),
         Command::Vectors(cmd) => commands::vectors::run(cmd),
         Command::Check(args) => commands::check::run(args),
+        Command::Bench(args) => commands::bench::run(args),
         Command::Nightly(args) => commands::nightly::run(args),
     }
 }

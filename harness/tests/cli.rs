@@ -1,4 +1,4 @@
-//! The command-line contract of diff, localize and selftest: exit codes,
+//! The command-line contract of diff, localize, selftest and bench: exit codes,
 //! repro files that reproduce, errors that name the field.
 
 use std::path::Path;
@@ -124,4 +124,26 @@ fn localize_prints_the_first_divergent_operation() {
     let bad = harness(&["localize", "ref-f316", "ref-f316", "--pixel", "600,1"]);
     assert_eq!(bad.status.code(), Some(2), "{}", text(&bad));
     assert!(Path::new(env!("CARGO_BIN_EXE_harness")).exists());
+}
+
+#[test]
+fn bench_prints_and_writes_the_speed_and_error_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("bench.json");
+    let o = harness(&[
+        "bench",
+        "ref-f64",
+        "ref-f32",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("ref-f32"), "{}", text(&o));
+    let rows: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = rows.as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0]["implementation"], "ref-f64");
+    assert_eq!(rows[0]["pixel_flips"], 0);
+    assert_eq!(rows[1]["pixels"], 131072);
 }

@@ -1,0 +1,97 @@
+//! `harness bench`: the speed and error table. Every implementation
+//! available here (or the ones named) renders the whole image; each row has
+//! its set-up time, image time, time per pixel, pixels per second and its
+//! error against `ref-f64` (mean and max shade error, dithered flips).
+//! Printed as a table, and as JSON with `--json FILE`.
+
+use crate::implementation::ImplName;
+use crate::report::model::BenchRow;
+use crate::report::{measure, ORACLE};
+use anyhow::{Context, Result};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Arguments of `harness bench`.
+#[derive(Debug, clap::Args)]
+pub struct BenchArgs {
+    /// Implementations (labels, faults allowed); default: all six, the
+    /// unavailable ones reported and skipped.
+    pub implementations: Vec<String>,
+    /// Also write the rows as JSON.
+    #[arg(long, value_name = "FILE.json")]
+    pub json: Option<PathBuf>,
+}
+
+/// Run the benchmark table.
+pub fn run(args: BenchArgs) -> Result<ExitCode> {
+    let labels: Vec<String> = if args.implementations.is_empty() {
+        ImplName::ALL
+            .iter()
+            .map(|n| n.as_str().to_string())
+            .collect()
+    } else {
+        args.implementations.clone()
+    };
+    let progress = std::io::stderr().is_terminal();
+    let set = measure::full_image_set();
+    let oracle = measure::render(ORACLE, &set, progress).context("the ref-f64 oracle")?;
+    let mut rows = Vec::new();
+    for label in &labels {
+        let full = if label == ORACLE {
+            oracle.clone()
+        } else {
+            match measure::render(label, &set, progress) {
+                Ok(full) => full,
+                Err(e) => {
+                    eprintln!("{label}: skipped: {e:#}");
+                    continue;
+                }
+            }
+        };
+        let (errors, flips) = measure::error_against(&full.images, &oracle.images)?;
+        let pixels = full.pixels();
+        rows.push(BenchRow {
+            implementation: label.clone(),
+            setup_s: full.setup_s,
+            image_s: full.render_s,
+            pixels,
+            per_pixel_s: full.render_s / pixels.max(1) as f64,
+            vm_instructions_per_pixel: None,
+            mean_shade_error: errors.map(|e| e.0),
+            max_shade_error: errors.map(|e| e.1),
+            pixel_flips: flips,
+        });
+    }
+    println!(
+        "{:<28} {:>9} {:>9} {:>11} {:>12} {:>10} {:>10} {:>6}",
+        "implementation",
+        "set-up s",
+        "image s",
+        "per pixel",
+        "pixels/s",
+        "mean|err|",
+        "max|err|",
+        "flips"
+    );
+    let fmt = |e: Option<f64>| e.map_or("-".to_string(), |v| format!("{v:.2e}"));
+    for r in &rows {
+        println!(
+            "{:<28} {:>9.3} {:>9.3} {:>9.2}µs {:>12.0} {:>10} {:>10} {:>6}",
+            r.implementation,
+            r.setup_s,
+            r.image_s,
+            r.per_pixel_s * 1e6,
+            r.pixels_per_s(),
+            fmt(r.mean_shade_error),
+            fmt(r.max_shade_error),
+            r.pixel_flips
+        );
+    }
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&rows)?;
+        crate::report::atomic::write_file(path, text.as_bytes())
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
