@@ -9,12 +9,13 @@ use crate::compare::{Comparison as LevelComparison, Policy};
 use crate::exhaustive;
 use crate::implementation::{ImplName, Implementation};
 use crate::impls;
+use crate::report::images::Grid;
 use crate::report::measure::{self, FullRender};
 use crate::report::model::{
     BenchRow, Comparison, DivergenceExample, ErrorFigures, ImplStatus, Render, RunMeta, SelfTest,
     StepTiming,
 };
-use crate::report::{ReportBuilder, BIT_EXACT, ERROR_FIGURES};
+use crate::report::{RenderImages, ReportBuilder, BIT_EXACT, ERROR_FIGURES};
 use crate::runner::{self, RunOptions};
 use crate::selftest;
 use anyhow::{Context, Result};
@@ -172,11 +173,21 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     labels.extend(VARIANTS.iter().map(|v| format!("ref-f316+{v}")));
     let mut rendered = Vec::new();
     for label in &labels {
-        match measure::render(label, &set, progress.progress) {
-            Ok(full) => {
-                add_render(&mut builder, &full, &spec)?;
-                rendered.push(full.label.clone());
-            }
+        let result = if label == "jack" {
+            // Through the crate directly: the same pixels, with the VM
+            // instructions each took.
+            jack_render().and_then(|(full, costs)| {
+                let total = costs.data().iter().sum();
+                add_render(&mut builder, &full, &spec, Some(total))?;
+                builder.set_cost_map(&costs)?;
+                Ok(full)
+            })
+        } else {
+            measure::render(label, &set, progress.progress)
+                .and_then(|full| add_render(&mut builder, &full, &spec, None).map(|()| full))
+        };
+        match result {
+            Ok(full) => rendered.push(full.label),
             Err(e) => builder
                 .report_mut()
                 .problems
@@ -298,7 +309,8 @@ fn summarise(c: &LevelComparison, set: &str) -> Comparison {
 fn add_render(
     builder: &mut ReportBuilder,
     full: &FullRender,
-    spec: &crate::report::images::Grid<bool>,
+    spec: &Grid<bool>,
+    vm_instructions: Option<u64>,
 ) -> Result<()> {
     let (implementation, variant) = match full.label.split_once('+') {
         Some((i, v)) => (i.to_string(), Some(v.to_string())),
@@ -319,8 +331,48 @@ fn add_render(
             render_s: full.render_s,
             pixels: full.pixels(),
             identical_to_spec: identical,
+            vm_instructions,
             ..Render::default()
         },
         full.images.clone(),
     )
+}
+
+/// The Jack program's whole image through its pixel entry point, with the
+/// per-pixel VM instruction counts (the cost map).
+fn jack_render() -> Result<(FullRender, Grid<u64>)> {
+    use common::image_consts::{HEIGHT, WIDTH};
+    let start = Instant::now();
+    let raymarcher = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
+    let setup_s = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let render = raymarcher.render()?;
+    let render_s = start.elapsed().as_secs_f64();
+    let mut trapped = 0;
+    let (bits, shades): (Vec<bool>, Vec<f64>) = render
+        .pixels
+        .iter()
+        .map(|p| match p.outcome.value() {
+            Some(s) => (s.white, s.value.to_f64()),
+            // A trapped pixel is never drawn: the Hack screen starts white.
+            None => {
+                trapped += 1;
+                (true, f64::NAN)
+            }
+        })
+        .unzip();
+    let costs = render.pixels.iter().map(|p| p.instructions).collect();
+    Ok((
+        FullRender {
+            label: "jack".into(),
+            setup_s,
+            render_s,
+            images: RenderImages {
+                bits: Grid::new(WIDTH, HEIGHT, bits)?,
+                shades: Some(Grid::new(WIDTH, HEIGHT, shades)?),
+            },
+            trapped,
+        },
+        Grid::new(WIDTH, HEIGHT, costs)?,
+    ))
 }
