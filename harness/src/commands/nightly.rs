@@ -39,6 +39,12 @@ pub struct NightlyArgs {
 /// Precision variants of ref-f316 rendered for the speed-against-error plot.
 const VARIANTS: [&str; 3] = ["mul-low-product", "newton-1", "newton-3"];
 
+/// Label of the Jack program's own run from `Main.main` (the slow path).
+const JACK_MAIN: &str = "jack-main";
+
+/// Instruction budget of that run (the image takes about 21 billion).
+const JACK_MAIN_BUDGET: u64 = 60_000_000_000;
+
 /// Examples of divergences kept per comparison in the report.
 const EXAMPLES: usize = 5;
 
@@ -196,7 +202,32 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     }
     steps.done("renders");
 
+    // The slow path: the whole Jack program from Main.main, drawing on the
+    // Hack screen with its Float316 counters, must draw what the entry
+    // points computed.
+    if rendered.iter().any(|r| r == "jack") {
+        match jack_main_screen() {
+            Ok(full) => {
+                add_render(&mut builder, &full, &spec, None)?;
+                rendered.push(full.label);
+            }
+            Err(e) => builder
+                .report_mut()
+                .problems
+                .push(format!("jack Main.main: {e:#}")),
+        }
+        steps.done("jack Main.main");
+    }
+
     // Every render against ref-f316 and the float ones against ref-f64.
+    if rendered.iter().any(|r| r == JACK_MAIN) {
+        builder.add_pair(
+            "jack",
+            JACK_MAIN,
+            |_, _| None,
+            |x, y| format!("harness localize ref-f316 jack --pixel {x},{y}"),
+        )?;
+    }
     for label in &rendered {
         for base in ["ref-f316", "ref-f64"] {
             if label != base && rendered.iter().any(|r| r == base) {
@@ -375,4 +406,24 @@ fn jack_render() -> Result<(FullRender, Grid<u64>)> {
         },
         Grid::new(WIDTH, HEIGHT, costs)?,
     ))
+}
+
+/// The Hack screen after `Main.main` ran to its end with SPACE pressed.
+fn jack_main_screen() -> Result<FullRender> {
+    use common::image_consts::{HEIGHT, WIDTH};
+    let start = Instant::now();
+    let screen = match jack::run_main(jack::Profile::Desktop, JACK_MAIN_BUDGET)? {
+        common::Outcome::Value(screen) => screen,
+        other => anyhow::bail!("Main.main did not finish: {}", other.map(|_| "screen")),
+    };
+    Ok(FullRender {
+        label: JACK_MAIN.into(),
+        setup_s: 0.0,
+        render_s: start.elapsed().as_secs_f64(),
+        images: RenderImages {
+            bits: Grid::new(WIDTH, HEIGHT, screen.white)?,
+            shades: None,
+        },
+        trapped: 0,
+    })
 }
