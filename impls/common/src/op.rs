@@ -93,7 +93,11 @@ impl FromStr for Op {
     type Err = UnknownOp;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         let s_norm = s.to_ascii_lowercase().replace('-', "_");
-        let s_norm = if s_norm == "invsqrt" { "inv_sqrt".to_string() } else { s_norm };
+        let s_norm = if s_norm == "invsqrt" {
+            "inv_sqrt".to_string()
+        } else {
+            s_norm
+        };
         Op::ALL
             .into_iter()
             .find(|op| op.name() == s_norm)
