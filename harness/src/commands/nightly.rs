@@ -379,33 +379,13 @@ fn jack_render() -> Result<(FullRender, Grid<u64>)> {
     let start = Instant::now();
     let render = raymarcher.render()?;
     let render_s = start.elapsed().as_secs_f64();
-    let mut trapped = 0;
-    let (bits, shades): (Vec<bool>, Vec<f64>) = render
+    let pixels = render
         .pixels
         .iter()
-        .map(|p| match p.outcome.value() {
-            Some(s) => (s.white, s.value.to_f64()),
-            // A trapped pixel is never drawn: the Hack screen starts white.
-            None => {
-                trapped += 1;
-                (true, f64::NAN)
-            }
-        })
-        .unzip();
+        .map(|p| p.outcome.value().map(|s| (s.white, s.value.to_f64())));
+    let full = FullRender::from_pixels("jack", setup_s, render_s, pixels)?;
     let costs = render.pixels.iter().map(|p| p.instructions).collect();
-    Ok((
-        FullRender {
-            label: "jack".into(),
-            setup_s,
-            render_s,
-            images: RenderImages {
-                bits: Grid::new(WIDTH, HEIGHT, bits)?,
-                shades: Some(Grid::new(WIDTH, HEIGHT, shades)?),
-            },
-            trapped,
-        },
-        Grid::new(WIDTH, HEIGHT, costs)?,
-    ))
+    Ok((full, Grid::new(WIDTH, HEIGHT, costs)?))
 }
 
 /// The Hack screen after `Main.main` ran to its end with SPACE pressed.

@@ -59,6 +59,39 @@ pub fn full_image_set() -> VectorSet {
     )
 }
 
+impl FullRender {
+    /// A full render from each pixel's `(white, shade)` in row order;
+    /// `None` for a pixel whose computation trapped, which is never drawn:
+    /// white, as the Hack screen starts.
+    pub fn from_pixels(
+        label: &str,
+        setup_s: f64,
+        render_s: f64,
+        pixels: impl IntoIterator<Item = Option<(bool, f64)>>,
+    ) -> Result<FullRender> {
+        let mut trapped = 0;
+        let (bits, shades): (Vec<bool>, Vec<f64>) = pixels
+            .into_iter()
+            .map(|p| {
+                p.unwrap_or_else(|| {
+                    trapped += 1;
+                    (true, f64::NAN)
+                })
+            })
+            .unzip();
+        Ok(FullRender {
+            label: label.into(),
+            setup_s,
+            render_s,
+            images: RenderImages {
+                bits: Grid::new(WIDTH, HEIGHT, bits)?,
+                shades: Some(Grid::new(WIDTH, HEIGHT, shades)?),
+            },
+            trapped,
+        })
+    }
+}
+
 /// Open `label` and render every pixel of `set` (from [`full_image_set`]).
 /// Fails when the implementation cannot be opened (unknown, unavailable) or
 /// gives no answers.
@@ -73,31 +106,15 @@ pub fn render(label: &str, set: &VectorSet, progress: bool) -> Result<FullRender
         .context("the runner returned no run")?;
     let render_s = start.elapsed().as_secs_f64();
     let answers = run.answers.map_err(|e| anyhow!("{label}: {e}"))?;
-    let mut trapped = 0;
-    let (bits, shades): (Vec<bool>, Vec<f64>) = answers
+    let pixels = answers
         .iter()
         .map(|a| match a {
-            Outcome::Value(Answer::Pixel { shade, white }) => Ok((*white, shade.to_f64())),
+            Outcome::Value(Answer::Pixel { shade, white }) => Ok(Some((*white, shade.to_f64()))),
             Outcome::Value(other) => Err(anyhow!("{label}: a pixel answered `{other}`")),
-            // A trapped pixel is never drawn: the Hack screen starts white.
-            _ => {
-                trapped += 1;
-                Ok((true, f64::NAN))
-            }
+            _ => Ok(None),
         })
-        .collect::<Result<Vec<_>>>()?
-        .into_iter()
-        .unzip();
-    Ok(FullRender {
-        label: label.into(),
-        setup_s,
-        render_s,
-        images: RenderImages {
-            bits: Grid::new(WIDTH, HEIGHT, bits)?,
-            shades: Some(Grid::new(WIDTH, HEIGHT, shades)?),
-        },
-        trapped,
-    })
+        .collect::<Result<Vec<_>>>()?;
+    FullRender::from_pixels(label, setup_s, render_s, pixels)
 }
 
 /// The spec's dithered image (`vectors/images/seed-float316-512x256.png`).
