@@ -3,13 +3,15 @@
 //! its ops kernel (it cannot trace). Needs a wgpu adapter (lavapipe will
 //! do); set F316_SKIP_GPU to skip where there is none.
 
+mod support;
+
 use common::{Op, F316};
 use harness::implementation::{ImplError, ImplName, Implementation};
 use harness::impls::{self, reference::RefAdapter};
 use harness::localize::{localize, replay};
-use harness::runner::{diff_set, RunOptions};
+use harness::runner::RunOptions;
 use reference::Variant;
-use vectors::{Level, OpVector, Vector};
+use vectors::{OpVector, Vector};
 
 fn gpu_f316() -> Option<Box<dyn Implementation>> {
     match impls::open(ImplName::GpuF316) {
@@ -25,21 +27,7 @@ fn gpu_f316() -> Option<Box<dyn Implementation>> {
 #[test]
 fn gpu_f316_agrees_with_ref_f316_on_the_small_sets() {
     let Some(gpu) = gpu_f316() else { return };
-    let reference = impls::open(ImplName::RefF316).unwrap();
-    for level in [Level::Ops, Level::Sdf, Level::Pixels] {
-        let set = vectors::load_named(vectors::named::small_set_name(level)).unwrap();
-        let report = diff_set(
-            &[reference.as_ref(), gpu.as_ref()],
-            &set,
-            RunOptions::default(),
-        );
-        assert!(
-            !report.diverged(),
-            "{}",
-            harness::text::level_report(&report)
-        );
-        assert_eq!(report.comparisons.len(), 1);
-    }
+    support::assert_agrees_with_ref_f316_on_the_small_sets(gpu.as_ref());
 }
 
 #[test]

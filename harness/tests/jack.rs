@@ -2,6 +2,8 @@
 //! the committed small sets, and a pixel trace of both lines up record for
 //! record so localization has nothing to report.
 
+mod support;
+
 use harness::implementation::ImplName;
 use harness::impls;
 use harness::localize::localize;
@@ -10,22 +12,8 @@ use vectors::{Level, PixelVector, Vector};
 
 #[test]
 fn jack_agrees_with_ref_f316_on_the_small_sets() {
-    let reference = impls::open(ImplName::RefF316).unwrap();
     let jack = impls::open(ImplName::Jack).unwrap();
-    for level in [Level::Ops, Level::Sdf, Level::Pixels] {
-        let set = vectors::load_named(vectors::named::small_set_name(level)).unwrap();
-        let report = diff_set(
-            &[reference.as_ref(), jack.as_ref()],
-            &set,
-            RunOptions::default(),
-        );
-        assert!(
-            !report.diverged(),
-            "{}",
-            harness::text::level_report(&report)
-        );
-        assert_eq!(report.comparisons.len(), 1);
-    }
+    support::assert_agrees_with_ref_f316_on_the_small_sets(jack.as_ref());
 }
 
 #[test]
