@@ -233,6 +233,17 @@ fn ulps_f32(x: f64, oracle: f64) -> f64 {
     (x - oracle).abs() / ulp
 }
 
+/// The error of one answer against the oracle's answer to the same input:
+/// the worst (by relative error) over the numbers it carries; `None` when
+/// it carries none (`gt`, dithered bits).
+pub fn answer_error(
+    subject: &Answer,
+    oracle: &Answer,
+    subject_numbers: Numbers,
+) -> Option<PointError> {
+    point_error(&numbers_of(subject), &numbers_of(oracle), subject_numbers)
+}
+
 fn point_error(subject: &[Num], oracle: &[Num], subject_numbers: Numbers) -> Option<PointError> {
     let mut worst: Option<PointError> = None;
     for (s, o) in subject.iter().zip(oracle) {
@@ -370,7 +381,7 @@ fn error(
             out.push(found(DiffKind::Flip, None, true));
         }
     }
-    if let Some(e) = point_error(&numbers_of(x), &numbers_of(y), subject_numbers) {
+    if let Some(e) = answer_error(x, y, subject_numbers) {
         stats.values += 1;
         stats.max_abs = stats.max_abs.max(e.abs);
         stats.mean_abs += e.abs;

@@ -11,7 +11,7 @@
 //! ref-f316's trace is run through it alone, and the first one whose result
 //! differs from the trace is the divergent operation.
 
-use crate::implementation::{Answer, ImplError, Implementation};
+use crate::implementation::{Answer, ImplError, Implementation, Numbers};
 use common::{Op, OpValue, Outcome, TraceRecord};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -71,6 +71,44 @@ impl Localization {
     /// Whether the two answers differ at all.
     pub fn differs(&self) -> bool {
         self.a_answer != self.b_answer
+    }
+
+    /// The finding in one line, for tables: the operation at fault with its
+    /// operands, both results and call path; else the first divergent
+    /// record of each side; else where the answers part after the traces.
+    pub fn one_line(&self) -> String {
+        if let Some(o) = &self.origin {
+            let args: Vec<String> = o.args.iter().map(ToString::to_string).collect();
+            return format!(
+                "{}({}) = {} ({}) vs {} ({}), record {} [{}]",
+                o.op,
+                args.join(", "),
+                o.a,
+                self.a,
+                o.b,
+                self.b,
+                o.index,
+                o.path.join(" > ")
+            );
+        }
+        let record = |r: &Option<TraceRecord>| {
+            r.as_ref()
+                .map_or_else(|| "(trace ended)".to_string(), ToString::to_string)
+        };
+        match (&self.first, &self.after_last) {
+            (Some(first), _) => format!(
+                "record {}, the operands differ first: {}: {} | {}: {}",
+                first.index,
+                self.a,
+                record(&first.a),
+                self.b,
+                record(&first.b)
+            ),
+            (None, Some(last)) => {
+                format!("every operation agrees; the answers differ after the last one: {last}")
+            }
+            (None, None) => "the answers and traces agree".to_string(),
+        }
     }
 
     /// The operation the divergence is blamed on: the origin, else the
@@ -212,15 +250,35 @@ pub fn replay(
         .collect())
 }
 
+/// Whether `a` and `b` can be localized op by op: both must compute with
+/// Float316 (a float implementation has no Float316 operations, and
+/// replaying Float316 operands through it would compare nothing).
+pub fn localizable(a: &dyn Implementation, b: &dyn Implementation) -> Result<(), LocalizeError> {
+    for imp in [a, b] {
+        let numbers = match imp.numbers() {
+            Numbers::Float316 => continue,
+            Numbers::F64 => "f64",
+            Numbers::F32 => "f32",
+        };
+        return Err(LocalizeError::Unsupported(format!(
+            "{} computes with {numbers}: it has no Float316 operations to compare op by op \
+             (`harness diff` gives its error figures)",
+            imp.label()
+        )));
+    }
+    Ok(())
+}
+
 /// Localize the difference between `a` and `b` at `input`. `tracer` is a
 /// clean Float316 implementation that traces (ref-f316), used when one side
-/// cannot trace.
+/// cannot trace. Both sides must compute with Float316 ([`localizable`]).
 pub fn localize(
     a: &dyn Implementation,
     b: &dyn Implementation,
     tracer: &dyn Implementation,
     input: &Vector,
 ) -> Result<Localization, LocalizeError> {
+    localizable(a, b)?;
     let a_answer = eval_one(a, input)?;
     let b_answer = eval_one(b, input)?;
     let trace_of = |imp: &dyn Implementation| match imp.trace(input) {

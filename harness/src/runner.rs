@@ -233,8 +233,13 @@ pub fn diff_set(
     set: &VectorSet,
     options: RunOptions,
 ) -> LevelReport {
-    let runs = run(impls, set, options);
-    let comparisons = compare_runs(set, &runs);
+    level_report(set, &run(impls, set, options))
+}
+
+/// Compare runs of a set made earlier (see [`compare_runs`]) and summarise
+/// them, for callers that keep the answers.
+pub fn level_report(set: &VectorSet, runs: &[ImplRun]) -> LevelReport {
+    let comparisons = compare_runs(set, runs);
     LevelReport {
         set: set.name.clone(),
         level: set.level,

@@ -1,12 +1,15 @@
 //! The HTML report opens in a real browser: a report built from real
-//! renders (ref-f316 and ref-f64, a pair and speed points) is loaded in
+//! renders (ref-f316 and ref-f64, a pair and speed points) and the
+//! stability rows of the reference's answers to ops-small is loaded in
 //! headless Chromium, and the DOM it produces must show the main sections
 //! and every image decoded. Chromium comes from Debian (`scripts/setup.sh`
 //! installs it); without it the test fails and says so.
 
-use harness::report::measure;
+use harness::implementation::{ImplName, Implementation};
+use harness::impls;
 use harness::report::model::{Render, RunMeta};
-use harness::report::ReportBuilder;
+use harness::report::{measure, stability, PixelLocalizer, ReportBuilder};
+use harness::runner::{self, RunOptions};
 use std::process::Command;
 
 const CHROMIUM: &str = "/usr/bin/chromium";
@@ -34,14 +37,29 @@ fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
         .add_pair(
             "ref-f316",
             "ref-f64",
-            |_, _| None,
-            |x, y| format!("harness localize ref-f316 ref-f64 --pixel {x},{y}"),
+            PixelLocalizer::Impossible("ref-f64 computes with f64".into()),
+            |x, y| format!("harness diff ref-f316 ref-f64 --vectors repro/pixel-{x}-{y}.json"),
         )
         .unwrap();
     for label in ["ref-f316", "ref-f64"] {
         let point = builder.speed_point(label).unwrap();
         builder.report_mut().speed_error.points.push(point);
     }
+    let set = vectors::load_named("ops-small").unwrap();
+    let opened: Vec<Box<dyn Implementation>> =
+        [ImplName::RefF316, ImplName::RefF64, ImplName::RefF32]
+            .into_iter()
+            .map(|n| impls::open(n).unwrap())
+            .collect();
+    let refs: Vec<&dyn Implementation> = opened.iter().map(|b| b.as_ref()).collect();
+    let runs = runner::run(&refs, &set, RunOptions::default());
+    let rows = stability::rows(&set, &runs, &[], |imp, v| {
+        Some(format!(
+            "harness diff {imp} ref-f64 --vectors repro/{}.json",
+            v.slug()
+        ))
+    });
+    builder.report_mut().stability = rows;
     builder.finish(&dir.join("history.jsonl")).unwrap()
 }
 
@@ -77,7 +95,15 @@ fn the_report_opens_in_headless_chromium_with_its_sections_and_images() {
         "chromium failed: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    for section in ["summary", "levels", "renders", "pairs", "speed", "trend"] {
+    for section in [
+        "summary",
+        "levels",
+        "renders",
+        "pairs",
+        "speed",
+        "stability",
+        "trend",
+    ] {
         assert!(
             dom.contains(&format!("<section id=\"{section}\">")),
             "section {section} missing from the DOM"
@@ -91,6 +117,13 @@ fn the_report_opens_in_headless_chromium_with_its_sections_and_images() {
             + key.len();
         dom[start..].split('"').next().unwrap().parse().unwrap()
     };
+    for category in ["div-by-zero", "underflow", "hang"] {
+        assert!(
+            dom.contains(&format!("<td>ops-small</td><td>{category}</td>")),
+            "no stability row for {category}"
+        );
+    }
+    assert!(dom.contains("First divergent operation: not localizable: ref-f64 computes with f64"));
     let (loaded, total) = (attr("data-images-loaded"), attr("data-images-total"));
     assert!(total >= 4, "only {total} images on the page");
     assert_eq!(loaded, total, "{loaded} of {total} images decoded");

@@ -1,28 +1,34 @@
 //! `harness nightly`: everything in one run. Every level on the committed
-//! nightly sets, every implementation available here, the unary checks
+//! nightly sets, every implementation available here (with the outcome of
+//! every category of those sets, the stability section), the unary checks
 //! over every normalised input, the self-test, full-image renders (with the
-//! reference's precision variants) and their speed and error, written as
-//! one report directory (`report.json`, `index.html`, images) that replaces
-//! the previous one atomically, plus a line in the history file.
+//! reference's precision variants), their pairs with the divergent pixels
+//! of Float316 pairs localized, and their speed and error, written as one
+//! report directory (`report.json`, `index.html`, images) that replaces the
+//! previous one atomically, plus a line in the history file.
 
-use crate::compare::{Comparison as LevelComparison, Policy};
+use crate::compare::{Comparison as LevelComparison, Divergence, Policy};
 use crate::exhaustive;
 use crate::implementation::{ImplName, Implementation};
 use crate::impls;
+use crate::localize::{localizable, localize};
 use crate::report::images::Grid;
 use crate::report::measure::{self, FullRender};
 use crate::report::model::{
     BenchRow, Comparison, DivergenceExample, ErrorFigures, ImplStatus, Render, RunMeta, SelfTest,
     StepTiming,
 };
-use crate::report::{RenderImages, ReportBuilder, BIT_EXACT, ERROR_FIGURES};
-use crate::runner::{self, RunOptions};
+use crate::report::{
+    stability, PixelLocalizer, RenderImages, ReportBuilder, BIT_EXACT, ERROR_FIGURES,
+};
+use crate::runner::{self, ImplRun, RunOptions};
 use crate::selftest;
 use anyhow::{Context, Result};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
+use vectors::{PixelVector, Vector};
 
 /// Arguments of `harness nightly`.
 #[derive(Debug, clap::Args)]
@@ -107,36 +113,93 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
             .map(|b| b.as_ref())
             .collect()
     };
-    let float316 = group(&[ImplName::RefF316, ImplName::Jack, ImplName::GpuF316]);
-    let floats = group(&[
+    let float316 = [ImplName::RefF316, ImplName::Jack, ImplName::GpuF316];
+    let floats = [
         ImplName::RefF64,
         ImplName::RefF32,
         ImplName::GpuF32,
         ImplName::RefF316,
-    ]);
+    ];
+    // The precision variants (rendered below) and the tracer, for
+    // localizing divergences.
+    let variants: Vec<Box<dyn Implementation>> = VARIANTS
+        .iter()
+        .filter_map(|v| impls::open_label(&format!("ref-f316+{v}")).ok())
+        .collect();
+    let find = |label: &str| {
+        open.iter()
+            .chain(&variants)
+            .find(|i| i.label() == label)
+            .map(|b| b.as_ref())
+    };
+    let tracer = by_name(ImplName::RefF316).map(|b| b.as_ref());
+    let first_op = |c: &LevelComparison, d: &Divergence| {
+        let (a, b, t) = (find(&c.a)?, find(&c.b)?, tracer?);
+        (c.policy == Policy::Exact).then(|| match localize(a, b, t, &d.input) {
+            Ok(found) => found.one_line(),
+            Err(e) => format!("not localized: {e}"),
+        })
+    };
     steps.done("open implementations");
 
-    // Levels on the nightly sets.
+    // Levels on the nightly sets: every implementation answers each set
+    // once; the Float316 group is compared bit for bit with ref-f316, the
+    // float group against ref-f64 (SDF points and pixels), and the answers
+    // of all of them give the stability rows of the set's categories.
     for set_name in NIGHTLY_SETS {
         let set = vectors::load_named(set_name)
             .with_context(|| format!("the committed set {set_name}"))?;
-        let mut groups = vec![&float316];
+        let everyone: Vec<&dyn Implementation> = group(&ImplName::ALL)
+            .into_iter()
+            .filter(|i| i.supports(set.level))
+            .collect();
+        let runs = runner::run(&everyone, &set, progress);
+        let runs_of = |names: &[ImplName]| -> Vec<ImplRun> {
+            names
+                .iter()
+                .filter_map(|n| runs.iter().find(|r| r.label == n.as_str()).cloned())
+                .collect()
+        };
+        let mut groups = vec![runs_of(&float316)];
         if set.level != vectors::Level::Ops {
-            groups.push(&floats);
+            groups.push(runs_of(&floats));
         }
-        for impls in groups {
-            if impls.len() < 2 {
+        let mut exact = Vec::new();
+        for group_runs in groups {
+            if group_runs.len() < 2 {
                 continue;
             }
-            let level = runner::diff_set(impls, &set, progress);
+            let level = runner::level_report(&set, &group_runs);
             record_failures(&mut builder, &level);
             for c in &level.comparisons {
                 builder
                     .report_mut()
                     .comparisons
-                    .push(summarise(c, &set.name));
+                    .push(summarise(c, &set.name, &first_op));
             }
+            exact.extend(
+                level
+                    .comparisons
+                    .into_iter()
+                    .filter(|c| c.policy == Policy::Exact),
+            );
         }
+        let mut unwritten = Vec::new();
+        let rows = stability::rows(&set, &runs, &exact, |imp, vector| {
+            match builder.write_repro(vector) {
+                Ok(file) => Some(format!(
+                    "harness diff {imp} {} --vectors {file}",
+                    crate::report::ORACLE
+                )),
+                Err(e) => {
+                    unwritten.push(format!("repro file for {vector}: {e:#}"));
+                    None
+                }
+            }
+        });
+        let report = builder.report_mut();
+        report.stability.extend(rows);
+        report.problems.extend(unwritten);
         steps.done(set_name);
     }
 
@@ -155,7 +218,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         for level in exhaustive::unary(&impls, step, progress) {
             record_failures(&mut builder, &level);
             for c in &level.comparisons {
-                let mut row = summarise(c, &level.set);
+                let mut row = summarise(c, &level.set, &first_op);
                 row.level = "unary-exhaustive".into();
                 row.scope = format!("{} (every {step}. input)", level.set);
                 builder.report_mut().comparisons.push(row);
@@ -219,25 +282,32 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         steps.done("jack Main.main");
     }
 
-    // Every render against ref-f316 and the float ones against ref-f64.
+    // Every render against ref-f316 and the float ones against ref-f64;
+    // the listed divergent pixels of Float316 pairs are localized.
+    let mut pairs = Vec::new();
     if rendered.iter().any(|r| r == JACK_MAIN) {
-        builder.add_pair(
-            "jack",
-            JACK_MAIN,
-            |_, _| None,
-            |x, y| format!("harness localize ref-f316 jack --pixel {x},{y}"),
-        )?;
+        pairs.push(("jack".to_string(), JACK_MAIN.to_string()));
     }
     for label in &rendered {
         for base in ["ref-f316", "ref-f64"] {
             if label != base && rendered.iter().any(|r| r == base) {
-                let (a, b) = (base.to_string(), label.clone());
-                builder.add_pair(
-                    &a,
-                    &b,
-                    |_, _| None,
-                    |x, y| format!("harness localize {a} {b} --pixel {x},{y}"),
-                )?;
+                pairs.push((base.to_string(), label.clone()));
+            }
+        }
+    }
+    for (a, b) in &pairs {
+        let localizer = pixel_localizer(find(a), find(b), tracer, [a, b]);
+        let traced = matches!(localizer, PixelLocalizer::Traced { .. });
+        let repro = |x: usize, y: usize| pixel_repro(a, b, traced, x, y);
+        let listed: Vec<(usize, usize)> = builder
+            .add_pair(a, b, localizer, repro)?
+            .divergences
+            .iter()
+            .map(|d| (d.x as usize, d.y as usize))
+            .collect();
+        if !traced && a != JACK_MAIN && b != JACK_MAIN {
+            for (x, y) in listed {
+                builder.write_repro(&pixel(x, y))?;
             }
         }
     }
@@ -293,6 +363,74 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     })
 }
 
+/// The pixel vector of `(x, y)`.
+fn pixel(x: usize, y: usize) -> Vector {
+    Vector::Pixel(PixelVector {
+        category: "image".into(),
+        x: x as u16,
+        y: y as u16,
+    })
+}
+
+/// How the listed pixels of the pair `labels` are localized: op traces
+/// when both are Float316 implementations open here (`a`, `b`), else why
+/// not.
+fn pixel_localizer<'a>(
+    a: Option<&'a dyn Implementation>,
+    b: Option<&'a dyn Implementation>,
+    tracer: Option<&'a dyn Implementation>,
+    labels: [&String; 2],
+) -> PixelLocalizer<'a> {
+    let missing = |label: &str| {
+        if label == JACK_MAIN {
+            format!(
+                "{JACK_MAIN} is the Hack screen after the whole program ran from Main.main: \
+                 it has no per-pixel trace (the repro command localizes the pixel through \
+                 jack's entry point)"
+            )
+        } else {
+            format!("{label} is not open here")
+        }
+    };
+    let (a, b, tracer) = match (a, b, tracer) {
+        (None, _, _) => return PixelLocalizer::Impossible(missing(labels[0])),
+        (_, None, _) => return PixelLocalizer::Impossible(missing(labels[1])),
+        (_, _, None) => {
+            return PixelLocalizer::Impossible("ref-f316, the tracer, is not open here".into())
+        }
+        (Some(a), Some(b), Some(t)) => (a, b, t),
+    };
+    if let Err(why) = localizable(a, b) {
+        return PixelLocalizer::Impossible(why.to_string());
+    }
+    PixelLocalizer::Traced {
+        method: "first divergent Float316 operation from the op traces of both sides \
+                 (a side that cannot trace replays ref-f316's trace op by op)"
+            .into(),
+        first_op: Box::new(move |x, y| match localize(a, b, tracer, &pixel(x, y)) {
+            Ok(found) => found.one_line(),
+            Err(e) => format!("not localized: {e}"),
+        }),
+    }
+}
+
+/// The command that reproduces a divergent pixel of the pair `a`, `b`:
+/// `harness localize` for a traced pair, the pixel through jack's entry
+/// point for the Main.main screen, else `harness diff` on the pixel's
+/// repro file (written next to the report).
+fn pixel_repro(a: &str, b: &str, traced: bool, x: usize, y: usize) -> String {
+    if traced {
+        format!("harness localize {a} {b} --pixel {x},{y}")
+    } else if a == JACK_MAIN || b == JACK_MAIN {
+        format!("harness localize ref-f316 jack --pixel {x},{y}")
+    } else {
+        format!(
+            "harness diff {a} {b} --vectors repro/{}.json",
+            pixel(x, y).slug()
+        )
+    }
+}
+
 /// Implementations that gave no answers become problems of the report.
 fn record_failures(builder: &mut ReportBuilder, level: &runner::LevelReport) {
     let lines: Vec<String> = level
@@ -302,8 +440,13 @@ fn record_failures(builder: &mut ReportBuilder, level: &runner::LevelReport) {
     builder.report_mut().problems.extend(lines);
 }
 
-/// A runner comparison as a report row.
-fn summarise(c: &LevelComparison, set: &str) -> Comparison {
+/// A runner comparison as a report row; `first_op` localizes its examples
+/// (bit-exact comparisons of implementations open here).
+fn summarise(
+    c: &LevelComparison,
+    set: &str,
+    first_op: &dyn Fn(&LevelComparison, &Divergence) -> Option<String>,
+) -> Comparison {
     Comparison {
         level: c.level.to_string(),
         scope: set.into(),
@@ -329,7 +472,7 @@ fn summarise(c: &LevelComparison, set: &str) -> Comparison {
                 case: d.input.to_string(),
                 a: d.a.to_string(),
                 b: d.b.to_string(),
-                first_op: None,
+                first_op: first_op(c, d),
                 repro: d.localize.clone(),
             })
             .collect(),
@@ -406,4 +549,100 @@ fn jack_main_screen() -> Result<FullRender> {
         },
         trapped: 0,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::implementation::Answer;
+    use common::image_consts::{HEIGHT, WIDTH};
+
+    /// A render of one row of `imp` (the other rows black).
+    fn row_render(imp: &dyn Implementation, y: usize) -> RenderImages {
+        let row: Vec<Vector> = (0..WIDTH).map(|x| pixel(x, y)).collect();
+        let mut bits = vec![false; WIDTH * HEIGHT];
+        for (x, answer) in imp.eval(&row).unwrap().into_iter().enumerate() {
+            let common::Outcome::Value(Answer::Pixel { white, .. }) = answer else {
+                panic!("pixel ({x},{y}): {answer}");
+            };
+            bits[y * WIDTH + x] = white;
+        }
+        RenderImages {
+            bits: Grid::new(WIDTH, HEIGHT, bits).unwrap(),
+            shades: None,
+        }
+    }
+
+    #[test]
+    fn pixels_a_fault_flips_are_localized_to_the_faulty_operation() {
+        let clean = impls::open(ImplName::RefF316).unwrap();
+        let faulty = impls::open_label("ref-f316+mul-keep-low").unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let mut builder = ReportBuilder::new(&dir.path().join("r"), RunMeta::default()).unwrap();
+        // Row 87 has pixels whose dithered bit the fault flips.
+        for imp in [&clean, &faulty] {
+            let render = Render {
+                label: imp.label(),
+                ..Render::default()
+            };
+            builder
+                .add_render(render, row_render(imp.as_ref(), 87))
+                .unwrap();
+        }
+        let (a, b) = (clean.label(), faulty.label());
+        let localizer = pixel_localizer(
+            Some(clean.as_ref()),
+            Some(faulty.as_ref()),
+            Some(clean.as_ref()),
+            [&a, &b],
+        );
+        let pair = builder
+            .add_pair(&a, &b, localizer, |x, y| pixel_repro(&a, &b, true, x, y))
+            .unwrap();
+        assert!(!pair.divergences.is_empty());
+        assert!(pair
+            .localization
+            .starts_with("first divergent Float316 operation"));
+        for d in &pair.divergences {
+            let op = d.first_op.as_deref().unwrap();
+            assert!(op.starts_with("mul("), "pixel ({}, {}): {op}", d.x, d.y);
+            assert!(op.contains("(ref-f316+mul-keep-low)"), "{op}");
+            assert_eq!(
+                d.repro,
+                format!(
+                    "harness localize ref-f316 ref-f316+mul-keep-low --pixel {},{}",
+                    d.x, d.y
+                )
+            );
+        }
+    }
+
+    #[test]
+    fn pairs_with_a_float_side_or_the_main_screen_say_why_they_are_not_localized() {
+        let f316 = impls::open(ImplName::RefF316).unwrap();
+        let f64 = impls::open(ImplName::RefF64).unwrap();
+        let (a, b) = ("ref-f316".to_string(), "ref-f64".to_string());
+        let why = |l: PixelLocalizer| match l {
+            PixelLocalizer::Impossible(why) => why,
+            PixelLocalizer::Traced { .. } => panic!("traced"),
+        };
+        let float = pixel_localizer(
+            Some(f316.as_ref()),
+            Some(f64.as_ref()),
+            Some(f316.as_ref()),
+            [&a, &b],
+        );
+        assert!(why(float).starts_with("ref-f64 computes with f64"));
+        let main = JACK_MAIN.to_string();
+        let screen = pixel_localizer(Some(f316.as_ref()), None, Some(f316.as_ref()), [&a, &main]);
+        assert!(why(screen).contains("no per-pixel trace"));
+        assert_eq!(
+            pixel_repro("jack", JACK_MAIN, false, 3, 4),
+            "harness localize ref-f316 jack --pixel 3,4"
+        );
+        assert_eq!(
+            pixel_repro("ref-f316", "ref-f64", false, 3, 4),
+            "harness diff ref-f316 ref-f64 --vectors repro/pixel-3-4.json"
+        );
+    }
 }

@@ -376,6 +376,11 @@ fn pairs(h: &mut String, r: &Report) {
         }
         h.push_str("</div>");
         if !p.divergences.is_empty() {
+            let _ = write!(
+                h,
+                "<p>First divergent operation: {}</p>",
+                esc(&p.localization)
+            );
             h.push_str("<table><tr><th>x</th><th>y</th><th>A</th><th>B</th><th>first divergent operation</th><th>reproduce</th></tr>");
             for d in &p.divergences {
                 let _ = write!(
@@ -387,7 +392,7 @@ fn pairs(h: &mut String, r: &Report) {
                     d.y,
                     pixel_text(d.a_white, d.a_shade),
                     pixel_text(d.b_white, d.b_shade),
-                    esc(d.first_op.as_deref().unwrap_or("–")),
+                    esc(d.first_op.as_deref().unwrap_or("not localizable (see above)")),
                     esc(&d.repro)
                 );
             }
@@ -427,9 +432,7 @@ fn marks(h: &mut String, id: &str, p: &ImagePair) {
             d.y,
             pixel_text(d.a_white, d.a_shade),
             pixel_text(d.b_white, d.b_shade),
-            d.first_op
-                .as_deref()
-                .unwrap_or("first divergent operation not localized")
+            d.first_op.as_deref().unwrap_or(&p.localization)
         );
         let _ = write!(
             h,
@@ -501,12 +504,16 @@ fn speed(h: &mut String, r: &Report) {
 
 fn stability(h: &mut String, r: &Report) {
     h.push_str(
-        "<section id=stability><h2>Numerical stability: hard cases</h2><p>Per category, how many vectors ended as a value (V), Sys.error (E), hang (H) or out of domain (D) on each implementation; \
-         <span class=bad>≠</span> counts outcomes that differ from <code>ref-f316</code> bit for bit.</p>",
+        "<section id=stability><h2>Numerical stability: hard cases</h2><p>Per category of the nightly sets (the op vectors' hard-case catalogue, the scene's hard places for SDF queries and pixels), how many vectors ended as a value (V), Sys.error (E), hang (H) or out of domain (D) on each implementation; \
+         for Float316 implementations, ≠ counts answers that differ from <code>ref-f316</code> bit for bit. The worst error is the largest relative error against <code>ref-f64</code> over answers that are values on both sides; its repro file lies in this report's directory.</p>",
     );
+    if r.stability.is_empty() {
+        h.push_str("<p class=warn>No stability rows: no nightly set was answered.</p></section>\n");
+        return;
+    }
     let impls: std::collections::BTreeSet<&String> =
         r.stability.iter().flat_map(|s| s.outcomes.keys()).collect();
-    h.push_str("<table><tr><th>category</th><th>vectors</th>");
+    h.push_str("<table><tr><th>set</th><th>category</th><th>vectors</th>");
     for i in &impls {
         let _ = write!(h, "<th><code>{}</code></th>", esc(i));
     }
@@ -514,7 +521,8 @@ fn stability(h: &mut String, r: &Report) {
     for s in &r.stability {
         let _ = write!(
             h,
-            "<tr><td>{}</td><td class=n>{}</td>",
+            "<tr><td>{}</td><td>{}</td><td class=n>{}</td>",
+            esc(&s.set),
             esc(&s.category),
             s.vectors
         );
@@ -526,26 +534,36 @@ fn stability(h: &mut String, r: &Report) {
                         "<td>V {} · E {} · H {} · D {}",
                         t.value, t.sys_error, t.hang, t.out_of_domain
                     );
-                    if t.diverging > 0 {
-                        let _ = write!(h, " <span class=bad>≠ {}</span>", t.diverging);
+                    match t.diverging {
+                        Some(0) => h.push_str(" · <span class=ok>≠ 0</span>"),
+                        Some(n) => {
+                            let _ = write!(h, " · <span class=bad>≠ {n}</span>");
+                        }
+                        None => {}
                     }
                     h.push_str("</td>");
                 }
-                None => h.push_str("<td>–</td>"),
+                None => h.push_str("<td>not run</td>"),
             }
         }
         match &s.worst {
             Some(w) => {
                 let _ = write!(
                     h,
-                    "<td>{} abs, {} rel (<code>{}</code> on <code>{}</code>)</td></tr>",
-                    short_number(w.abs),
+                    "<td>{} rel, {} abs: <code>{}</code> on <code>{}</code> ({}): {}",
                     short_number(w.rel),
+                    short_number(w.abs),
                     esc(&w.implementation),
-                    esc(&w.case)
+                    esc(&w.case),
+                    esc(&w.vector),
+                    esc(&w.answers)
                 );
+                if let Some(repro) = &w.repro {
+                    let _ = write!(h, "<br><code>{}</code>", esc(repro));
+                }
+                h.push_str("</td></tr>");
             }
-            None => h.push_str("<td>–</td></tr>"),
+            None => h.push_str("<td>no value on both sides</td></tr>"),
         }
     }
     h.push_str("</table></section>\n");
@@ -671,9 +689,51 @@ mod tests {
                 repro: "harness localize ref-f316 jack --pixel 3,1".into(),
                 ..PixelDivergence::default()
             }],
+            localization: "op traces of both; 1 listed pixels localized".into(),
             ..ImagePair::default()
         });
+        r.image_pairs.push(ImagePair {
+            a: "ref-f316".into(),
+            b: "ref-f64".into(),
+            differing_pixels: 1,
+            divergences: vec![PixelDivergence::default()],
+            localization: "not localizable: ref-f64 computes with f64".into(),
+            ..ImagePair::default()
+        });
+        let tally = |value, diverging| OutcomeTally {
+            value,
+            diverging,
+            ..OutcomeTally::default()
+        };
+        r.stability.push(StabilityRow {
+            set: "ops-nightly".into(),
+            category: "underflow".into(),
+            vectors: 3,
+            outcomes: [
+                ("jack".to_string(), tally(3, Some(2))),
+                ("ref-f32".to_string(), tally(3, None)),
+            ]
+            .into(),
+            worst: Some(WorstError {
+                implementation: "ref-f32".into(),
+                case: "mul(a, b)".into(),
+                vector: "ops-nightly #7".into(),
+                repro: Some("harness diff ref-f32 ref-f64 --vectors repro/x.json".into()),
+                abs: 1e-40,
+                rel: 1.0,
+                ..WorstError::default()
+            }),
+        });
         let page = render(&r, &History::default());
+        assert!(page.contains(
+            "<tr><td>ops-nightly</td><td>underflow</td><td class=n>3</td><td>V 3 · E 0 · H 0 · D 0 · <span class=bad>≠ 2</span></td><td>V 3 · E 0 · H 0 · D 0</td>"
+        ));
+        assert!(page.contains("on <code>mul(a, b)</code> (ops-nightly #7)"));
+        assert!(page.contains("<code>harness diff ref-f32 ref-f64 --vectors repro/x.json</code>"));
+        assert!(page.contains(
+            "<p>First divergent operation: not localizable: ref-f64 computes with f64</p>"
+        ));
+        assert!(page.contains("<td>not localizable (see above)</td>"));
         for id in [
             "summary",
             "levels",

@@ -1,6 +1,7 @@
 //! Reports: the model of what a run found ([`model`]), its images
-//! ([`images`]) and charts ([`plot`]), the HTML page ([`html`]), the run
-//! history ([`history`]) and atomic writing ([`atomic`]). [`ReportBuilder`]
+//! ([`images`]) and charts ([`plot`]), the numerical-stability rows
+//! ([`stability`]), the HTML page ([`html`]), the run history ([`history`])
+//! and atomic writing ([`atomic`]). [`ReportBuilder`]
 //! ties them together: it writes image files into a staging directory as
 //! results arrive and swaps the finished report into place.
 
@@ -12,6 +13,7 @@ pub mod measure;
 pub mod meta;
 pub mod model;
 pub mod plot;
+pub mod stability;
 
 use anyhow::{ensure, Context, Result};
 use images::{Grid, Palette, Scale};
@@ -37,6 +39,19 @@ pub struct RenderImages {
     pub bits: Grid<bool>,
     /// Shades before dithering, when the implementation exposes them.
     pub shades: Option<Grid<f64>>,
+}
+
+/// How the listed divergent pixels of an image pair are localized.
+pub enum PixelLocalizer<'a> {
+    /// Both sides compute with Float316 and can be traced: `method` says
+    /// how, `first_op(x, y)` describes a listed pixel's first divergent
+    /// operation in one line.
+    Traced {
+        method: String,
+        first_op: Box<dyn FnMut(usize, usize) -> String + 'a>,
+    },
+    /// The pair cannot be localized, for this reason.
+    Impossible(String),
 }
 
 /// Builds a report directory: images are written as they are added, the
@@ -130,15 +145,26 @@ impl ReportBuilder {
             .with_context(|| format!("no render named {label}"))
     }
 
+    /// Write a one-vector set that reproduces a finding into `repro/`;
+    /// returns its path relative to the report directory.
+    pub fn write_repro(&self, vector: &vectors::Vector) -> Result<String> {
+        let rel = format!("repro/{}.json", vector.slug());
+        let path = self.stage.path().join(&rel);
+        std::fs::create_dir_all(path.parent().expect("repro/ has a parent"))
+            .context("creating repro/")?;
+        vectors::VectorSet::repro(vector.clone()).save(&path)?;
+        Ok(rel)
+    }
+
     /// Compare two renders added earlier: overlay, heat map (when both have
-    /// shades) and the list of divergent pixels; `localize(x, y)` names the
-    /// first divergent operation of a listed pixel (or `None`), `repro(x, y)`
-    /// the command that reproduces it.
+    /// shades) and the list of divergent pixels; `localizer` names the
+    /// first divergent operation of each listed pixel or says why it
+    /// cannot, `repro(x, y)` gives the command that reproduces a pixel.
     pub fn add_pair(
         &mut self,
         a: &str,
         b: &str,
-        mut localize: impl FnMut(usize, usize) -> Option<String>,
+        localizer: PixelLocalizer<'_>,
         repro: impl Fn(usize, usize) -> String,
     ) -> Result<&ImagePair> {
         let (ra, rb) = (self.render_of(a)?, self.render_of(b)?);
@@ -174,6 +200,14 @@ impl ReportBuilder {
             }
         }
         let shade = |r: &RenderImages, x: usize, y: usize| r.shades.as_ref().map(|s| *s.get(x, y));
+        let listed = differing.len().min(LISTED_PIXELS);
+        let (localization, mut localize) = match localizer {
+            PixelLocalizer::Traced { method, first_op } => (
+                format!("{method}; {listed} listed pixels localized"),
+                Some(first_op),
+            ),
+            PixelLocalizer::Impossible(why) => (format!("not localizable: {why}"), None),
+        };
         let divergences = differing
             .iter()
             .take(LISTED_PIXELS)
@@ -184,7 +218,7 @@ impl ReportBuilder {
                 b_white: *rb.bits.get(x, y),
                 a_shade: shade(ra, x, y),
                 b_shade: shade(rb, x, y),
-                first_op: localize(x, y),
+                first_op: localize.as_mut().map(|f| f(x, y)),
                 repro: repro(x, y),
             })
             .collect();
@@ -199,6 +233,7 @@ impl ReportBuilder {
             overlay,
             heat,
             divergences,
+            localization,
             unlisted: differing.len().saturating_sub(LISTED_PIXELS) as u64,
         });
         Ok(self.report.image_pairs.last().expect("just pushed"))

@@ -182,6 +182,11 @@ pub struct ImagePair {
     pub heat: Option<HeatMap>,
     /// Divergent pixels (dithered bit differs), at most a bounded number.
     pub divergences: Vec<PixelDivergence>,
+    /// How the listed pixels' first divergent operations were found, or
+    /// why this pair cannot be localized (a float side has no Float316
+    /// operations; a screen has no per-pixel trace).
+    #[serde(default)]
+    pub localization: String,
     /// How many divergent pixels are not listed.
     pub unlisted: u64,
 }
@@ -214,7 +219,9 @@ pub struct PixelDivergence {
     pub a_shade: Option<f64>,
     /// B's shade before dithering, when known.
     pub b_shade: Option<f64>,
-    /// The first divergent Float316 operation (Float316 pairs, localized).
+    /// The first divergent Float316 operation (Float316 pairs, localized;
+    /// `None` when the pair cannot be localized, see
+    /// [`ImagePair::localization`]).
     pub first_op: Option<String>,
     /// The command that reproduces it.
     pub repro: String,
@@ -266,9 +273,13 @@ pub struct SpeedPoint {
     pub identical_to_spec: Option<bool>,
 }
 
-/// One hard-case category of the op vectors.
+/// One category of a vector set: the hard-case catalogue of the op
+/// vectors, the scene's hard places for SDF queries and pixels.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct StabilityRow {
+    /// The vector set (`ops-nightly`, `sdf-nightly`, ...).
+    #[serde(default)]
+    pub set: String,
     /// Category tag from the vectors crate.
     pub category: String,
     /// Vectors in the category.
@@ -290,17 +301,30 @@ pub struct OutcomeTally {
     pub hang: u64,
     /// Out of domain.
     pub out_of_domain: u64,
-    /// Vectors whose outcome differs from `ref-f316` (bit-exact).
-    pub diverging: u64,
+    /// Float316 implementations: vectors whose answer differs from
+    /// `ref-f316`'s bit for bit. `None` for float implementations (their
+    /// difference is an error, see [`StabilityRow::worst`]) or when
+    /// `ref-f316` gave no answers.
+    pub diverging: Option<u64>,
 }
 
-/// The worst error against f64 of a category.
+/// The worst error against f64 of a category (largest relative error
+/// over the numbers of every answer that is a value on both sides).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct WorstError {
     /// Which implementation.
     pub implementation: String,
     /// The input.
     pub case: String,
+    /// Where it is in its set (`ops-nightly #1234`).
+    #[serde(default)]
+    pub vector: String,
+    /// What it answered, and what `ref-f64` answered.
+    #[serde(default)]
+    pub answers: String,
+    /// A command that reproduces it (paths relative to the report).
+    #[serde(default)]
+    pub repro: Option<String>,
     /// Absolute error.
     pub abs: f64,
     /// Relative error.

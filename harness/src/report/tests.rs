@@ -51,6 +51,10 @@ fn builder(target: &Path) -> ReportBuilder {
     b
 }
 
+fn impossible() -> PixelLocalizer<'static> {
+    PixelLocalizer::Impossible("no traces".into())
+}
+
 #[test]
 fn pairs_list_divergent_pixels_with_localization_and_images() {
     let dir = tempfile::tempdir().unwrap();
@@ -59,11 +63,15 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
         .add_pair(
             ORACLE,
             "ref-f316",
-            |x, y| Some(format!("op at {x},{y}")),
+            PixelLocalizer::Traced {
+                method: "by hand".into(),
+                first_op: Box::new(|x, y| format!("op at {x},{y}")),
+            },
             |x, y| format!("repro {x},{y}"),
         )
         .unwrap()
         .clone();
+    assert_eq!(pair.localization, "by hand; 1 listed pixels localized");
     assert_eq!(
         (pair.pixels, pair.differing_pixels, pair.differing_shades),
         (8, 1, Some(2))
@@ -82,15 +90,17 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
         assert!(b.stage.path().join(rel).is_file(), "{rel} not written");
     }
     let no_shades = b
-        .add_pair("ref-f316", "jack", |_, _| None, |_, _| String::new())
+        .add_pair("ref-f316", "jack", impossible(), |_, _| String::new())
         .unwrap();
     assert_eq!(
         (no_shades.differing_pixels, no_shades.differing_shades),
         (1, None)
     );
+    assert_eq!(no_shades.divergences[0].first_op, None);
+    assert_eq!(no_shades.localization, "not localizable: no traces");
     assert!(no_shades.heat.is_none());
     assert!(b
-        .add_pair("ref-f316", "gpu-f32", |_, _| None, |_, _| String::new())
+        .add_pair("ref-f316", "gpu-f32", impossible(), |_, _| String::new())
         .is_err());
 }
 
@@ -104,7 +114,7 @@ fn identical_shades_give_no_heat_map() {
     )
     .unwrap();
     let pair = b
-        .add_pair(ORACLE, "ref-f32", |_, _| None, |_, _| String::new())
+        .add_pair(ORACLE, "ref-f32", impossible(), |_, _| String::new())
         .unwrap();
     assert_eq!((pair.differing_pixels, pair.differing_shades), (0, Some(0)));
     assert!(pair.heat.is_none() && pair.divergences.is_empty());
@@ -174,12 +184,9 @@ fn finish_writes_everything_then_swaps_and_appends_history() {
     let history = history::path_for(&target);
     for run in 0..2 {
         let mut b = builder(&target);
-        b.add_pair(
-            ORACLE,
-            "ref-f316",
-            |_, _| None,
-            |x, y| format!("harness localize ref-f64 ref-f316 --pixel {x},{y}"),
-        )
+        b.add_pair(ORACLE, "ref-f316", impossible(), |x, y| {
+            format!("harness diff ref-f64 ref-f316 --vectors repro/pixel-{x}-{y}.json")
+        })
         .unwrap();
         b.set_cost_map(&Grid::new(4, 2, vec![10, 20, 30, 40, 50, 60, 70, 80 + run]).unwrap())
             .unwrap();
