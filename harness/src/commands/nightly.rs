@@ -297,15 +297,22 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     }
     for (a, b) in &pairs {
         let localizer = pixel_localizer(find(a), find(b), tracer, [a, b]);
-        let traced = matches!(localizer, PixelLocalizer::Traced { .. });
-        let repro = |x: usize, y: usize| pixel_repro(a, b, traced, x, y);
+        // A pixel of the Main.main screen is reproduced through jack's
+        // entry point (against ref-f316 when the pair is jack's own).
+        let (ra, rb) = (entry_point(a), entry_point(b));
+        let ra = if ra == rb { "ref-f316" } else { ra };
+        let by_localize = matches!(
+            (find(ra), find(rb)),
+            (Some(x), Some(y)) if localizable(x, y).is_ok()
+        );
+        let repro = |x: usize, y: usize| pixel_repro(ra, rb, by_localize, x, y);
         let listed: Vec<(usize, usize)> = builder
             .add_pair(a, b, localizer, repro)?
             .divergences
             .iter()
             .map(|d| (d.x as usize, d.y as usize))
             .collect();
-        if !traced && a != JACK_MAIN && b != JACK_MAIN {
+        if !by_localize {
             for (x, y) in listed {
                 builder.write_repro(&pixel(x, y))?;
             }
@@ -414,15 +421,22 @@ fn pixel_localizer<'a>(
     }
 }
 
-/// The command that reproduces a divergent pixel of the pair `a`, `b`:
-/// `harness localize` for a traced pair, the pixel through jack's entry
-/// point for the Main.main screen, else `harness diff` on the pixel's
-/// repro file (written next to the report).
-fn pixel_repro(a: &str, b: &str, traced: bool, x: usize, y: usize) -> String {
-    if traced {
+/// The implementation that answers for a render label on the command line
+/// (the Main.main screen's pixels come from jack's entry point).
+fn entry_point(label: &str) -> &str {
+    if label == JACK_MAIN {
+        "jack"
+    } else {
+        label
+    }
+}
+
+/// The command that reproduces a divergent pixel of the implementations
+/// `a` and `b`: `harness localize` when both are Float316 (`by_localize`),
+/// else `harness diff` on the pixel's repro file (written in the report).
+fn pixel_repro(a: &str, b: &str, by_localize: bool, x: usize, y: usize) -> String {
+    if by_localize {
         format!("harness localize {a} {b} --pixel {x},{y}")
-    } else if a == JACK_MAIN || b == JACK_MAIN {
-        format!("harness localize ref-f316 jack --pixel {x},{y}")
     } else {
         format!(
             "harness diff {a} {b} --vectors repro/{}.json",
@@ -636,10 +650,7 @@ mod tests {
         let main = JACK_MAIN.to_string();
         let screen = pixel_localizer(Some(f316.as_ref()), None, Some(f316.as_ref()), [&a, &main]);
         assert!(why(screen).contains("no per-pixel trace"));
-        assert_eq!(
-            pixel_repro("jack", JACK_MAIN, false, 3, 4),
-            "harness localize ref-f316 jack --pixel 3,4"
-        );
+        assert_eq!(entry_point(JACK_MAIN), "jack");
         assert_eq!(
             pixel_repro("ref-f316", "ref-f64", false, 3, 4),
             "harness diff ref-f316 ref-f64 --vectors repro/pixel-3-4.json"
