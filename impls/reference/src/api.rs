@@ -290,7 +290,7 @@ impl Reference {
     fn traced<T>(
         &self,
         root: Option<String>,
-        run: impl FnOnce(&mut F316Engine, &Consts<F316>) -> Outcome<T>,
+        run: impl FnOnce(&mut F316Engine<&mut Tracer>, &Consts<F316>) -> Outcome<T>,
     ) -> Result<Trace<T>, RequestError> {
         let k = self.f316_consts()?;
         let mut tracer = Tracer::new(root);

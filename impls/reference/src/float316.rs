@@ -6,13 +6,13 @@
 //! is bounded (a non-zero 16-bit word doubled reaches either a normalised
 //! value or 0 within 16 steps; halving reaches 0 within 16 steps).
 //!
-//! The engine optionally carries a [`Tracer`]; without one, tracing costs a
-//! single `Option` test per operation.
+//! The engine is generic over a [`Recorder`]; with [`Untraced`], tracing
+//! compiles away and the operations inline into the scene code.
 
 use crate::consts::Consts;
 use crate::engine::{Engine, Trap, R};
 use crate::settings::Arith;
-use crate::tracer::Tracer;
+use crate::tracer::{Recorder, Tracer, Untraced};
 use crate::vec3::{self, V3};
 use common::jack_int as j;
 use common::{Op, OpValue, F316};
@@ -78,29 +78,33 @@ impl Traceable for bool {
 }
 
 /// The Float316 engine: the spec's operations under an [`Arith`]
-/// configuration, with an optional tracer.
-pub struct F316Engine<'t> {
+/// configuration, reporting to a [`Recorder`].
+pub struct F316Engine<Rec: Recorder = Untraced> {
     arith: Arith,
-    tracer: Option<&'t mut Tracer>,
+    recorder: Rec,
 }
 
-impl<'t> F316Engine<'t> {
+impl F316Engine {
     /// An engine that does not trace.
     pub fn new(arith: Arith) -> Self {
         F316Engine {
             arith,
-            tracer: None,
+            recorder: Untraced,
         }
     }
+}
 
+impl<'t> F316Engine<&'t mut Tracer> {
     /// An engine that records every operation into `tracer`.
     pub fn with_tracer(arith: Arith, tracer: &'t mut Tracer) -> Self {
         F316Engine {
             arith,
-            tracer: Some(tracer),
+            recorder: tracer,
         }
     }
+}
 
+impl<Rec: Recorder> F316Engine<Rec> {
     /// Run `body` as the operation `op` on `args`, recording it when tracing.
     #[inline(always)]
     fn traced<T: Traceable>(
@@ -109,14 +113,12 @@ impl<'t> F316Engine<'t> {
         args: &[F316],
         body: impl FnOnce(&mut Self) -> R<T>,
     ) -> R<T> {
-        let Some(tracer) = self.tracer.as_deref_mut() else {
+        if !Rec::ON {
             return body(self);
-        };
-        let index = tracer.open(op, args);
-        let result = body(self);
-        if let Some(tracer) = self.tracer.as_deref_mut() {
-            tracer.close(index, result.map(Traceable::op_value));
         }
+        let index = self.recorder.open(op, args);
+        let result = body(self);
+        self.recorder.close(index, result.map(Traceable::op_value));
         result
     }
 
@@ -180,6 +182,7 @@ fn gt(a: F316, b: F316) -> bool {
 }
 
 /// `add(a, b)` without tracing (it calls no other operation).
+#[inline(always)]
 fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
     let (big, small) = if b.e > a.e || (b.e == a.e && b.m > a.m) {
         (b, a)
@@ -249,6 +252,7 @@ fn mul(arith: &Arith, a: F316, b: F316) -> F316 {
 }
 
 /// `div(a, b)`: long division with a shrinking divisor.
+#[inline(always)]
 fn div(a: F316, b: F316) -> R<F316> {
     let sign = j::and(j::add(a.s, b.s), 1);
     if is_zero(a) {
@@ -258,7 +262,23 @@ fn div(a: F316, b: F316) -> R<F316> {
         return Err(Trap::SysError(1));
     }
     let e = j::sub(j::add(a.e, 127), b.e);
-    let (mut r, mut d, mut q) = (a.m, b.m, 0i16);
+    let q = if is_normalised(a.m) && is_normalised(b.m) {
+        long_division_normalised(a.m, b.m)
+    } else {
+        long_division(a.m, b.m)
+    };
+    // q is a sum of distinct powers 2^0..2^13: 0 <= q <= 16383.
+    if q == 0 {
+        return Err(Trap::Hang);
+    }
+    let (q, e) = normalise_positive(q, e);
+    Ok(F316 { s: sign, e, m: q })
+}
+
+/// div's quotient loop for any mantissas, as Jack runs it: `d` shrinks by
+/// truncating halving, `if (r >= d) { q += 2^i; r -= d }` for i = 13..0.
+fn long_division(mut r: i16, mut d: i16) -> i16 {
+    let mut q = 0i16;
     for i in (0..=13).rev() {
         // Branch-free form of `if (r >= d) { q += 2^i; r -= d }`.
         let taken = j::neg(i16::from(r >= d));
@@ -266,12 +286,66 @@ fn div(a: F316, b: F316) -> R<F316> {
         r = j::sub(r, j::and(d, taken));
         d = j::halve(d);
     }
-    // q is a sum of distinct powers 2^0..2^13: 0 <= q <= 16383.
-    if q == 0 {
-        return Err(Trap::Hang);
+    q
+}
+
+/// Whether `m` is a normalised mantissa (8192..=16383).
+#[inline(always)]
+fn is_normalised(m: i16) -> bool {
+    (M_MIN..=M_MAX).contains(&m)
+}
+
+/// [`long_division`] for normalised mantissas: no word wraps, halving is a
+/// shift, the first seven steps unroll into subtract-and-select, and the
+/// last seven come from [`LOW_QUOTIENT`]: the divisors of steps 7..13 are
+/// `(b >> 7) >> j`, so those steps depend only on `(b >> 7, r)`, and after
+/// step 6 the remainder is below [`REMAINDERS`] (at most `(b >> 6) + 5`, as
+/// the exhaustive test shows).
+#[inline(always)]
+fn long_division_normalised(a: i16, b: i16) -> i16 {
+    debug_assert!(is_normalised(a) && is_normalised(b));
+    let (mut r, b) = (i32::from(a), i32::from(b));
+    let mut q = 0i32;
+    for k in 0..7 {
+        let s = r - (b >> k);
+        let taken = s >= 0;
+        q |= i32::from(taken) << (13 - k);
+        if taken {
+            r = s;
+        }
     }
-    let (q, e) = normalise_positive(q, e);
-    Ok(F316 { s: sign, e, m: q })
+    q as i16 | i16::from(LOW_QUOTIENT[((b >> 7) - 64) as usize * REMAINDERS + r as usize])
+}
+
+/// Remainders the table covers per divisor (0..=260 occur).
+const REMAINDERS: usize = 264;
+
+/// Quotient bits 6..0 of the long division steps 7..13, indexed by
+/// `((b >> 7) - 64) * REMAINDERS + r` for a normalised divisor `b` and the
+/// remainder `r` left by steps 0..6.
+static LOW_QUOTIENT: [u8; 64 * REMAINDERS] = low_quotient_table();
+
+const fn low_quotient_table() -> [u8; 64 * REMAINDERS] {
+    let mut table = [0u8; 64 * REMAINDERS];
+    let mut high = 64;
+    while high < 128 {
+        let mut r0 = 0;
+        while r0 < REMAINDERS {
+            let (mut r, mut q, mut j) = (r0, 0u8, 0);
+            while j < 7 {
+                let d = high >> j;
+                if r >= d {
+                    r -= d;
+                    q |= 1 << (6 - j);
+                }
+                j += 1;
+            }
+            table[(high - 64) * REMAINDERS + r0] = q;
+            r0 += 1;
+        }
+        high += 1;
+    }
+    table
 }
 
 /// `halve`, `double`, `quarter`: add `delta` to the exponent when `a.e > 0`.
@@ -314,7 +388,7 @@ fn sqrt_guess(arith: &Arith, x: F316) -> F316 {
     F316::new(0, e, x.m)
 }
 
-impl Engine for F316Engine<'_> {
+impl<Rec: Recorder> Engine for F316Engine<Rec> {
     type N = F316;
 
     fn constant(x: f64) -> Option<F316> {
@@ -413,14 +487,12 @@ impl Engine for F316Engine<'_> {
         name: impl FnOnce() -> String,
         f: impl FnOnce(&mut Self) -> R<T>,
     ) -> R<T> {
-        let Some(tracer) = self.tracer.as_deref_mut() else {
+        if !Rec::ON {
             return f(self);
-        };
-        tracer.push(name());
-        let r = f(self);
-        if let Some(tracer) = self.tracer.as_deref_mut() {
-            tracer.pop();
         }
+        self.recorder.push(name());
+        let r = f(self);
+        self.recorder.pop();
         r
     }
 
@@ -452,6 +524,22 @@ impl Engine for F316Engine<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fast quotient equals Jack's loop for every pair of normalised
+    /// mantissas (all 67 million).
+    #[test]
+    fn fast_quotient_equals_the_jack_loop_on_all_normalised_mantissas() {
+        use rayon::prelude::*;
+        (M_MIN..=M_MAX).into_par_iter().for_each(|a| {
+            for b in M_MIN..=M_MAX {
+                assert_eq!(
+                    long_division_normalised(a, b),
+                    long_division(a, b),
+                    "{a} / {b}"
+                );
+            }
+        });
+    }
 
     /// The closed forms used for speed equal Jack's loops for every word.
     #[test]
