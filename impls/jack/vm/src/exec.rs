@@ -265,8 +265,10 @@ impl Machine {
 
             // Account for the commands a fused instruction covers beyond the first.
             macro_rules! skip {
-                ($op:expr) => {{
-                    let extra = $op.steps() - 1;
+                ($op:expr, $steps:expr) => {{
+                    let n: u64 = $steps;
+                    debug_assert_eq!(n, $op.steps());
+                    let extra = n - 1;
                     steps += extra;
                     pc += extra as usize;
                 }};
@@ -380,10 +382,11 @@ impl Machine {
             if steps >= stop_at {
                 break None;
             }
-            let op = code[pc];
+            // By reference: each arm reads only the fields it needs.
+            let op = &code[pc];
             pc += 1;
             steps += 1;
-            match op {
+            match *op {
                 Op::PushConst(c) => push!(c),
                 Op::PushLocal(i) => push!(rd!(regs.lcl.wrapping_add(i))),
                 Op::PushArg(i) => {
@@ -573,7 +576,7 @@ impl Machine {
                     if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
                         deopt!();
                     }
-                    skip!(op);
+                    skip!(op, 2);
                     let sp = regs.sp;
                     w[sp as usize] = src!(a);
                     regs.sp = sp + 1;
@@ -584,7 +587,7 @@ impl Machine {
                     if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && dst_ok(d, nargs, flags)) {
                         deopt!();
                     }
-                    skip!(op);
+                    skip!(op, 2);
                     let v = src!(a);
                     w[regs.sp as usize] = v;
                     dst!(d, v);
@@ -594,7 +597,7 @@ impl Machine {
                         deopt!();
                     }
                     push_push_op!(o, a, b);
-                    skip!(op);
+                    skip!(op, 3);
                 }
                 Op::BinPop { op: o, a, b, d } => {
                     if !(fast_sp(regs.sp)
@@ -605,12 +608,12 @@ impl Machine {
                         deopt!();
                     }
                     let r = push_push_op!(o, a, b);
-                    skip!(op);
+                    skip!(op, 4);
                     regs.sp -= 1;
                     dst!(d, r);
                 }
                 Op::BinS { op: o, b } | Op::BinSPop { op: o, b, .. } => {
-                    let d = match op {
+                    let d = match *op {
                         Op::BinSPop { d, .. } => Some(d),
                         _ => None,
                     };
@@ -627,7 +630,7 @@ impl Machine {
                     let Some(r) = apply(o, x, y, os_profile) else {
                         deopt!()
                     };
-                    skip!(op);
+                    skip!(op, if d.is_some() { 3 } else { 2 });
                     w[sp as usize - 1] = r;
                     if let Some(d) = d {
                         regs.sp = sp - 1;
@@ -644,7 +647,7 @@ impl Machine {
                     if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
                         deopt!();
                     }
-                    skip!(op);
+                    skip!(op, 4 + u64::from(not));
                     let r = push_push_op!(o, a, b);
                     let r = if not { !r } else { r };
                     w[regs.sp as usize - 1] = r;
@@ -657,7 +660,7 @@ impl Machine {
                     if !fast_sp(regs.sp) {
                         deopt!();
                     }
-                    skip!(op);
+                    skip!(op, 3);
                     let sp = regs.sp as usize;
                     let Some(r) = apply(o, w[sp - 2], w[sp - 1], os_profile) else {
                         deopt!()
@@ -672,7 +675,7 @@ impl Machine {
                     if !fast_sp(regs.sp) {
                         deopt!();
                     }
-                    skip!(op);
+                    skip!(op, 2);
                     let sp = regs.sp as usize;
                     let r = !w[sp - 1];
                     w[sp - 1] = r;
@@ -688,7 +691,7 @@ impl Machine {
                     {
                         deopt!();
                     }
-                    skip!(op);
+                    skip!(op, 5);
                     let a = push_push_op!(Bin::Add, index, base);
                     let sp = regs.sp - 1;
                     regs.sp = sp;
@@ -702,7 +705,7 @@ impl Machine {
                     if !fast_sp(regs.sp) {
                         deopt!();
                     }
-                    skip!(op);
+                    skip!(op, 3);
                     let sp = regs.sp as usize;
                     let a = w[sp - 2].wrapping_add(w[sp - 1]);
                     w[sp - 2] = a;
@@ -714,7 +717,7 @@ impl Machine {
                     regs.sp += 1;
                 }
                 Op::StoreThat | Op::StoreThatSrc(_) => {
-                    let v = if let Op::StoreThatSrc(s) = op {
+                    let v = if let Op::StoreThatSrc(s) = *op {
                         if !(fast_sp(regs.sp) && src_ok(s, nargs, flags)) {
                             deopt!();
                         }
@@ -728,7 +731,7 @@ impl Machine {
                         regs.sp -= 1;
                         w[regs.sp as usize]
                     };
-                    skip!(op);
+                    skip!(op, if matches!(*op, Op::StoreThat) { 4 } else { 5 });
                     // pop temp 0; pop pointer 1; push temp 0; pop that 0
                     w[5] = v;
                     regs.sp -= 1;
@@ -741,7 +744,7 @@ impl Machine {
                     if !(fast_sp(regs.sp) && src_ok(a, nargs, flags)) {
                         deopt!();
                     }
-                    skip!(op);
+                    skip!(op, 2);
                     push!(src!(a));
                     do_return!();
                 }
