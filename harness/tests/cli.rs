@@ -123,6 +123,14 @@ fn localize_prints_the_first_divergent_operation() {
     assert_eq!(same.status.code(), Some(0), "{}", text(&same));
     let bad = harness(&["localize", "ref-f316", "ref-f316", "--pixel", "600,1"]);
     assert_eq!(bad.status.code(), Some(2), "{}", text(&bad));
+    // A float implementation has no Float316 operations to compare.
+    let float = harness(&["localize", "ref-f316", "ref-f64", "--pixel", "312,87"]);
+    assert_eq!(float.status.code(), Some(2), "{}", text(&float));
+    assert!(
+        text(&float).contains("ref-f64 computes with f64"),
+        "{}",
+        text(&float)
+    );
     assert!(Path::new(env!("CARGO_BIN_EXE_harness")).exists());
 }
 

@@ -399,6 +399,12 @@ fn pixel_localizer<'a>(
             format!("{label} is not open here")
         }
     };
+    // A float side is the first reason, whatever the other side is.
+    for imp in [a, b].into_iter().flatten() {
+        if let Err(why) = localizable(imp, imp) {
+            return PixelLocalizer::Impossible(why.to_string());
+        }
+    }
     let (a, b, tracer) = match (a, b, tracer) {
         (None, _, _) => return PixelLocalizer::Impossible(missing(labels[0])),
         (_, None, _) => return PixelLocalizer::Impossible(missing(labels[1])),
@@ -407,9 +413,6 @@ fn pixel_localizer<'a>(
         }
         (Some(a), Some(b), Some(t)) => (a, b, t),
     };
-    if let Err(why) = localizable(a, b) {
-        return PixelLocalizer::Impossible(why.to_string());
-    }
     PixelLocalizer::Traced {
         method: "first divergent Float316 operation from the op traces of both sides \
                  (a side that cannot trace replays ref-f316's trace op by op)"
@@ -650,6 +653,9 @@ mod tests {
         let main = JACK_MAIN.to_string();
         let screen = pixel_localizer(Some(f316.as_ref()), None, Some(f316.as_ref()), [&a, &main]);
         assert!(why(screen).contains("no per-pixel trace"));
+        let float_screen =
+            pixel_localizer(Some(f64.as_ref()), None, Some(f316.as_ref()), [&b, &main]);
+        assert!(why(float_screen).starts_with("ref-f64 computes with f64"));
         assert_eq!(entry_point(JACK_MAIN), "jack");
         assert_eq!(
             pixel_repro("ref-f316", "ref-f64", false, 3, 4),
