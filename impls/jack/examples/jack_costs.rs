@@ -8,28 +8,15 @@
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{Op, F316};
 use jack::{Budgets, Config, Profile, Raymarcher};
+use proptest::prelude::*;
 use std::time::Instant;
+use vectors::gen::{self, Draw};
 
-/// A small deterministic generator (xorshift64*).
-struct Gen(u64);
-
-impl Gen {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-
-    fn range(&mut self, lo: i64, hi: i64) -> i16 {
-        (lo + (self.next() % (hi - lo + 1) as u64) as i64) as i16
-    }
-
-    /// A normalised value with |x| roughly in [2^-6, 2^8].
-    fn value(&mut self, signed: bool) -> F316 {
-        let s = if signed { self.range(0, 1) } else { 0 };
-        F316::new(s, self.range(121, 135), self.range(8192, 16383))
-    }
+/// A normalised value with |x| roughly in [2^-6, 2^8], of either sign or
+/// positive.
+fn value(signed: bool) -> impl Strategy<Value = F316> {
+    gen::ops::normalised(121..=135)
+        .prop_map(move |v| if signed { v } else { F316::new(0, v.e, v.m) })
 }
 
 /// CPU seconds this process has used (user + system), from /proc.
@@ -54,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .nth(1)
         .unwrap_or_else(|| "jack-cost-map.png".to_string());
     let jack = Raymarcher::new(Profile::Desktop, Budgets::default())?;
-    let mut gen = Gen(0x5eed_f316);
+    let mut draw = Draw::new(0x5eed_f316);
 
     println!("| Float316 operation | mean instructions | max |");
     println!("|---|---:|---:|");
@@ -62,7 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let signed = !matches!(op, Op::Sqrt | Op::InvSqrt);
         let mut counts = Vec::new();
         for _ in 0..2000 {
-            let mut a = gen.value(signed);
+            let mut a = draw.one(&value(signed));
             if op == Op::Mod2 {
                 // An integral operand: floor of a value below 2^8.
                 a = jack
@@ -76,7 +63,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .unwrap_or(F316::ZERO);
             }
             let args: Vec<F316> = if op.arity() == 2 {
-                vec![a, gen.value(true)]
+                vec![a, draw.one(&value(true))]
             } else {
                 vec![a]
             };
@@ -88,10 +75,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let mut sdf_counts = Vec::new();
     for _ in 0..2000 {
-        let c = |g: &mut Gen| {
-            F316::from_f64_truncating((g.next() % 8000) as f64 / 1000.0 - 4.0).unwrap_or(F316::ZERO)
-        };
-        let p = [c(&mut gen), c(&mut gen), c(&mut gen)];
+        let c = (0..8000i32).prop_map(|v| {
+            F316::from_f64_truncating(f64::from(v) / 1000.0 - 4.0).unwrap_or(F316::ZERO)
+        });
+        let p = [draw.one(&c), draw.one(&c), draw.one(&c)];
         sdf_counts.push(jack.sdf(p)?.instructions);
     }
     let (mean, max) = stats(&sdf_counts);

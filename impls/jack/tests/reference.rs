@@ -4,8 +4,10 @@
 
 use common::{Op, Outcome, F316};
 use jack::{Budgets, Profile, Raymarcher};
+use proptest::prelude::*;
 use reference::{Arith, RefImpl, Reference};
 use std::sync::OnceLock;
+use vectors::gen::{self, Draw};
 
 fn jack() -> &'static Raymarcher {
     static R: OnceLock<Raymarcher> = OnceLock::new();
@@ -23,48 +25,28 @@ fn seed() -> &'static Reference {
     R.get_or_init(|| Reference::seed(RefImpl::F316))
 }
 
-/// A small deterministic generator (xorshift64*).
-struct Gen(u64);
+/// Mostly normalised values near the scene's range, some zeros, some
+/// arbitrary triples, some values with few mantissa bits.
+fn operand() -> impl Strategy<Value = F316> {
+    prop_oneof![
+        1 => (0..=1i16).prop_map(|s| F316::new(s, 0, 0)),
+        1 => (0..=1i16, -200..=400i16, any::<i16>()).prop_map(|(s, e, m)| F316::new(s, e, m)),
+        1 => (0..=1i16, 127..=141i16, 8192..=16383i16).prop_map(|(s, e, m)| F316::new(s, e, m & !127)),
+        7 => gen::ops::normalised(110..=145),
+    ]
+}
 
-impl Gen {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-
-    fn pick(&mut self, lo: i64, hi: i64) -> i16 {
-        (lo + (self.next() % (hi - lo + 1) as u64) as i64) as i16
-    }
-
-    /// Mostly normalised values near the scene's range, some zeros, some
-    /// arbitrary triples.
-    fn operand(&mut self) -> F316 {
-        match self.next() % 10 {
-            0 => F316::new(self.pick(0, 1), 0, 0),
-            1 => F316::new(
-                self.pick(0, 1),
-                self.pick(-200, 400),
-                self.pick(-32768, 32767),
-            ),
-            2 => F316::new(
-                self.pick(0, 1),
-                self.pick(127, 141),
-                self.pick(8192, 16383) & !127,
-            ),
-            _ => F316::new(self.pick(0, 1), self.pick(110, 145), self.pick(8192, 16383)),
-        }
-    }
+fn operands(draw: &mut Draw, op: Op) -> Vec<F316> {
+    (0..op.arity()).map(|_| draw.one(&operand())).collect()
 }
 
 #[test]
 fn operations_agree_on_generated_operands() {
-    let mut gen = Gen(0x0f31_6d1f);
+    let mut draw = Draw::new(0x0f31_6d1f);
     let mut failures = Vec::new();
     for op in Op::ALL {
         for _ in 0..400 {
-            let args: Vec<F316> = (0..op.arity()).map(|_| gen.operand()).collect();
+            let args = operands(&mut draw, op);
             let want = reference::op(op, &args, Arith::default()).unwrap();
             let got = jack().op(op, &args).unwrap().outcome;
             if got != want {
@@ -82,10 +64,10 @@ fn operations_agree_on_generated_operands() {
 
 #[test]
 fn operation_traces_agree() {
-    let mut gen = Gen(0x7ace);
+    let mut draw = Draw::new(0x7ace);
     for op in [Op::Sub, Op::Floor, Op::Sqrt, Op::InvSqrt] {
         for _ in 0..50 {
-            let args: Vec<F316> = (0..op.arity()).map(|_| gen.operand()).collect();
+            let args = operands(&mut draw, op);
             let want = reference::trace_op(op, &args, Arith::default())
                 .unwrap()
                 .records;
@@ -103,11 +85,11 @@ fn operation_traces_agree() {
 
 #[test]
 fn sdf_queries_agree() {
-    let mut gen = Gen(0x5df);
+    let mut draw = Draw::new(0x5df);
     let coord =
-        |g: &mut Gen| F316::from_f64_truncating(g.pick(-4000, 4000) as f64 / 1000.0).unwrap();
+        (-4000..=4000i32).prop_map(|v| F316::from_f64_truncating(f64::from(v) / 1000.0).unwrap());
     for _ in 0..300 {
-        let p = [coord(&mut gen), coord(&mut gen), coord(&mut gen)];
+        let p = [draw.one(&coord), draw.one(&coord), draw.one(&coord)];
         let want = seed()
             .sdf(p)
             .map(|v| (v.sd.triple.unwrap(), v.col.triple.unwrap()));
