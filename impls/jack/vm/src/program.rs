@@ -13,6 +13,9 @@ pub type FnId = u32;
 /// and call targets are function ids. Fused forms cover several VM commands;
 /// `Op::steps` says how many.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+// A plain one-byte tag: without it the operands' tags double as the
+// instruction's, and dispatch becomes a chain of tests.
+#[repr(u8)]
 pub(crate) enum Op {
     PushConst(i16),
     PushLocal(u16),
