@@ -40,16 +40,20 @@ impl Op {
         Op::Quarter,
     ];
 
-    /// The unary operations (one operand).
-    pub const UNARY: [Op; 7] = [
-        Op::Floor,
-        Op::Mod2,
-        Op::Sqrt,
-        Op::InvSqrt,
-        Op::Halve,
-        Op::Double,
-        Op::Quarter,
-    ];
+    /// The unary operations (arity one), in the order of [`Op::ALL`].
+    pub const UNARY: [Op; 7] = {
+        let mut unary = [Op::Gt; 7];
+        let (mut i, mut n) = (0, 0);
+        while i < Op::ALL.len() {
+            if Op::ALL[i].arity() == 1 {
+                unary[n] = Op::ALL[i];
+                n += 1;
+            }
+            i += 1;
+        }
+        assert!(n == unary.len(), "UNARY holds every unary op");
+        unary
+    };
 
     /// How many Float316 operands the operation takes.
     pub const fn arity(self) -> usize {
