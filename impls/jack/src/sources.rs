@@ -3,6 +3,7 @@
 
 use crate::JackError;
 use hack_vm::{Profile, Program};
+use jack_compiler::VmClass;
 use std::sync::Arc;
 
 /// Every class of the raymarcher as (file name, source), in file name order
@@ -26,9 +27,6 @@ pub fn program(profile: Profile) -> Result<Arc<Program>, JackError> {
         Profile::Web => jack_compiler::Profile::Web,
     };
     let classes = jack_compiler::compile_sources(&SOURCES, compiler)?;
-    let vm: Vec<(String, String)> = classes
-        .into_iter()
-        .map(|c| (format!("{}.vm", c.class_name), c.code))
-        .collect();
+    let vm: Vec<(String, String)> = classes.into_iter().map(VmClass::into_file).collect();
     Ok(Program::from_sources(&vm)?)
 }

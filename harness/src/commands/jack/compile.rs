@@ -37,7 +37,7 @@ pub fn run(args: CompileArgs) -> anyhow::Result<ExitCode> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     for class in &classes {
-        let path = args.out.join(format!("{}.vm", class.class_name));
+        let path = args.out.join(class.file_name());
         std::fs::write(&path, &class.code)
             .with_context(|| format!("cannot write {}", path.display()))?;
     }

@@ -113,7 +113,7 @@ fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
         .with_context(|| format!("compiling {}", dir.display()))?;
     let sources: Vec<(String, String)> = classes
         .into_iter()
-        .map(|c| (format!("{}.vm", c.class_name), c.code))
+        .map(jack_compiler::VmClass::into_file)
         .collect();
     Program::from_sources(&sources)
         .with_context(|| format!("loading the VM code compiled from {}", dir.display()))

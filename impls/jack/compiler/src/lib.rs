@@ -44,6 +44,19 @@ pub struct VmClass {
     pub code: String,
 }
 
+impl VmClass {
+    /// The name of the class's .vm file: `<class_name>.vm`.
+    pub fn file_name(&self) -> String {
+        format!("{}.vm", self.class_name)
+    }
+
+    /// The class as a (file name, VM code) pair, the form the Hack VM
+    /// loads a program from.
+    pub fn into_file(self) -> (String, String) {
+        (self.file_name(), self.code)
+    }
+}
+
 /// The class name a source file must declare: its base name without `.jack`.
 pub fn class_name_of_file(file_name: &str) -> &str {
     let base = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);

@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use hack_vm::{Config, Exit, Machine, Program};
-use jack_compiler::{compile_dir, compile_sources, Profile};
+use jack_compiler::{compile_dir, compile_sources, Profile, VmClass};
 
 const BUDGET: Option<u64> = Some(50_000_000);
 
@@ -199,10 +199,7 @@ fn machine(profile: Profile) -> Machine {
         ("Unit.jack", UNIT),
     ];
     let vm = compile_sources(&sources, profile).unwrap_or_else(|e| panic!("{e}"));
-    let files: Vec<(String, String)> = vm
-        .into_iter()
-        .map(|c| (format!("{}.vm", c.class_name), c.code))
-        .collect();
+    let files: Vec<(String, String)> = vm.into_iter().map(VmClass::into_file).collect();
     let program: Arc<Program> = Program::from_sources(&files).unwrap_or_else(|e| panic!("{e}"));
     Machine::new(
         program,
@@ -296,10 +293,7 @@ fn the_raymarcher_compiles_and_loads_in_both_profiles() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../raymarcher");
     for profile in [Profile::Desktop, Profile::Web] {
         let vm = compile_dir(&dir, profile).unwrap_or_else(|e| panic!("{e}"));
-        let files: Vec<(String, String)> = vm
-            .into_iter()
-            .map(|c| (format!("{}.vm", c.class_name), c.code))
-            .collect();
+        let files: Vec<(String, String)> = vm.into_iter().map(VmClass::into_file).collect();
         Program::from_sources(&files).unwrap_or_else(|e| panic!("{e}"));
     }
 }

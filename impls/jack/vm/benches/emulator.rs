@@ -7,10 +7,14 @@
 //! with jack-compiler) computing pixels from a snapshot taken after
 //! `Main.init`.
 
+#[path = "../tests/support/raymarcher.rs"]
+mod support;
+
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use hack_vm::{Config, Exit, Machine, Program};
 use rayon::prelude::*;
 use std::sync::Arc;
+use support::raymarcher;
 
 const ROUNDS: i16 = 2000;
 
@@ -56,17 +60,6 @@ fn emulator(c: &mut Criterion) {
         },
     );
     g.finish();
-}
-
-fn raymarcher() -> Arc<Program> {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../raymarcher");
-    let classes = jack_compiler::compile_dir(&dir, jack_compiler::Profile::Desktop)
-        .expect("the raymarcher compiles");
-    let sources: Vec<(String, String)> = classes
-        .into_iter()
-        .map(|c| (format!("{}.vm", c.class_name), c.code))
-        .collect();
-    Program::from_sources(&sources).expect("the raymarcher loads")
 }
 
 /// Pixels (x, 100) for x = 0, 16, .., 496 from clones of `snapshot`.

@@ -2,21 +2,11 @@
 //! with jack-compiler, initialised once and then asked for pixels from
 //! clones of the snapshot. Fused and plain execution must agree on it.
 
-use hack_vm::{Config, Exit, Machine, Program};
-use std::path::Path;
-use std::sync::Arc;
+#[path = "support/raymarcher.rs"]
+mod support;
 
-/// The raymarcher compiled under the desktop profile.
-fn raymarcher() -> Arc<Program> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../raymarcher");
-    let classes = jack_compiler::compile_dir(&dir, jack_compiler::Profile::Desktop)
-        .expect("the raymarcher compiles");
-    let sources: Vec<(String, String)> = classes
-        .into_iter()
-        .map(|c| (format!("{}.vm", c.class_name), c.code))
-        .collect();
-    Program::from_sources(&sources).expect("the raymarcher loads")
-}
+use hack_vm::{Config, Exit, Machine};
+use support::raymarcher;
 
 #[test]
 fn raymarcher_pixels_run_and_fusion_changes_nothing() {
