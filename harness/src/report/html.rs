@@ -54,6 +54,37 @@ fn yes_no(v: Option<bool>) -> &'static str {
     }
 }
 
+/// Append `<table>` and its header row: one `<th>` per column (HTML).
+fn table_head<C: std::fmt::Display>(h: &mut String, columns: impl IntoIterator<Item = C>) {
+    h.push_str("<table><tr>");
+    for c in columns {
+        let _ = write!(h, "<th>{c}</th>");
+    }
+    h.push_str("</tr>");
+}
+
+/// Append a table row of cells made by [`td`], [`td_n`] and [`td_code`].
+fn row(h: &mut String, cells: &[String]) {
+    h.push_str("<tr>");
+    cells.iter().for_each(|c| h.push_str(c));
+    h.push_str("</tr>");
+}
+
+/// A table cell holding `html`.
+fn td(html: impl std::fmt::Display) -> String {
+    format!("<td>{html}</td>")
+}
+
+/// A numeric table cell (right-aligned).
+fn td_n(html: impl std::fmt::Display) -> String {
+    format!("<td class=n>{html}</td>")
+}
+
+/// A table cell holding `text` as code.
+fn td_code(text: &str) -> String {
+    format!("<td><code>{}</code></td>", esc(text))
+}
+
 /// Anchor-safe id fragment of a label.
 fn slug(s: &str) -> String {
     s.chars()
@@ -196,16 +227,16 @@ fn summary(h: &mut String, r: &Report) {
         }
         h.push_str("</ul>");
     }
-    h.push_str(
-        "<h3>Implementations</h3><table><tr><th>name</th><th>available</th><th>note</th></tr>",
-    );
+    h.push_str("<h3>Implementations</h3>");
+    table_head(h, ["name", "available", "note"]);
     for i in &r.implementations {
-        let _ = write!(
+        row(
             h,
-            "<tr><td><code>{}</code></td><td>{}</td><td>{}</td></tr>",
-            esc(&i.name),
-            yes_no(Some(i.available)),
-            esc(i.note.as_deref().unwrap_or(""))
+            &[
+                td_code(&i.name),
+                td(yes_no(Some(i.available))),
+                td(esc(i.note.as_deref().unwrap_or(""))),
+            ],
         );
     }
     h.push_str("</table>");
@@ -220,14 +251,10 @@ fn summary(h: &mut String, r: &Report) {
         }
         h.push_str("</pre></details>");
     }
-    h.push_str("<h3>Steps</h3><table><tr><th>step</th><th>time</th></tr>");
+    h.push_str("<h3>Steps</h3>");
+    table_head(h, ["step", "time"]);
     for s in &r.meta.steps {
-        let _ = write!(
-            h,
-            "<tr><td>{}</td><td class=n>{}</td></tr>",
-            esc(&s.step),
-            seconds(s.seconds)
-        );
+        row(h, &[td(esc(&s.step)), td_n(seconds(s.seconds))]);
     }
     h.push_str("</table></section>\n");
 }
@@ -235,8 +262,21 @@ fn summary(h: &mut String, r: &Report) {
 fn levels(h: &mut String, r: &Report) {
     h.push_str(
         "<section id=levels><h2>Level comparisons</h2><p>Float316 implementations must agree bit for bit (any difference is a divergence); \
-         float implementations are measured against <code>ref-f64</code> (error figures, reported not hidden).</p>\
-         <table><tr><th>level</th><th>scope</th><th>A</th><th>B</th><th>policy</th><th>cases</th><th>divergences</th><th>mean |err|</th><th>max |err|</th></tr>",
+         float implementations are measured against <code>ref-f64</code> (error figures, reported not hidden).</p>",
+    );
+    table_head(
+        h,
+        [
+            "level",
+            "scope",
+            "A",
+            "B",
+            "policy",
+            "cases",
+            "divergences",
+            "mean |err|",
+            "max |err|",
+        ],
     );
     for c in &r.comparisons {
         let class = if c.divergences == 0 {
@@ -246,18 +286,19 @@ fn levels(h: &mut String, r: &Report) {
         } else {
             "warn"
         };
-        let _ = write!(
+        row(
             h,
-            "<tr><td>{}</td><td>{}</td><td><code>{}</code></td><td><code>{}</code></td><td>{}</td><td class=n>{}</td><td class=\"n {class}\">{}</td><td class=n>{}</td><td class=n>{}</td></tr>",
-            esc(&c.level),
-            esc(&c.scope),
-            esc(&c.a),
-            esc(&c.b),
-            esc(&c.policy),
-            c.cases,
-            c.divergences,
-            opt_number(c.error.map(|e| e.mean_abs)),
-            opt_number(c.error.map(|e| e.max_abs)),
+            &[
+                td(esc(&c.level)),
+                td(esc(&c.scope)),
+                td_code(&c.a),
+                td_code(&c.b),
+                td(esc(&c.policy)),
+                td_n(c.cases),
+                format!("<td class=\"n {class}\">{}</td>", c.divergences),
+                td_n(opt_number(c.error.map(|e| e.mean_abs))),
+                td_n(opt_number(c.error.map(|e| e.max_abs))),
+            ],
         );
     }
     h.push_str("</table>");
@@ -271,25 +312,27 @@ fn levels(h: &mut String, r: &Report) {
         for c in with_examples {
             let _ = write!(
                 h,
-                "<details><summary>{} {}: <code>{}</code> vs <code>{}</code> ({} shown)</summary><table><tr><th>case</th><th>A</th><th>B</th><th>first divergent operation</th><th>reproduce</th></tr>",
+                "<details><summary>{} {}: <code>{}</code> vs <code>{}</code> ({} shown)</summary>",
                 esc(&c.level),
                 esc(&c.scope),
                 esc(&c.a),
                 esc(&c.b),
                 c.examples.len()
             );
+            table_head(
+                h,
+                ["case", "A", "B", "first divergent operation", "reproduce"],
+            );
             for e in &c.examples {
-                let _ = write!(
+                row(
                     h,
-                    "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                    esc(&e.case),
-                    esc(&e.a),
-                    esc(&e.b),
-                    esc(e.first_op.as_deref().unwrap_or("–")),
-                    e.repro
-                        .as_deref()
-                        .map(|c| format!("<code>{}</code>", esc(c)))
-                        .unwrap_or_default()
+                    &[
+                        td_code(&e.case),
+                        td(esc(&e.a)),
+                        td(esc(&e.b)),
+                        td(esc(e.first_op.as_deref().unwrap_or("–"))),
+                        e.repro.as_deref().map(td_code).unwrap_or_else(|| td("")),
+                    ],
                 );
             }
             h.push_str("</table></details>");
@@ -381,20 +424,24 @@ fn pairs(h: &mut String, r: &Report) {
                 "<p>First divergent operation: {}</p>",
                 esc(&p.localization)
             );
-            h.push_str("<table><tr><th>x</th><th>y</th><th>A</th><th>B</th><th>first divergent operation</th><th>reproduce</th></tr>");
+            table_head(
+                h,
+                ["x", "y", "A", "B", "first divergent operation", "reproduce"],
+            );
             for d in &p.divergences {
-                let _ = write!(
-                    h,
-                    "<tr id=\"{id}-{}-{}\"><td class=n>{}</td><td class=n>{}</td><td>{}</td><td>{}</td><td>{}</td><td><code>{}</code></td></tr>",
-                    d.x,
-                    d.y,
-                    d.x,
-                    d.y,
-                    pixel_text(d.a_white, d.a_shade),
-                    pixel_text(d.b_white, d.b_shade),
-                    esc(d.first_op.as_deref().unwrap_or("not localizable (see above)")),
-                    esc(&d.repro)
-                );
+                let cells = [
+                    td_n(d.x),
+                    td_n(d.y),
+                    td(pixel_text(d.a_white, d.a_shade)),
+                    td(pixel_text(d.b_white, d.b_shade)),
+                    td(esc(d
+                        .first_op
+                        .as_deref()
+                        .unwrap_or("not localizable (see above)"))),
+                    td_code(&d.repro),
+                ];
+                // The row is the target of its mark's link.
+                let _ = write!(h, "<tr id=\"{id}-{}-{}\">{}</tr>", d.x, d.y, cells.concat());
             }
             h.push_str("</table>");
             if p.unlisted > 0 {
@@ -467,6 +514,22 @@ fn cost_map(h: &mut String, r: &Report) {
     h.push_str("</section>\n");
 }
 
+/// The cells the speed and bench tables share: VM instructions per pixel,
+/// mean and max |shade error| against `ref-f64`, pixel flips.
+fn cost_and_error(
+    vm_instructions: Option<f64>,
+    mean_error: Option<f64>,
+    max_error: Option<f64>,
+    flips: u64,
+) -> [String; 4] {
+    [
+        td_n(opt_number(vm_instructions)),
+        td_n(opt_number(mean_error)),
+        td_n(opt_number(max_error)),
+        td_n(flips),
+    ]
+}
+
 fn speed(h: &mut String, r: &Report) {
     let s = &r.speed_error;
     h.push_str("<section id=speed><h2>Speed against error</h2>");
@@ -483,21 +546,28 @@ fn speed(h: &mut String, r: &Report) {
         }
         None => h.push_str("<p class=warn>No precision variant reproduced the spec's image.</p>"),
     }
-    h.push_str(
-        "<table><tr><th>implementation / variant</th><th>time per pixel</th><th>VM instr. per pixel</th><th>mean |shade err|</th><th>max |shade err|</th><th>pixel flips vs ref-f64</th><th>identical to spec</th></tr>",
+    table_head(
+        h,
+        [
+            "implementation / variant",
+            "time per pixel",
+            "VM instr. per pixel",
+            "mean |shade err|",
+            "max |shade err|",
+            "pixel flips vs ref-f64",
+            "identical to spec",
+        ],
     );
     for p in &s.points {
-        let _ = write!(
-            h,
-            "<tr><td><code>{}</code></td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td>{}</td></tr>",
-            esc(&p.label),
-            seconds(p.time_per_pixel_s),
-            opt_number(p.vm_instructions_per_pixel),
-            opt_number(p.mean_shade_error),
-            opt_number(p.max_shade_error),
+        let mut cells = vec![td_code(&p.label), td_n(seconds(p.time_per_pixel_s))];
+        cells.extend(cost_and_error(
+            p.vm_instructions_per_pixel,
+            p.mean_shade_error,
+            p.max_shade_error,
             p.pixel_flips,
-            yes_no(p.identical_to_spec)
-        );
+        ));
+        cells.push(td(yes_no(p.identical_to_spec)));
+        row(h, &cells);
     }
     h.push_str("</table></section>\n");
 }
@@ -513,80 +583,94 @@ fn stability(h: &mut String, r: &Report) {
     }
     let impls: std::collections::BTreeSet<&String> =
         r.stability.iter().flat_map(|s| s.outcomes.keys()).collect();
-    h.push_str("<table><tr><th>set</th><th>category</th><th>vectors</th>");
-    for i in &impls {
-        let _ = write!(h, "<th><code>{}</code></th>", esc(i));
-    }
-    h.push_str("<th>worst error vs f64</th></tr>");
+    let columns = ["set", "category", "vectors"].map(String::from);
+    let impl_columns = impls.iter().map(|i| format!("<code>{}</code>", esc(i)));
+    table_head(
+        h,
+        columns
+            .into_iter()
+            .chain(impl_columns)
+            .chain(["worst error vs f64".to_string()]),
+    );
     for s in &r.stability {
-        let _ = write!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td class=n>{}</td>",
-            esc(&s.set),
-            esc(&s.category),
-            s.vectors
-        );
-        for i in &impls {
-            match s.outcomes.get(*i) {
-                Some(t) => {
-                    let _ = write!(
-                        h,
-                        "<td>V {} · E {} · H {} · D {}",
-                        t.value, t.sys_error, t.hang, t.out_of_domain
-                    );
-                    match t.diverging {
-                        Some(0) => h.push_str(" · <span class=ok>≠ 0</span>"),
-                        Some(n) => {
-                            let _ = write!(h, " · <span class=bad>≠ {n}</span>");
-                        }
-                        None => {}
-                    }
-                    h.push_str("</td>");
-                }
-                None => h.push_str("<td>not run</td>"),
-            }
-        }
-        match &s.worst {
-            Some(w) => {
-                let _ = write!(
-                    h,
-                    "<td>{} rel, {} abs: <code>{}</code> on <code>{}</code> ({}): {}",
-                    short_number(w.rel),
-                    short_number(w.abs),
-                    esc(&w.implementation),
-                    esc(&w.case),
-                    esc(&w.vector),
-                    esc(&w.answers)
-                );
-                if let Some(repro) = &w.repro {
-                    let _ = write!(h, "<br><code>{}</code>", esc(repro));
-                }
-                h.push_str("</td></tr>");
-            }
-            None => h.push_str("<td>no value on both sides</td></tr>"),
-        }
+        let mut cells = vec![td(esc(&s.set)), td(esc(&s.category)), td_n(s.vectors)];
+        cells.extend(impls.iter().map(|i| td(outcome_tally(s.outcomes.get(*i)))));
+        cells.push(td(worst_error(s.worst.as_ref())));
+        row(h, &cells);
     }
     h.push_str("</table></section>\n");
 }
 
+/// One implementation's outcomes in a stability row.
+fn outcome_tally(tally: Option<&OutcomeTally>) -> String {
+    let Some(t) = tally else {
+        return "not run".into();
+    };
+    let mut text = format!(
+        "V {} · E {} · H {} · D {}",
+        t.value, t.sys_error, t.hang, t.out_of_domain
+    );
+    match t.diverging {
+        Some(0) => text.push_str(" · <span class=ok>≠ 0</span>"),
+        Some(n) => {
+            let _ = write!(text, " · <span class=bad>≠ {n}</span>");
+        }
+        None => {}
+    }
+    text
+}
+
+/// The worst error of a stability row, with its repro command.
+fn worst_error(worst: Option<&WorstError>) -> String {
+    let Some(w) = worst else {
+        return "no value on both sides".into();
+    };
+    let mut text = format!(
+        "{} rel, {} abs: <code>{}</code> on <code>{}</code> ({}): {}",
+        short_number(w.rel),
+        short_number(w.abs),
+        esc(&w.implementation),
+        esc(&w.case),
+        esc(&w.vector),
+        esc(&w.answers)
+    );
+    if let Some(repro) = &w.repro {
+        let _ = write!(text, "<br><code>{}</code>", esc(repro));
+    }
+    text
+}
+
 fn bench(h: &mut String, r: &Report) {
-    h.push_str(
-        "<section id=bench><h2>Benchmarks</h2><table><tr><th>implementation</th><th>set-up</th><th>full image</th><th>per pixel</th><th>pixels/s</th><th>VM instr. per pixel</th><th>mean |err|</th><th>max |err|</th><th>flips</th></tr>",
+    h.push_str("<section id=bench><h2>Benchmarks</h2>");
+    table_head(
+        h,
+        [
+            "implementation",
+            "set-up",
+            "full image",
+            "per pixel",
+            "pixels/s",
+            "VM instr. per pixel",
+            "mean |err|",
+            "max |err|",
+            "flips",
+        ],
     );
     for b in &r.bench {
-        let _ = write!(
-            h,
-            "<tr><td><code>{}</code></td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td></tr>",
-            esc(&b.implementation),
-            seconds(b.setup_s),
-            seconds(b.image_s),
-            seconds(b.per_pixel_s),
-            short_number(b.pixels_per_s()),
-            opt_number(b.vm_instructions_per_pixel),
-            opt_number(b.mean_shade_error),
-            opt_number(b.max_shade_error),
-            b.pixel_flips
-        );
+        let mut cells = vec![
+            td_code(&b.implementation),
+            td_n(seconds(b.setup_s)),
+            td_n(seconds(b.image_s)),
+            td_n(seconds(b.per_pixel_s)),
+            td_n(short_number(b.pixels_per_s())),
+        ];
+        cells.extend(cost_and_error(
+            b.vm_instructions_per_pixel,
+            b.mean_shade_error,
+            b.max_shade_error,
+            b.pixel_flips,
+        ));
+        row(h, &cells);
     }
     h.push_str("</table></section>\n");
 }
@@ -614,24 +698,30 @@ fn trend(h: &mut String, history: &History) {
                 .collect()
         })
         .unwrap_or_default();
-    h.push_str("<table><tr><th>date</th><th>commit</th><th>duration</th><th>bit-exact divergences</th><th>differing pixels</th><th>problems</th>");
-    for l in &labels {
-        let _ = write!(h, "<th><code>{}</code><br>flips · per pixel</th>", esc(l));
-    }
-    h.push_str("</tr>");
+    let columns = [
+        "date",
+        "commit",
+        "duration",
+        "bit-exact divergences",
+        "differing pixels",
+        "problems",
+    ]
+    .map(String::from);
+    let label_columns = labels
+        .iter()
+        .map(|l| format!("<code>{}</code><br>flips · per pixel", esc(l)));
+    table_head(h, columns.into_iter().chain(label_columns));
     for e in &recent {
         let pixels: u64 = e.pixel_divergences.values().sum();
-        let _ = write!(
-            h,
-            "<tr><td>{}</td><td><code>{}</code></td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td><td class=n>{}</td>",
-            esc(&e.date),
-            esc(e.commit.get(..10).unwrap_or(&e.commit)),
-            seconds(e.duration_s),
-            e.divergences,
-            pixels,
-            e.problems
-        );
-        for l in &labels {
+        let mut cells = vec![
+            td(esc(&e.date)),
+            td_code(e.commit.get(..10).unwrap_or(&e.commit)),
+            td_n(seconds(e.duration_s)),
+            td_n(e.divergences),
+            td_n(pixels),
+            td_n(e.problems),
+        ];
+        cells.extend(labels.iter().map(|l| {
             let flips = e
                 .errors
                 .get(*l)
@@ -642,9 +732,9 @@ fn trend(h: &mut String, history: &History) {
                 .get(*l)
                 .map(|s| seconds(*s))
                 .unwrap_or_else(|| "–".into());
-            let _ = write!(h, "<td class=n>{flips} · {speed}</td>");
-        }
-        h.push_str("</tr>");
+            td_n(format!("{flips} · {speed}"))
+        }));
+        row(h, &cells);
     }
     h.push_str("</table></section>\n");
 }
