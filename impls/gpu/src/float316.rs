@@ -11,31 +11,13 @@ use common::{Op, OpValue, Outcome, F316};
 const SOURCE: &str = include_str!("shaders/f316.wgsl");
 
 /// One operation: op code, a, b -> status, result.
-pub(crate) const OPS: KernelSpec = KernelSpec {
-    label: "f316 ops",
-    source: SOURCE,
-    entry: "ops_main",
-    in_words: 7,
-    out_words: 4,
-};
+pub(crate) const OPS: KernelSpec = KernelSpec::new("f316 ops", SOURCE, "ops_main", 7, 4);
 
 /// Scene query: p -> status, sd, col.
-pub(crate) const SDF: KernelSpec = KernelSpec {
-    label: "f316 sdf",
-    source: SOURCE,
-    entry: "sdf_main",
-    in_words: 9,
-    out_words: 7,
-};
+pub(crate) const SDF: KernelSpec = KernelSpec::new("f316 sdf", SOURCE, "sdf_main", 9, 7);
 
 /// Pixel shade: x, y -> status, value, white.
-pub(crate) const PIXELS: KernelSpec = KernelSpec {
-    label: "f316 pixels",
-    source: SOURCE,
-    entry: "pixels_main",
-    in_words: 2,
-    out_words: 5,
-};
+pub(crate) const PIXELS: KernelSpec = KernelSpec::new("f316 pixels", SOURCE, "pixels_main", 2, 5);
 
 /// The op code the kernel switches on: the index in [`Op::ALL`].
 fn op_code(op: Op) -> u32 {

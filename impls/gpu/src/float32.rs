@@ -9,22 +9,10 @@ use crate::kernel::KernelSpec;
 const SOURCE: &str = include_str!("shaders/f32.wgsl");
 
 /// Scene query: p -> sd, col.
-pub(crate) const SDF: KernelSpec = KernelSpec {
-    label: "f32 sdf",
-    source: SOURCE,
-    entry: "sdf_main",
-    in_words: 3,
-    out_words: 2,
-};
+pub(crate) const SDF: KernelSpec = KernelSpec::new("f32 sdf", SOURCE, "sdf_main", 3, 2);
 
 /// Pixel shade: x, y -> value, white.
-pub(crate) const PIXELS: KernelSpec = KernelSpec {
-    label: "f32 pixels",
-    source: SOURCE,
-    entry: "pixels_main",
-    in_words: 2,
-    out_words: 2,
-};
+pub(crate) const PIXELS: KernelSpec = KernelSpec::new("f32 pixels", SOURCE, "pixels_main", 2, 2);
 
 impl Gpu {
     /// The scene at f32 points: `(sd, col)` per point.

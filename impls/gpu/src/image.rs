@@ -2,13 +2,25 @@
 //! the full image in row-major order.
 
 use crate::error::GpuError;
-use common::image_consts::{HEIGHT, WIDTH};
+use common::image_consts::{BAYER, HEIGHT, WIDTH};
 
 /// Every pixel of the 512x256 image, row by row (the order of the renders).
 pub fn all_pixels() -> Vec<(u16, u16)> {
     (0..HEIGHT as u16)
         .flat_map(|y| (0..WIDTH as u16).map(move |x| (x, y)))
         .collect()
+}
+
+/// The dither matrix for the kernels, as WGSL generated from
+/// [`BAYER`] (so there is one copy of it): `BAYER` and `bayer(x, y)`.
+pub(crate) fn bayer_wgsl() -> String {
+    let entries: Vec<String> = BAYER.iter().map(u8::to_string).collect();
+    format!(
+        "var<private> BAYER: array<i32, 64> = array<i32, 64>({});\n\n\
+         // The Bayer entry of pixel (x, y): BAYER[(y mod 8) * 8 + (x mod 8)].\n\
+         fn bayer(x: u32, y: u32) -> i32 {{\n    return BAYER[(y % 8u) * 8u + (x % 8u)];\n}}\n",
+        entries.join(", ")
+    )
 }
 
 /// Pixel coordinates as kernel input words (x, y per item).

@@ -3,10 +3,12 @@
 //!
 //! Every kernel has the same bindings (shaders/io.wgsl): input words, output
 //! words, and the item count of the batch. A kernel reads `in_words` and
-//! writes `out_words` words per item.
+//! writes `out_words` words per item. Every kernel's source is compiled after
+//! the same prelude: those bindings and the Bayer matrix.
 
 use crate::context::{lock, Gpu, Health};
 use crate::error::GpuError;
+use crate::image::bayer_wgsl;
 use std::sync::{mpsc, Mutex};
 
 /// Invocations per workgroup; equals `WG` in shaders/io.wgsl.
@@ -17,13 +19,13 @@ const WORKGROUP_SIZE: usize = 64;
 const MAX_BATCH_ITEMS: usize = 1 << 20;
 
 /// The bindings shared by every kernel, as WGSL.
-pub(crate) const IO_WGSL: &str = include_str!("shaders/io.wgsl");
+const IO_WGSL: &str = include_str!("shaders/io.wgsl");
 
 /// What a kernel is: its shader, entry point and strides.
 pub(crate) struct KernelSpec {
     /// A name for errors and debuggers.
     pub label: &'static str,
-    /// The kernel's WGSL, without the shared bindings (prepended here).
+    /// The kernel's WGSL, without the prelude (prepended here).
     pub source: &'static str,
     /// The entry point.
     pub entry: &'static str,
@@ -31,6 +33,26 @@ pub(crate) struct KernelSpec {
     pub in_words: usize,
     /// Output words per item.
     pub out_words: usize,
+}
+
+impl KernelSpec {
+    /// The kernel `label`: entry point `entry` of `source`, reading
+    /// `in_words` and writing `out_words` words per item.
+    pub(crate) const fn new(
+        label: &'static str,
+        source: &'static str,
+        entry: &'static str,
+        in_words: usize,
+        out_words: usize,
+    ) -> KernelSpec {
+        KernelSpec {
+            label,
+            source,
+            entry,
+            in_words,
+            out_words,
+        }
+    }
 }
 
 /// The buffers of one batch size, reused between runs.
@@ -94,7 +116,12 @@ fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::E
     (value, errors.into_iter().flatten().next())
 }
 
-/// Compile `source` (the shared bindings are prepended) into a compute
+/// The WGSL every kernel's source follows: the bindings and the Bayer matrix.
+fn prelude() -> String {
+    format!("{IO_WGSL}\n{}", bayer_wgsl())
+}
+
+/// Compile `source` (after the [`prelude`]) into a compute
 /// pipeline with entry point `entry`. A malformed shader is a
 /// [`GpuError::Compile`], never a panic.
 pub(crate) fn compile(
@@ -108,7 +135,7 @@ pub(crate) fn compile(
     let (pipeline, error) = scoped(device, || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(format!("{IO_WGSL}\n{source}").into()),
+            source: wgpu::ShaderSource::Wgsl(format!("{}\n{source}", prelude()).into()),
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(label),

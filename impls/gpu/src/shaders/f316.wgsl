@@ -440,17 +440,6 @@ fn pixel(u: F, v: F) -> F {
 
 // ---- Image (spec section 6) ----
 
-var<private> BAYER: array<i32, 64> = array<i32, 64>(
-    0, 48, 12, 60, 3, 51, 15, 63,
-    32, 16, 44, 28, 35, 19, 47, 31,
-    8, 56, 4, 52, 11, 59, 7, 55,
-    40, 24, 36, 20, 43, 27, 39, 23,
-    2, 50, 14, 62, 1, 49, 13, 61,
-    34, 18, 46, 30, 33, 17, 45, 29,
-    10, 58, 6, 54, 9, 57, 5, 53,
-    42, 26, 38, 22, 41, 25, 37, 21,
-);
-
 // The exact Float316 of a non-negative integer n < 16384 (what the Jack
 // program's counter reaches by adding 1.0 n times: every step is exact).
 fn from_int(n: i32) -> F {
@@ -461,9 +450,10 @@ fn from_int(n: i32) -> F {
     return F(0, 127 + top, n << u32(13 - top));
 }
 
-// The dither threshold (B - 32) / 64 as an exact Float316.
+// The dither threshold (B - 32) / 64 as an exact Float316 (`bayer` is in the
+// prelude every kernel gets, see kernel.rs).
 fn dither(x: i32, y: i32) -> F {
-    let k = BAYER[(y % 8) * 8 + (x % 8)] - 32;
+    let k = bayer(u32(x), u32(y)) - 32;
     if (k == 0) {
         return ZERO;
     }

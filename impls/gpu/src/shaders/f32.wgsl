@@ -137,17 +137,6 @@ fn pixel(u: f32, v: f32) -> f32 {
     return value;
 }
 
-var<private> BAYER: array<f32, 64> = array<f32, 64>(
-    0.0, 48.0, 12.0, 60.0, 3.0, 51.0, 15.0, 63.0,
-    32.0, 16.0, 44.0, 28.0, 35.0, 19.0, 47.0, 31.0,
-    8.0, 56.0, 4.0, 52.0, 11.0, 59.0, 7.0, 55.0,
-    40.0, 24.0, 36.0, 20.0, 43.0, 27.0, 39.0, 23.0,
-    2.0, 50.0, 14.0, 62.0, 1.0, 49.0, 13.0, 61.0,
-    34.0, 18.0, 46.0, 30.0, 33.0, 17.0, 45.0, 29.0,
-    10.0, 58.0, 6.0, 54.0, 9.0, 57.0, 5.0, 53.0,
-    42.0, 26.0, 38.0, 22.0, 41.0, 25.0, 37.0, 21.0,
-);
-
 // In: p (3 words, f32 bits). Out: sd, col (f32 bits).
 @compute @workgroup_size(WG)
 fn sdf_main(@builtin(global_invocation_id) gid: vec3<u32>) {
@@ -173,7 +162,8 @@ fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let u = (f32(x) - 0.5 * 512.0) / 256.0;
     let v = -((f32(y) - 0.5 * 256.0) / 256.0);
     let value = clamp(pixel(u, v), 0.0, 1.0);
-    let dithered = (value + BAYER[(y % 8u) * 8u + (x % 8u)] / 64.0) - 0.5;
+    // `bayer` is in the prelude every kernel gets (see kernel.rs).
+    let dithered = (value + f32(bayer(x, y)) / 64.0) - 0.5;
     outp[i * 2u] = bitcast<u32>(value);
     outp[i * 2u + 1u] = select(0u, 1u, dithered > 0.5);
 }
