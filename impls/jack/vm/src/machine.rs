@@ -88,6 +88,10 @@ pub struct Machine {
     pub(crate) profile: Option<Vec<u64>>,
     pub(crate) profile_mark: u64,
     pub(crate) scratch: Vec<i16>,
+    /// The step at which the keyboard word is next set from the key script
+    /// (0: not yet). Between changes the word keeps whatever the program
+    /// stored there, however the run is split into calls.
+    pub(crate) next_key_sync: u64,
 }
 
 impl Machine {
@@ -115,6 +119,7 @@ impl Machine {
             profile,
             profile_mark: 0,
             scratch: Vec::new(),
+            next_key_sync: 0,
         }
     }
 
@@ -324,11 +329,10 @@ impl Machine {
             return e.clone();
         }
         let budget_end = budget.map_or(u64::MAX, |b| self.steps.saturating_add(b));
-        self.ram
-            .write(KBD as i32, self.os.keys().key_at(self.steps));
+        self.sync_keyboard();
         let program = Arc::clone(&self.program);
         let exit = loop {
-            let key_change = self.os.keys().next_change(self.steps).unwrap_or(u64::MAX);
+            let key_change = self.next_key_sync;
             let limit = budget_end.min(key_change);
             let soft = limit.saturating_sub(crate::fuse::MAX_FUSED_STEPS);
             let flow = if self.steps < soft {
@@ -349,14 +353,11 @@ impl Machine {
             if let Flow::End(exit) = flow {
                 break exit;
             }
+            self.sync_keyboard();
             if self.steps >= budget_end {
                 break Exit::Budget {
                     stack: self.call_stack(),
                 };
-            }
-            if self.steps >= key_change {
-                self.ram
-                    .write(KBD as i32, self.os.keys().key_at(self.steps));
             }
         };
         self.charge_profile();
@@ -364,6 +365,15 @@ impl Machine {
             self.ended = Some(exit.clone());
         }
         exit
+    }
+
+    /// Set the keyboard word from the key script if a key change is due.
+    fn sync_keyboard(&mut self) {
+        if self.steps >= self.next_key_sync {
+            let keys = self.os.keys();
+            self.ram.write(KBD as i32, keys.key_at(self.steps));
+            self.next_key_sync = keys.next_change(self.steps).unwrap_or(u64::MAX);
+        }
     }
 
     /// Attribute the instructions since the last mark to the running function.

@@ -539,3 +539,54 @@ fn keyboard_word_follows_the_key_script_exactly() {
         assert_eq!(m.steps(), first_zero + 3, "hold {hold}");
     }
 }
+
+#[test]
+fn a_program_write_to_the_keyboard_word_lasts_until_the_next_key_change() {
+    // Store 5 in the keyboard word, then read it back a few steps later.
+    let src = "push constant 5\npop temp 0\npush constant 24576\npop pointer 1\n\
+               push temp 0\npop that 0\npush constant 0\npop temp 1\npush that 0\n";
+    let keys = || KeyScript::parse("A", 1000).unwrap();
+    let run = |split: bool| {
+        let p = Program::from_sources(&[("T.vm", src)]).unwrap();
+        let mut m = Machine::new(
+            p,
+            Config {
+                keys: keys(),
+                ..Config::default()
+            },
+        );
+        m.set_register(Register::Sp, 256);
+        // Splitting the run into one-step calls must not change anything.
+        let end = if split {
+            loop {
+                match m.run(Some(1)) {
+                    Exit::Budget { .. } => continue,
+                    other => break other,
+                }
+            }
+        } else {
+            m.run(None)
+        };
+        assert_eq!(end, Exit::Halted);
+        m
+    };
+    for split in [false, true] {
+        let m = run(split);
+        assert_eq!(top(&m), 5, "split {split}");
+        assert_eq!(m.ram().read(24576), 5, "split {split}");
+    }
+    // The key script still rules at its next change: 'A' is released at 1000.
+    let p = Program::from_sources(&[("T.vm", &format!("{src}label L\ngoto L\n"))]).unwrap();
+    let mut m = Machine::new(
+        p,
+        Config {
+            keys: keys(),
+            ..Config::default()
+        },
+    );
+    m.set_register(Register::Sp, 256);
+    assert!(matches!(m.run(Some(999)), Exit::Budget { .. }));
+    assert_eq!(m.ram().read(24576), 5);
+    assert!(matches!(m.run(Some(1)), Exit::Budget { .. }));
+    assert_eq!(m.ram().read(24576), 0);
+}
