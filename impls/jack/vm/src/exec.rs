@@ -7,38 +7,37 @@ use crate::exit::Exit;
 use crate::machine::{
     Frame, Machine, Watcher, ARG_OK, HOST, LOCAL_OK, MAX_DEPTH, THAT_OK, THIS_OK,
 };
-use crate::program::{Bin, Dst, Op, Program, Src};
+use crate::program::{Bin, Op, Operand, Program, ARG, CONST, LCL, PTR, THAT, THIS};
 use jack_os::{math, Builtin, Ram, Stop, RAM_SIZE};
 
-/// The VM registers RAM[0..=4], cached.
+/// The VM registers RAM[0..=4], cached: SP, and LCL, ARG, THIS, THAT in
+/// a table that fused operands index by their base (`ABS`, `CONST` and
+/// `PTR` read as 0), so reading an operand needs no branch on its kind.
 #[derive(Clone, Copy, Debug)]
 struct Regs {
     sp: u16,
-    lcl: u16,
-    arg: u16,
-    this: u16,
-    that: u16,
+    base: [u16; 8],
 }
 
 type Words = [i16; RAM_SIZE];
 
 impl Regs {
     fn load(w: &Words) -> Regs {
+        let mut base = [0; 8];
+        for (b, word) in base[..4].iter_mut().zip(&w[1..5]) {
+            *b = *word as u16;
+        }
         Regs {
             sp: w[0] as u16,
-            lcl: w[1] as u16,
-            arg: w[2] as u16,
-            this: w[3] as u16,
-            that: w[4] as u16,
+            base,
         }
     }
 
     fn store(self, w: &mut Words) {
         w[0] = self.sp as i16;
-        w[1] = self.lcl as i16;
-        w[2] = self.arg as i16;
-        w[3] = self.this as i16;
-        w[4] = self.that as i16;
+        for (word, b) in w[1..5].iter_mut().zip(&self.base[..4]) {
+            *word = *b as i16;
+        }
     }
 }
 
@@ -54,10 +53,7 @@ fn plain_word(a: u16) -> bool {
 fn read_slow(r: Regs, a: u16) -> i16 {
     (match a {
         0 => r.sp,
-        1 => r.lcl,
-        2 => r.arg,
-        3 => r.this,
-        4 => r.that,
+        1..=4 => r.base[usize::from(a) - 1],
         _ => 0xFFFF,
     }) as i16
 }
@@ -69,10 +65,7 @@ fn write_slow(mut r: Regs, a: u16, v: i16) -> Regs {
     let v = v as u16;
     match a {
         0 => r.sp = v,
-        1 => r.lcl = v,
-        2 => r.arg = v,
-        3 => r.this = v,
-        4 => r.that = v,
+        1..=4 => r.base[usize::from(a) - 1] = v,
         _ => {}
     }
     r
@@ -114,26 +107,12 @@ fn fast_sp(sp: u16) -> bool {
     sp.wrapping_sub(MIN_SP) <= MAX_SP - MIN_SP
 }
 
-/// Whether reading `s` cannot fail in this invocation.
+/// Whether none of `operands` can fail in this invocation (see
+/// [`crate::program::Operand::need`]).
 #[inline(always)]
-fn src_ok(s: Src, nargs: u16, flags: u8) -> bool {
-    match s {
-        Src::Arg(i) => i < nargs,
-        Src::ThisChk(_) => flags & THIS_OK != 0,
-        Src::ThatChk(_) => flags & THAT_OK != 0,
-        _ => true,
-    }
-}
-
-/// Whether writing `d` cannot fail in this invocation.
-#[inline(always)]
-fn dst_ok(d: Dst, nargs: u16, flags: u8) -> bool {
-    match d {
-        Dst::Arg(i) => i < nargs,
-        Dst::ThisChk(_) => flags & THIS_OK != 0,
-        Dst::ThatChk(_) => flags & THAT_OK != 0,
-        _ => true,
-    }
+fn operands_ok<const N: usize>(operands: [Operand; N], flags: u8) -> bool {
+    let need = operands.iter().fold(0, |n, o| n | o.need);
+    flags & need == need
 }
 
 #[inline(always)]
@@ -281,37 +260,28 @@ impl Machine {
                     break 'run Some(Halt::Deopt);
                 }};
             }
-            // Read a fused operand (its checks were done by `src_ok`).
+            // Read a fused operand (its checks were done by `operands_ok`).
             macro_rules! src {
-                ($s:expr) => {
-                    match $s {
-                        Src::Const(c) => c,
-                        Src::Local(i) => rd!(regs.lcl.wrapping_add(i)),
-                        Src::Arg(i) => rd!(regs.arg.wrapping_add(i)),
-                        Src::This(i) | Src::ThisChk(i) => rd!(regs.this.wrapping_add(i)),
-                        Src::That(i) | Src::ThatChk(i) => rd!(regs.that.wrapping_add(i)),
-                        Src::Abs(a) => w[a as usize],
+                ($s:expr) => {{
+                    let s: Operand = $s;
+                    if usize::from(s.base) == CONST {
+                        s.off as i16
+                    } else {
+                        rd!(regs.base[usize::from(s.base)].wrapping_add(s.off))
                     }
-                };
+                }};
             }
-            // Store into a fused destination (checked by `dst_ok`).
+            // Store into a fused target (checked by `operands_ok`).
             macro_rules! dst {
                 ($d:expr, $v:expr) => {{
+                    let d: Operand = $d;
                     let v: i16 = $v;
-                    match $d {
-                        Dst::Local(i) => wr!(regs.lcl.wrapping_add(i), v),
-                        Dst::Arg(i) => wr!(regs.arg.wrapping_add(i), v),
-                        Dst::This(i) | Dst::ThisChk(i) => wr!(regs.this.wrapping_add(i), v),
-                        Dst::That(i) | Dst::ThatChk(i) => wr!(regs.that.wrapping_add(i), v),
-                        Dst::Abs(a) => w[a as usize] = v,
-                        Dst::Ptr(0) => {
-                            regs.this = v as u16;
-                            flags |= THIS_OK;
-                        }
-                        Dst::Ptr(_) => {
-                            regs.that = v as u16;
-                            flags |= THAT_OK;
-                        }
+                    if usize::from(d.base) == PTR {
+                        // pop pointer 0|1: THIS or THAT, and its flag.
+                        regs.base[THIS + usize::from(d.off)] = v as u16;
+                        flags |= THIS_OK << d.off;
+                    } else {
+                        wr!(regs.base[usize::from(d.base)].wrapping_add(d.off), v)
                     }
                 }};
             }
@@ -335,15 +305,15 @@ impl Machine {
             }
             macro_rules! do_return {
                 () => {{
-                    let frame = regs.lcl;
+                    let frame = regs.base[LCL];
                     let ret = rd!(frame.wrapping_sub(5));
                     let v = pop!();
-                    wr!(regs.arg, v);
-                    regs.sp = regs.arg.wrapping_add(1);
-                    regs.that = rd!(frame.wrapping_sub(1)) as u16;
-                    regs.this = rd!(frame.wrapping_sub(2)) as u16;
-                    regs.arg = rd!(frame.wrapping_sub(3)) as u16;
-                    regs.lcl = rd!(frame.wrapping_sub(4)) as u16;
+                    wr!(regs.base[ARG], v);
+                    regs.sp = regs.base[ARG].wrapping_add(1);
+                    regs.base[THAT] = rd!(frame.wrapping_sub(1)) as u16;
+                    regs.base[THIS] = rd!(frame.wrapping_sub(2)) as u16;
+                    regs.base[ARG] = rd!(frame.wrapping_sub(3)) as u16;
+                    regs.base[LCL] = rd!(frame.wrapping_sub(4)) as u16;
                     charge!();
                     let Some(fr) = frames.pop() else {
                         // A return from the entry function ends the run.
@@ -388,65 +358,65 @@ impl Machine {
             steps += 1;
             match *op {
                 Op::PushConst(c) => push!(c),
-                Op::PushLocal(i) => push!(rd!(regs.lcl.wrapping_add(i))),
+                Op::PushLocal(i) => push!(rd!(regs.base[LCL].wrapping_add(i))),
                 Op::PushArg(i) => {
                     if i >= nargs {
                         break Some(Halt::Error(ARG_OOB.into()));
                     }
-                    push!(rd!(regs.arg.wrapping_add(i)))
+                    push!(rd!(regs.base[ARG].wrapping_add(i)))
                 }
-                Op::PushThis(i) => push!(rd!(regs.this.wrapping_add(i))),
+                Op::PushThis(i) => push!(rd!(regs.base[THIS].wrapping_add(i))),
                 Op::PushThisChk(i) => {
                     this_ok!(THIS_OK, THIS_UNINIT);
-                    push!(rd!(regs.this.wrapping_add(i)))
+                    push!(rd!(regs.base[THIS].wrapping_add(i)))
                 }
-                Op::PushThat(i) => push!(rd!(regs.that.wrapping_add(i))),
+                Op::PushThat(i) => push!(rd!(regs.base[THAT].wrapping_add(i))),
                 Op::PushThatChk(i) => {
                     this_ok!(THAT_OK, THAT_UNINIT);
-                    push!(rd!(regs.that.wrapping_add(i)))
+                    push!(rd!(regs.base[THAT].wrapping_add(i)))
                 }
                 Op::PushAbs(a) => push!(w[a as usize]),
-                Op::PushPtr(0) => push!(regs.this as i16),
-                Op::PushPtr(_) => push!(regs.that as i16),
+                Op::PushPtr(0) => push!(regs.base[THIS] as i16),
+                Op::PushPtr(_) => push!(regs.base[THAT] as i16),
                 Op::PopLocal(i) => {
                     let v = pop!();
-                    wr!(regs.lcl.wrapping_add(i), v)
+                    wr!(regs.base[LCL].wrapping_add(i), v)
                 }
                 Op::PopArg(i) => {
                     if i >= nargs {
                         break Some(Halt::Error(ARG_OOB.into()));
                     }
                     let v = pop!();
-                    wr!(regs.arg.wrapping_add(i), v)
+                    wr!(regs.base[ARG].wrapping_add(i), v)
                 }
                 Op::PopThis(i) => {
                     let v = pop!();
-                    wr!(regs.this.wrapping_add(i), v)
+                    wr!(regs.base[THIS].wrapping_add(i), v)
                 }
                 Op::PopThisChk(i) => {
                     this_ok!(THIS_OK, THIS_UNINIT);
                     let v = pop!();
-                    wr!(regs.this.wrapping_add(i), v)
+                    wr!(regs.base[THIS].wrapping_add(i), v)
                 }
                 Op::PopThat(i) => {
                     let v = pop!();
-                    wr!(regs.that.wrapping_add(i), v)
+                    wr!(regs.base[THAT].wrapping_add(i), v)
                 }
                 Op::PopThatChk(i) => {
                     this_ok!(THAT_OK, THAT_UNINIT);
                     let v = pop!();
-                    wr!(regs.that.wrapping_add(i), v)
+                    wr!(regs.base[THAT].wrapping_add(i), v)
                 }
                 Op::PopAbs(a) => {
                     let v = pop!();
                     w[a as usize] = v;
                 }
                 Op::PopPtr(0) => {
-                    regs.this = pop!() as u16;
+                    regs.base[THIS] = pop!() as u16;
                     flags |= THIS_OK;
                 }
                 Op::PopPtr(_) => {
-                    regs.that = pop!() as u16;
+                    regs.base[THAT] = pop!() as u16;
                     flags |= THAT_OK;
                 }
                 Op::PopRam(a) => {
@@ -472,7 +442,12 @@ impl Machine {
                         };
                         break Some(Halt::Error(m.into()));
                     }
-                    let a = if local { regs.lcl } else { regs.arg }.wrapping_add(index);
+                    let a = if local {
+                        regs.base[LCL]
+                    } else {
+                        regs.base[ARG]
+                    }
+                    .wrapping_add(index);
                     if push {
                         push!(rd!(a));
                     } else {
@@ -543,12 +518,12 @@ impl Machine {
                     charge!();
                     let base = regs.sp;
                     push!(ret as i16);
-                    push!(regs.lcl as i16);
-                    push!(regs.arg as i16);
-                    push!(regs.this as i16);
-                    push!(regs.that as i16);
-                    regs.arg = base.wrapping_sub(n);
-                    regs.lcl = base.wrapping_add(5);
+                    push!(regs.base[LCL] as i16);
+                    push!(regs.base[ARG] as i16);
+                    push!(regs.base[THIS] as i16);
+                    push!(regs.base[THAT] as i16);
+                    regs.base[ARG] = base.wrapping_sub(n);
+                    regs.base[LCL] = base.wrapping_add(5);
                     for _ in 0..f.n_vars {
                         push!(0);
                     }
@@ -562,7 +537,7 @@ impl Machine {
                     });
                     cur = callee as u32;
                     nargs = n;
-                    flags = 0;
+                    flags = f.entry_flags(n);
                     pc = f.start as usize;
                 }
                 Op::Return => do_return!(),
@@ -573,7 +548,7 @@ impl Machine {
 
                 // Fused instructions.
                 Op::Push2(a, b) => {
-                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
+                    if !(fast_sp(regs.sp) && operands_ok([a, b], flags)) {
                         deopt!();
                     }
                     skip!(op, 2);
@@ -584,7 +559,7 @@ impl Machine {
                     regs.sp = sp + 2;
                 }
                 Op::Move(a, d) => {
-                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && dst_ok(d, nargs, flags)) {
+                    if !(fast_sp(regs.sp) && operands_ok([a, d], flags)) {
                         deopt!();
                     }
                     skip!(op, 2);
@@ -593,18 +568,14 @@ impl Machine {
                     dst!(d, v);
                 }
                 Op::BinSS { op: o, a, b } => {
-                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
+                    if !(fast_sp(regs.sp) && operands_ok([a, b], flags)) {
                         deopt!();
                     }
                     push_push_op!(o, a, b);
                     skip!(op, 3);
                 }
                 Op::BinPop { op: o, a, b, d } => {
-                    if !(fast_sp(regs.sp)
-                        && src_ok(a, nargs, flags)
-                        && src_ok(b, nargs, flags)
-                        && dst_ok(d, nargs, flags))
-                    {
+                    if !(fast_sp(regs.sp) && operands_ok([a, b, d], flags)) {
                         deopt!();
                     }
                     let r = push_push_op!(o, a, b);
@@ -617,10 +588,7 @@ impl Machine {
                         Op::BinSPop { d, .. } => Some(d),
                         _ => None,
                     };
-                    if !(fast_sp(regs.sp)
-                        && src_ok(b, nargs, flags)
-                        && d.is_none_or(|d| dst_ok(d, nargs, flags)))
-                    {
+                    if !(fast_sp(regs.sp) && operands_ok([b, d.unwrap_or(b)], flags)) {
                         deopt!();
                     }
                     let sp = regs.sp;
@@ -644,7 +612,7 @@ impl Machine {
                     not,
                     target,
                 } => {
-                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags) && src_ok(b, nargs, flags)) {
+                    if !(fast_sp(regs.sp) && operands_ok([a, b], flags)) {
                         deopt!();
                     }
                     skip!(op, 4 + u64::from(not));
@@ -685,19 +653,16 @@ impl Machine {
                     }
                 }
                 Op::ArrayRead { index, base } => {
-                    if !(fast_sp(regs.sp)
-                        && src_ok(index, nargs, flags)
-                        && src_ok(base, nargs, flags))
-                    {
+                    if !(fast_sp(regs.sp) && operands_ok([index, base], flags)) {
                         deopt!();
                     }
                     skip!(op, 5);
                     let a = push_push_op!(Bin::Add, index, base);
                     let sp = regs.sp - 1;
                     regs.sp = sp;
-                    regs.that = a as u16;
+                    regs.base[THAT] = a as u16;
                     flags |= THAT_OK;
-                    let v = rd!(regs.that);
+                    let v = rd!(regs.base[THAT]);
                     w[sp as usize] = v;
                     regs.sp = sp + 1;
                 }
@@ -710,15 +675,15 @@ impl Machine {
                     let a = w[sp - 2].wrapping_add(w[sp - 1]);
                     w[sp - 2] = a;
                     regs.sp -= 2;
-                    regs.that = a as u16;
+                    regs.base[THAT] = a as u16;
                     flags |= THAT_OK;
-                    let v = rd!(regs.that);
+                    let v = rd!(regs.base[THAT]);
                     w[sp - 2] = v;
                     regs.sp += 1;
                 }
                 Op::StoreThat | Op::StoreThatSrc(_) => {
                     let v = if let Op::StoreThatSrc(s) = *op {
-                        if !(fast_sp(regs.sp) && src_ok(s, nargs, flags)) {
+                        if !(fast_sp(regs.sp) && operands_ok([s], flags)) {
                             deopt!();
                         }
                         let v = src!(s);
@@ -735,13 +700,13 @@ impl Machine {
                     // pop temp 0; pop pointer 1; push temp 0; pop that 0
                     w[5] = v;
                     regs.sp -= 1;
-                    regs.that = w[regs.sp as usize] as u16;
+                    regs.base[THAT] = w[regs.sp as usize] as u16;
                     flags |= THAT_OK;
                     w[regs.sp as usize] = v;
-                    wr!(regs.that, v);
+                    wr!(regs.base[THAT], v);
                 }
                 Op::PushReturn(a) => {
-                    if !(fast_sp(regs.sp) && src_ok(a, nargs, flags)) {
+                    if !(fast_sp(regs.sp) && operands_ok([a], flags)) {
                         deopt!();
                     }
                     skip!(op, 2);

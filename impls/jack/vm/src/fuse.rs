@@ -11,7 +11,8 @@
 //! would fail) it does nothing and the plain commands run instead, so errors
 //! and step counts are exactly those of the plain commands.
 
-use crate::program::{Bin, Dst, Op, Src};
+use crate::machine::{ARGS_FIT, THAT_OK, THIS_OK};
+use crate::program::{Bin, Dst, Op, Operand, Src, ABS, ARG, CONST, LCL, PTR, THAT, THIS};
 
 /// The most VM commands one fused instruction stands for.
 pub(crate) const MAX_FUSED_STEPS: u64 = 5;
@@ -23,28 +24,28 @@ pub(crate) fn fuse(plain: &[Op]) -> Vec<Op> {
 
 fn src(op: Op) -> Option<Src> {
     Some(match op {
-        Op::PushConst(c) => Src::Const(c),
-        Op::PushLocal(i) => Src::Local(i),
-        Op::PushArg(i) => Src::Arg(i),
-        Op::PushThis(i) => Src::This(i),
-        Op::PushThisChk(i) => Src::ThisChk(i),
-        Op::PushThat(i) => Src::That(i),
-        Op::PushThatChk(i) => Src::ThatChk(i),
-        Op::PushAbs(a) => Src::Abs(a),
+        Op::PushConst(c) => Operand::new(CONST, 0, c as u16),
+        Op::PushLocal(i) => Operand::new(LCL, 0, i),
+        Op::PushArg(i) => Operand::new(ARG, ARGS_FIT, i),
+        Op::PushThis(i) => Operand::new(THIS, 0, i),
+        Op::PushThisChk(i) => Operand::new(THIS, THIS_OK, i),
+        Op::PushThat(i) => Operand::new(THAT, 0, i),
+        Op::PushThatChk(i) => Operand::new(THAT, THAT_OK, i),
+        Op::PushAbs(a) => Operand::new(ABS, 0, a),
         _ => return None,
     })
 }
 
 fn dst(op: Op) -> Option<Dst> {
     Some(match op {
-        Op::PopLocal(i) => Dst::Local(i),
-        Op::PopArg(i) => Dst::Arg(i),
-        Op::PopThis(i) => Dst::This(i),
-        Op::PopThisChk(i) => Dst::ThisChk(i),
-        Op::PopThat(i) => Dst::That(i),
-        Op::PopThatChk(i) => Dst::ThatChk(i),
-        Op::PopAbs(a) => Dst::Abs(a),
-        Op::PopPtr(p) => Dst::Ptr(p),
+        Op::PopLocal(i) => Operand::new(LCL, 0, i),
+        Op::PopArg(i) => Operand::new(ARG, ARGS_FIT, i),
+        Op::PopThis(i) => Operand::new(THIS, 0, i),
+        Op::PopThisChk(i) => Operand::new(THIS, THIS_OK, i),
+        Op::PopThat(i) => Operand::new(THAT, 0, i),
+        Op::PopThatChk(i) => Operand::new(THAT, THAT_OK, i),
+        Op::PopAbs(a) => Operand::new(ABS, 0, a),
+        Op::PopPtr(p) => Operand::new(PTR, 0, u16::from(p)),
         _ => return None,
     })
 }
@@ -180,8 +181,8 @@ mod tests {
             longest(&cond),
             Op::CmpJump {
                 op: Bin::Lt,
-                a: Src::Local(1),
-                b: Src::Const(8192),
+                a: Operand::new(LCL, 0, 1),
+                b: Operand::new(CONST, 0, 8192),
                 not: true,
                 target: 9
             }
@@ -196,8 +197,8 @@ mod tests {
         assert_eq!(
             longest(&read),
             Op::ArrayRead {
-                index: Src::Const(2),
-                base: Src::Local(0)
+                index: Operand::new(CONST, 0, 2),
+                base: Operand::new(LCL, 0, 0)
             }
         );
         let store = [
@@ -207,13 +208,16 @@ mod tests {
             Op::PushAbs(5),
             Op::PopThat(0),
         ];
-        assert_eq!(longest(&store), Op::StoreThatSrc(Src::Local(2)));
+        assert_eq!(longest(&store), Op::StoreThatSrc(Operand::new(LCL, 0, 2)));
         let prologue = [Op::PushArg(0), Op::PopPtr(0), Op::PushThis(1)];
-        assert_eq!(longest(&prologue), Op::Move(Src::Arg(0), Dst::Ptr(0)));
+        assert_eq!(
+            longest(&prologue),
+            Op::Move(Operand::new(ARG, ARGS_FIT, 0), Operand::new(PTR, 0, 0))
+        );
         assert_eq!(longest(&[Op::Add, Op::Halt]), Op::Add);
         assert_eq!(
             longest(&[Op::PushConst(0), Op::Return]),
-            Op::PushReturn(Src::Const(0))
+            Op::PushReturn(Operand::new(CONST, 0, 0))
         );
         for op in fuse(&cond)
             .into_iter()

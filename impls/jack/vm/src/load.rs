@@ -352,11 +352,20 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
             };
             plain.push(op);
         }
+        let arg_reach = plain[start as usize..]
+            .iter()
+            .filter_map(|op| match op {
+                Op::PushArg(i) | Op::PopArg(i) => Some(i.saturating_add(1)),
+                _ => None,
+            })
+            .max()
+            .unwrap_or(0);
         plain.push(Op::Halt);
         functions.push(Function {
             name: f.name.clone(),
             file: f.file.clone(),
             n_vars: f.n_vars,
+            arg_reach,
             start,
             resume,
         });

@@ -28,6 +28,8 @@ pub(crate) const THIS_OK: u8 = 1;
 pub(crate) const THAT_OK: u8 = 2;
 pub(crate) const LOCAL_OK: u8 = 4;
 pub(crate) const ARG_OK: u8 = 8;
+/// The invocation has at least `arg_reach` arguments (see [`crate::Function`]).
+pub(crate) const ARGS_FIT: u8 = 16;
 
 /// `ret_pc` of the frame below a call made by [`Machine::call`].
 pub(crate) const HOST: u32 = u32::MAX;
@@ -316,7 +318,7 @@ impl Machine {
         r.write(0, lcl.wrapping_add(n_vars as i16));
         self.cur = callee;
         self.nargs = nargs;
-        self.flags = 0;
+        self.flags = self.program.functions[callee as usize].entry_flags(nargs);
     }
 
     /// The outer loop: budget, key changes, choice of fused or exact code.

@@ -135,31 +135,44 @@ pub(crate) enum Op {
     PushReturn(Src),
 }
 
-/// The operand of a fused `push`.
+/// Where a fused operand lives: a register whose value is added to the
+/// operand's offset (an index into the dispatch loop's register table), a fixed
+/// address, a constant, or (targets only) a pointer register.
+pub(crate) const LCL: usize = 0;
+pub(crate) const ARG: usize = 1;
+pub(crate) const THIS: usize = 2;
+pub(crate) const THAT: usize = 3;
+/// Base 0: the offset is the address (static or temp, 5..=255).
+pub(crate) const ABS: usize = 4;
+/// Sources only: the offset is the value.
+pub(crate) const CONST: usize = 5;
+/// Targets only: `pop pointer off`.
+pub(crate) const PTR: usize = 6;
+
+/// The operand of a fused `push` or the target of a fused `pop`: read or
+/// written without a branch on its kind. `need` holds the invocation flags
+/// (`THIS_OK`, `THAT_OK`, `ARGS_FIT`) without which the access could fail,
+/// so a fused instruction checks all its operands with one test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Src {
-    Const(i16),
-    Local(u16),
-    Arg(u16),
-    This(u16),
-    ThisChk(u16),
-    That(u16),
-    ThatChk(u16),
-    /// static or temp.
-    Abs(u16),
+pub(crate) struct Operand {
+    pub base: u8,
+    pub need: u8,
+    pub off: u16,
 }
 
-/// The target of a fused `pop`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Dst {
-    Local(u16),
-    Arg(u16),
-    This(u16),
-    ThisChk(u16),
-    That(u16),
-    ThatChk(u16),
-    Abs(u16),
-    Ptr(u8),
+/// A fused push's operand (base is never `PTR`).
+pub(crate) type Src = Operand;
+/// A fused pop's target (base is never `CONST`).
+pub(crate) type Dst = Operand;
+
+impl Operand {
+    pub(crate) const fn new(base: usize, need: u8, off: u16) -> Operand {
+        Operand {
+            base: base as u8,
+            need,
+            off,
+        }
+    }
 }
 
 /// A binary operation of a fused instruction (Mul/Div: the built-ins).
@@ -204,11 +217,27 @@ pub struct Function {
     pub file: String,
     /// Number of locals (`function f nVars`).
     pub n_vars: u16,
+    /// One more than the highest `argument` index the function uses (0 if
+    /// none): an invocation with at least this many arguments never fails
+    /// an argument access, so its fused instructions skip the check.
+    pub(crate) arg_reach: u16,
     /// First instruction.
     pub(crate) start: u32,
     /// Command index (as stored in a frame's RET, counting the `function`
     /// line and labels) to the instruction that runs it.
     pub(crate) resume: Vec<u32>,
+}
+
+impl Function {
+    /// The flags an invocation with `nargs` arguments starts with.
+    #[inline(always)]
+    pub(crate) fn entry_flags(&self, nargs: u16) -> u8 {
+        if nargs >= self.arg_reach {
+            crate::machine::ARGS_FIT
+        } else {
+            0
+        }
+    }
 }
 
 /// A loaded, checked and decoded VM program. Immutable; share it with `Arc`.
