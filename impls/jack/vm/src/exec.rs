@@ -42,33 +42,36 @@ impl Regs {
 }
 
 /// `5 <= a <= 24576`: an ordinary word (not a register, not outside RAM).
+/// Takes the address as `usize` so that a passed test proves `w[a]` in
+/// bounds and the compiler drops its own check.
 #[inline(always)]
-fn plain_word(a: u16) -> bool {
-    a.wrapping_sub(5) < (RAM_SIZE - 5) as u16
+fn plain_word(a: usize) -> bool {
+    a.wrapping_sub(5) < RAM_SIZE - 5
 }
 
 /// Read RAM[a] for a register or an address outside RAM.
 #[cold]
 #[inline(never)]
-fn read_slow(r: Regs, a: u16) -> i16 {
+fn read_slow(sp: u16, seg: &[u16; 8], a: u16) -> i16 {
     (match a {
-        0 => r.sp,
-        1..=4 => r.base[usize::from(a) - 1],
+        0 => sp,
+        1..=4 => seg[usize::from(a) - 1],
         _ => 0xFFFF,
     }) as i16
 }
 
-/// Write RAM[a] for a register or an address outside RAM (dropped).
+/// Write RAM[a] for a register or an address outside RAM (dropped);
+/// returns the new SP.
 #[cold]
 #[inline(never)]
-fn write_slow(mut r: Regs, a: u16, v: i16) -> Regs {
+fn write_slow(sp: u16, seg: &mut [u16; 8], a: u16, v: i16) -> u16 {
     let v = v as u16;
     match a {
-        0 => r.sp = v,
-        1..=4 => r.base[usize::from(a) - 1] = v,
+        0 => return v,
+        1..=4 => seg[usize::from(a) - 1] = v,
         _ => {}
     }
-    r
+    sp
 }
 
 fn words(ram: &mut Ram) -> &mut Words {
@@ -160,16 +163,22 @@ impl Machine {
         let scratch = &mut self.scratch;
         let os_profile = os.profile();
         let mut w = words(ram);
-        let mut regs = Regs::load(w);
+        // SP apart from the segment table, so that it stays in a register.
+        let Regs {
+            mut sp,
+            base: mut seg,
+        } = Regs::load(w);
+        // Fused code may run a few commands more per dispatch (MAX_FUSED_STEPS).
+        let fused = std::ptr::eq(code, &program.fused[..]);
 
         let halt: Option<Halt> = 'run: loop {
             macro_rules! rd {
                 ($a:expr) => {{
                     let a: u16 = $a;
-                    if plain_word(a) {
-                        w[a as usize]
+                    if plain_word(usize::from(a)) {
+                        w[usize::from(a)]
                     } else {
-                        read_slow(regs, a)
+                        read_slow(sp, &seg, a)
                     }
                 }};
             }
@@ -177,27 +186,27 @@ impl Machine {
                 ($a:expr, $v:expr) => {{
                     let a: u16 = $a;
                     let v: i16 = $v;
-                    if plain_word(a) {
-                        w[a as usize] = v;
+                    if plain_word(usize::from(a)) {
+                        w[usize::from(a)] = v;
                     } else {
-                        regs = write_slow(regs, a, v);
+                        sp = write_slow(sp, &mut seg, a, v);
                     }
                 }};
             }
             macro_rules! push {
                 ($v:expr) => {{
                     let v: i16 = $v;
-                    wr!(regs.sp, v);
-                    regs.sp = regs.sp.wrapping_add(1);
+                    wr!(sp, v);
+                    sp = sp.wrapping_add(1);
                 }};
             }
             macro_rules! pop {
                 () => {{
-                    if regs.sp == 256 {
+                    if sp == 256 {
                         break 'run Some(Halt::Error(POP_BELOW.into()));
                     }
-                    regs.sp = regs.sp.wrapping_sub(1);
-                    rd!(regs.sp)
+                    sp = sp.wrapping_sub(1);
+                    rd!(sp)
                 }};
             }
             macro_rules! binary {
@@ -231,10 +240,13 @@ impl Machine {
                     for i in (0..n).rev() {
                         args[i] = pop!();
                     }
-                    regs.store(w);
-                    let c = os.call(b, &args[..n], ram, &mut steps);
+                    Regs { sp, base: seg }.store(w);
+                    // Through a copy, so that `steps` itself can stay in a register.
+                    let mut clock = steps;
+                    let c = os.call(b, &args[..n], ram, &mut clock);
+                    steps = clock;
                     w = words(ram);
-                    regs = Regs::load(w);
+                    Regs { sp, base: seg } = Regs::load(w);
                     push!(c.value);
                     if let Some(stop) = c.stop {
                         break 'run Some(Halt::Os(stop));
@@ -267,7 +279,7 @@ impl Machine {
                     if usize::from(s.base) == CONST {
                         s.off as i16
                     } else {
-                        rd!(regs.base[usize::from(s.base)].wrapping_add(s.off))
+                        rd!(seg[usize::from(s.base)].wrapping_add(s.off))
                     }
                 }};
             }
@@ -278,42 +290,49 @@ impl Machine {
                     let v: i16 = $v;
                     if usize::from(d.base) == PTR {
                         // pop pointer 0|1: THIS or THAT, and its flag.
-                        regs.base[THIS + usize::from(d.off)] = v as u16;
-                        flags |= THIS_OK << d.off;
+                        let p = usize::from(d.off & 1);
+                        seg[THIS + p] = v as u16;
+                        flags |= THIS_OK << p;
                     } else {
-                        wr!(regs.base[usize::from(d.base)].wrapping_add(d.off), v)
+                        wr!(seg[usize::from(d.base)].wrapping_add(d.off), v)
                     }
                 }};
             }
-            // `push a; push b; op` on the stack words at sp, sp+1; leaves
-            // SP = sp+1 and returns the result (also stored at sp).
+            // `push a; push b; op` on the stack words at top, top+1; leaves
+            // SP = top+1 and returns the result (also stored at top).
             macro_rules! push_push_op {
                 ($op:expr, $a:expr, $b:expr) => {{
-                    let sp = regs.sp;
+                    let top = sp;
                     let x = src!($a);
-                    w[sp as usize] = x;
-                    regs.sp = sp + 1;
+                    w[top as usize] = x;
+                    sp = top + 1;
                     let y = src!($b);
-                    w[sp as usize + 1] = y;
+                    w[top as usize + 1] = y;
                     let Some(r) = apply($op, x, y, os_profile) else {
-                        regs.sp = sp;
+                        sp = top;
                         deopt!()
                     };
-                    w[sp as usize] = r;
+                    w[top as usize] = r;
                     r
                 }};
             }
             macro_rules! do_return {
                 () => {{
-                    let frame = regs.base[LCL];
+                    let frame = seg[LCL];
                     let ret = rd!(frame.wrapping_sub(5));
                     let v = pop!();
-                    wr!(regs.base[ARG], v);
-                    regs.sp = regs.base[ARG].wrapping_add(1);
-                    regs.base[THAT] = rd!(frame.wrapping_sub(1)) as u16;
-                    regs.base[THIS] = rd!(frame.wrapping_sub(2)) as u16;
-                    regs.base[ARG] = rd!(frame.wrapping_sub(3)) as u16;
-                    regs.base[LCL] = rd!(frame.wrapping_sub(4)) as u16;
+                    // RAM[ARG] = v; if ARG points at SP, the next line wins.
+                    let a = usize::from(seg[ARG]);
+                    if plain_word(a) {
+                        w[a] = v;
+                    } else {
+                        write_slow(sp, &mut seg, a as u16, v);
+                    }
+                    sp = seg[ARG].wrapping_add(1);
+                    seg[THAT] = rd!(frame.wrapping_sub(1)) as u16;
+                    seg[THIS] = rd!(frame.wrapping_sub(2)) as u16;
+                    seg[ARG] = rd!(frame.wrapping_sub(3)) as u16;
+                    seg[LCL] = rd!(frame.wrapping_sub(4)) as u16;
                     charge!();
                     let Some(fr) = frames.pop() else {
                         // A return from the entry function ends the run.
@@ -325,7 +344,7 @@ impl Machine {
                     flags = fr.flags;
                     if W && fr.watched {
                         if let Some((_, watcher)) = watch {
-                            regs.store(w);
+                            Regs { sp, base: seg }.store(w);
                             watcher.on_return(program, callee, v, ram);
                             w = words(ram);
                         }
@@ -346,6 +365,18 @@ impl Machine {
                             }
                         }
                     };
+                    // `do f(..)` drops the value with `pop temp 0`: in fused
+                    // code that pop runs here, not in a dispatch of its own.
+                    if fused {
+                        if let Op::PopAbs(a) = program.plain[pc] {
+                            if fast_sp(sp) {
+                                steps += 1;
+                                pc += 1;
+                                sp -= 1;
+                                w[a as usize] = w[sp as usize];
+                            }
+                        }
+                    }
                 }};
             }
 
@@ -358,65 +389,65 @@ impl Machine {
             steps += 1;
             match *op {
                 Op::PushConst(c) => push!(c),
-                Op::PushLocal(i) => push!(rd!(regs.base[LCL].wrapping_add(i))),
+                Op::PushLocal(i) => push!(rd!(seg[LCL].wrapping_add(i))),
                 Op::PushArg(i) => {
                     if i >= nargs {
                         break Some(Halt::Error(ARG_OOB.into()));
                     }
-                    push!(rd!(regs.base[ARG].wrapping_add(i)))
+                    push!(rd!(seg[ARG].wrapping_add(i)))
                 }
-                Op::PushThis(i) => push!(rd!(regs.base[THIS].wrapping_add(i))),
+                Op::PushThis(i) => push!(rd!(seg[THIS].wrapping_add(i))),
                 Op::PushThisChk(i) => {
                     this_ok!(THIS_OK, THIS_UNINIT);
-                    push!(rd!(regs.base[THIS].wrapping_add(i)))
+                    push!(rd!(seg[THIS].wrapping_add(i)))
                 }
-                Op::PushThat(i) => push!(rd!(regs.base[THAT].wrapping_add(i))),
+                Op::PushThat(i) => push!(rd!(seg[THAT].wrapping_add(i))),
                 Op::PushThatChk(i) => {
                     this_ok!(THAT_OK, THAT_UNINIT);
-                    push!(rd!(regs.base[THAT].wrapping_add(i)))
+                    push!(rd!(seg[THAT].wrapping_add(i)))
                 }
                 Op::PushAbs(a) => push!(w[a as usize]),
-                Op::PushPtr(0) => push!(regs.base[THIS] as i16),
-                Op::PushPtr(_) => push!(regs.base[THAT] as i16),
+                Op::PushPtr(0) => push!(seg[THIS] as i16),
+                Op::PushPtr(_) => push!(seg[THAT] as i16),
                 Op::PopLocal(i) => {
                     let v = pop!();
-                    wr!(regs.base[LCL].wrapping_add(i), v)
+                    wr!(seg[LCL].wrapping_add(i), v)
                 }
                 Op::PopArg(i) => {
                     if i >= nargs {
                         break Some(Halt::Error(ARG_OOB.into()));
                     }
                     let v = pop!();
-                    wr!(regs.base[ARG].wrapping_add(i), v)
+                    wr!(seg[ARG].wrapping_add(i), v)
                 }
                 Op::PopThis(i) => {
                     let v = pop!();
-                    wr!(regs.base[THIS].wrapping_add(i), v)
+                    wr!(seg[THIS].wrapping_add(i), v)
                 }
                 Op::PopThisChk(i) => {
                     this_ok!(THIS_OK, THIS_UNINIT);
                     let v = pop!();
-                    wr!(regs.base[THIS].wrapping_add(i), v)
+                    wr!(seg[THIS].wrapping_add(i), v)
                 }
                 Op::PopThat(i) => {
                     let v = pop!();
-                    wr!(regs.base[THAT].wrapping_add(i), v)
+                    wr!(seg[THAT].wrapping_add(i), v)
                 }
                 Op::PopThatChk(i) => {
                     this_ok!(THAT_OK, THAT_UNINIT);
                     let v = pop!();
-                    wr!(regs.base[THAT].wrapping_add(i), v)
+                    wr!(seg[THAT].wrapping_add(i), v)
                 }
                 Op::PopAbs(a) => {
                     let v = pop!();
                     w[a as usize] = v;
                 }
                 Op::PopPtr(0) => {
-                    regs.base[THIS] = pop!() as u16;
+                    seg[THIS] = pop!() as u16;
                     flags |= THIS_OK;
                 }
                 Op::PopPtr(_) => {
-                    regs.base[THAT] = pop!() as u16;
+                    seg[THAT] = pop!() as u16;
                     flags |= THAT_OK;
                 }
                 Op::PopRam(a) => {
@@ -442,12 +473,7 @@ impl Machine {
                         };
                         break Some(Halt::Error(m.into()));
                     }
-                    let a = if local {
-                        regs.base[LCL]
-                    } else {
-                        regs.base[ARG]
-                    }
-                    .wrapping_add(index);
+                    let a = if local { seg[LCL] } else { seg[ARG] }.wrapping_add(index);
                     if push {
                         push!(rd!(a));
                     } else {
@@ -479,11 +505,11 @@ impl Machine {
                 Op::Multiply => binary!(|x, y| math::multiply(x, y)),
                 Op::Divide => {
                     let profile = os.profile();
-                    let y = rd!(regs.sp.wrapping_sub(1));
-                    match math::divide(profile, rd!(regs.sp.wrapping_sub(2)), y) {
-                        Some(q) if regs.sp != 256 && regs.sp != 257 => {
-                            regs.sp = regs.sp.wrapping_sub(1);
-                            wr!(regs.sp.wrapping_sub(1), q);
+                    let y = rd!(sp.wrapping_sub(1));
+                    match math::divide(profile, rd!(sp.wrapping_sub(2)), y) {
+                        Some(q) if sp != 256 && sp != 257 => {
+                            sp = sp.wrapping_sub(1);
+                            wr!(sp.wrapping_sub(1), q);
                         }
                         _ => builtin!(Builtin::MathDivide, 2u8),
                     }
@@ -506,9 +532,9 @@ impl Machine {
                             if set.get(callee as usize).copied().unwrap_or(false) {
                                 scratch.clear();
                                 for k in (1..=n).rev() {
-                                    scratch.push(rd!(regs.sp.wrapping_sub(k)));
+                                    scratch.push(rd!(sp.wrapping_sub(k)));
                                 }
-                                regs.store(w);
+                                Regs { sp, base: seg }.store(w);
                                 watcher.on_call(program, callee as u32, scratch, ram);
                                 w = words(ram);
                                 watched = true;
@@ -516,14 +542,14 @@ impl Machine {
                         }
                     }
                     charge!();
-                    let base = regs.sp;
+                    let base = sp;
                     push!(ret as i16);
-                    push!(regs.base[LCL] as i16);
-                    push!(regs.base[ARG] as i16);
-                    push!(regs.base[THIS] as i16);
-                    push!(regs.base[THAT] as i16);
-                    regs.base[ARG] = base.wrapping_sub(n);
-                    regs.base[LCL] = base.wrapping_add(5);
+                    push!(seg[LCL] as i16);
+                    push!(seg[ARG] as i16);
+                    push!(seg[THIS] as i16);
+                    push!(seg[THAT] as i16);
+                    seg[ARG] = base.wrapping_sub(n);
+                    seg[LCL] = base.wrapping_add(5);
                     for _ in 0..f.n_vars {
                         push!(0);
                     }
@@ -548,39 +574,39 @@ impl Machine {
 
                 // Fused instructions.
                 Op::Push2(a, b) => {
-                    if !(fast_sp(regs.sp) && operands_ok([a, b], flags)) {
+                    if !(fast_sp(sp) && operands_ok([a, b], flags)) {
                         deopt!();
                     }
                     skip!(op, 2);
-                    let sp = regs.sp;
-                    w[sp as usize] = src!(a);
-                    regs.sp = sp + 1;
-                    w[sp as usize + 1] = src!(b);
-                    regs.sp = sp + 2;
+                    let top = sp;
+                    w[top as usize] = src!(a);
+                    sp = top + 1;
+                    w[top as usize + 1] = src!(b);
+                    sp = top + 2;
                 }
                 Op::Move(a, d) => {
-                    if !(fast_sp(regs.sp) && operands_ok([a, d], flags)) {
+                    if !(fast_sp(sp) && operands_ok([a, d], flags)) {
                         deopt!();
                     }
                     skip!(op, 2);
                     let v = src!(a);
-                    w[regs.sp as usize] = v;
+                    w[sp as usize] = v;
                     dst!(d, v);
                 }
                 Op::BinSS { op: o, a, b } => {
-                    if !(fast_sp(regs.sp) && operands_ok([a, b], flags)) {
+                    if !(fast_sp(sp) && operands_ok([a, b], flags)) {
                         deopt!();
                     }
                     push_push_op!(o, a, b);
                     skip!(op, 3);
                 }
                 Op::BinPop { op: o, a, b, d } => {
-                    if !(fast_sp(regs.sp) && operands_ok([a, b, d], flags)) {
+                    if !(fast_sp(sp) && operands_ok([a, b, d], flags)) {
                         deopt!();
                     }
                     let r = push_push_op!(o, a, b);
                     skip!(op, 4);
-                    regs.sp -= 1;
+                    sp -= 1;
                     dst!(d, r);
                 }
                 Op::BinS { op: o, b } | Op::BinSPop { op: o, b, .. } => {
@@ -588,20 +614,20 @@ impl Machine {
                         Op::BinSPop { d, .. } => Some(d),
                         _ => None,
                     };
-                    if !(fast_sp(regs.sp) && operands_ok([b, d.unwrap_or(b)], flags)) {
+                    if !(fast_sp(sp) && operands_ok([b, d.unwrap_or(b)], flags)) {
                         deopt!();
                     }
-                    let sp = regs.sp;
-                    let x = w[sp as usize - 1];
+                    let top = sp;
+                    let x = w[top as usize - 1];
                     let y = src!(b);
-                    w[sp as usize] = y;
+                    w[top as usize] = y;
                     let Some(r) = apply(o, x, y, os_profile) else {
                         deopt!()
                     };
                     skip!(op, if d.is_some() { 3 } else { 2 });
-                    w[sp as usize - 1] = r;
+                    w[top as usize - 1] = r;
                     if let Some(d) = d {
-                        regs.sp = sp - 1;
+                        sp = top - 1;
                         dst!(d, r);
                     }
                 }
@@ -612,101 +638,101 @@ impl Machine {
                     not,
                     target,
                 } => {
-                    if !(fast_sp(regs.sp) && operands_ok([a, b], flags)) {
+                    if !(fast_sp(sp) && operands_ok([a, b], flags)) {
                         deopt!();
                     }
                     skip!(op, 4 + u64::from(not));
                     let r = push_push_op!(o, a, b);
                     let r = if not { !r } else { r };
-                    w[regs.sp as usize - 1] = r;
-                    regs.sp -= 1;
+                    w[sp as usize - 1] = r;
+                    sp -= 1;
                     if r != 0 {
                         pc = target as usize;
                     }
                 }
                 Op::CmpNotJump { op: o, target } => {
-                    if !fast_sp(regs.sp) {
+                    if !fast_sp(sp) {
                         deopt!();
                     }
                     skip!(op, 3);
-                    let sp = regs.sp as usize;
-                    let Some(r) = apply(o, w[sp - 2], w[sp - 1], os_profile) else {
+                    let top = sp as usize;
+                    let Some(r) = apply(o, w[top - 2], w[top - 1], os_profile) else {
                         deopt!()
                     };
-                    w[sp - 2] = !r;
-                    regs.sp -= 2;
+                    w[top - 2] = !r;
+                    sp -= 2;
                     if !r != 0 {
                         pc = target as usize;
                     }
                 }
                 Op::NotIfGoto(target) => {
-                    if !fast_sp(regs.sp) {
+                    if !fast_sp(sp) {
                         deopt!();
                     }
                     skip!(op, 2);
-                    let sp = regs.sp as usize;
-                    let r = !w[sp - 1];
-                    w[sp - 1] = r;
-                    regs.sp -= 1;
+                    let top = sp as usize;
+                    let r = !w[top - 1];
+                    w[top - 1] = r;
+                    sp -= 1;
                     if r != 0 {
                         pc = target as usize;
                     }
                 }
                 Op::ArrayRead { index, base } => {
-                    if !(fast_sp(regs.sp) && operands_ok([index, base], flags)) {
+                    if !(fast_sp(sp) && operands_ok([index, base], flags)) {
                         deopt!();
                     }
                     skip!(op, 5);
                     let a = push_push_op!(Bin::Add, index, base);
-                    let sp = regs.sp - 1;
-                    regs.sp = sp;
-                    regs.base[THAT] = a as u16;
+                    let top = sp - 1;
+                    sp = top;
+                    seg[THAT] = a as u16;
                     flags |= THAT_OK;
-                    let v = rd!(regs.base[THAT]);
-                    w[sp as usize] = v;
-                    regs.sp = sp + 1;
+                    let v = rd!(seg[THAT]);
+                    w[top as usize] = v;
+                    sp = top + 1;
                 }
                 Op::PtrRead => {
-                    if !fast_sp(regs.sp) {
+                    if !fast_sp(sp) {
                         deopt!();
                     }
                     skip!(op, 3);
-                    let sp = regs.sp as usize;
-                    let a = w[sp - 2].wrapping_add(w[sp - 1]);
-                    w[sp - 2] = a;
-                    regs.sp -= 2;
-                    regs.base[THAT] = a as u16;
+                    let top = sp as usize;
+                    let a = w[top - 2].wrapping_add(w[top - 1]);
+                    w[top - 2] = a;
+                    sp -= 2;
+                    seg[THAT] = a as u16;
                     flags |= THAT_OK;
-                    let v = rd!(regs.base[THAT]);
-                    w[sp - 2] = v;
-                    regs.sp += 1;
+                    let v = rd!(seg[THAT]);
+                    w[top - 2] = v;
+                    sp += 1;
                 }
                 Op::StoreThat | Op::StoreThatSrc(_) => {
                     let v = if let Op::StoreThatSrc(s) = *op {
-                        if !(fast_sp(regs.sp) && operands_ok([s], flags)) {
+                        if !(fast_sp(sp) && operands_ok([s], flags)) {
                             deopt!();
                         }
                         let v = src!(s);
-                        w[regs.sp as usize] = v;
+                        w[sp as usize] = v;
                         v
                     } else {
-                        if !fast_sp(regs.sp) {
+                        if !fast_sp(sp) {
                             deopt!();
                         }
-                        regs.sp -= 1;
-                        w[regs.sp as usize]
+                        sp -= 1;
+                        w[sp as usize]
                     };
                     skip!(op, if matches!(*op, Op::StoreThat) { 4 } else { 5 });
                     // pop temp 0; pop pointer 1; push temp 0; pop that 0
                     w[5] = v;
-                    regs.sp -= 1;
-                    regs.base[THAT] = w[regs.sp as usize] as u16;
+                    sp -= 1;
+                    seg[THAT] = w[sp as usize] as u16;
                     flags |= THAT_OK;
-                    w[regs.sp as usize] = v;
-                    wr!(regs.base[THAT], v);
+                    w[sp as usize] = v;
+                    wr!(seg[THAT], v);
                 }
                 Op::PushReturn(a) => {
-                    if !(fast_sp(regs.sp) && operands_ok([a], flags)) {
+                    if !(fast_sp(sp) && operands_ok([a], flags)) {
                         deopt!();
                     }
                     skip!(op, 2);
@@ -716,7 +742,7 @@ impl Machine {
             }
         };
 
-        regs.store(w);
+        Regs { sp, base: seg }.store(w);
         self.pc = pc as u32;
         self.steps = steps;
         self.cur = cur;
