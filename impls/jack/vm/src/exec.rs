@@ -519,6 +519,7 @@ impl Machine {
                     callee,
                     nargs: n,
                     ret,
+                    method,
                 } => {
                     if frames.len() >= MAX_DEPTH {
                         break Some(Halt::Error(format!(
@@ -565,6 +566,15 @@ impl Machine {
                     nargs = n;
                     flags = f.entry_flags(n);
                     pc = f.start as usize;
+                    if method && fast_sp(sp) {
+                        // The method's `push argument 0; pop pointer 0`.
+                        let this = rd!(seg[ARG]);
+                        w[usize::from(sp)] = this;
+                        seg[THIS] = this as u16;
+                        flags |= THIS_OK;
+                        steps += 2;
+                        pc += 2;
+                    }
                 }
                 Op::Return => do_return!(),
                 Op::Halt => {

@@ -17,9 +17,31 @@ use crate::program::{Bin, Dst, Op, Operand, Src, ABS, ARG, CONST, LCL, PTR, THAT
 /// The most VM commands one fused instruction stands for.
 pub(crate) const MAX_FUSED_STEPS: u64 = 5;
 
-/// The fused instruction array (same indexing as `plain`).
-pub(crate) fn fuse(plain: &[Op]) -> Vec<Op> {
-    (0..plain.len()).map(|i| longest(&plain[i..])).collect()
+/// The fused instruction array (same indexing as `plain`); `starts` holds
+/// each function's first instruction.
+pub(crate) fn fuse(plain: &[Op], starts: &[u32]) -> Vec<Op> {
+    (0..plain.len())
+        .map(|i| match plain[i] {
+            Op::Call {
+                callee,
+                nargs,
+                ret,
+                method: false,
+            } if nargs >= 1 && opens_as_method(plain, starts[usize::from(callee)]) => Op::Call {
+                callee,
+                nargs,
+                ret,
+                method: true,
+            },
+            _ => longest(&plain[i..]),
+        })
+        .collect()
+}
+
+/// Whether the function at `start` opens with `push argument 0; pop
+/// pointer 0`, as every Jack method does.
+fn opens_as_method(plain: &[Op], start: u32) -> bool {
+    plain[start as usize..].starts_with(&[Op::PushArg(0), Op::PopPtr(0)])
 }
 
 fn src(op: Op) -> Option<Src> {
@@ -219,10 +241,10 @@ mod tests {
             longest(&[Op::PushConst(0), Op::Return]),
             Op::PushReturn(Operand::new(CONST, 0, 0))
         );
-        for op in fuse(&cond)
+        for op in fuse(&cond, &[])
             .into_iter()
-            .chain(fuse(&read))
-            .chain(fuse(&store))
+            .chain(fuse(&read, &[]))
+            .chain(fuse(&store, &[]))
         {
             assert!(op.steps() <= MAX_FUSED_STEPS);
         }

@@ -297,6 +297,7 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
                             callee: callee as u16,
                             nargs: *n,
                             ret: index as u16,
+                            method: false,
                         },
                         Target::Os(Builtin::MathMultiply) => Op::Multiply,
                         Target::Os(Builtin::MathDivide) => Op::Divide,
@@ -378,7 +379,8 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
     }
     chosen?;
     let statics = statics.len().min(STATIC_SLOTS);
-    let fused = crate::fuse::fuse(&plain);
+    let starts: Vec<u32> = functions.iter().map(|f| f.start).collect();
+    let fused = crate::fuse::fuse(&plain, &starts);
     Ok(Program {
         functions,
         by_name,

@@ -64,6 +64,9 @@ pub(crate) enum Op {
         callee: u16,
         nargs: u16,
         ret: u16,
+        /// Fused only: the callee is a method whose first commands are
+        /// `push argument 0; pop pointer 0`, and the call runs them too.
+        method: bool,
     },
     CallBuiltin {
         builtin: Builtin,
@@ -202,6 +205,7 @@ impl Op {
             Op::BinSS { .. } | Op::BinSPop { .. } | Op::CmpNotJump { .. } | Op::PtrRead => 3,
             Op::BinPop { .. } | Op::StoreThat => 4,
             Op::CmpJump { not, .. } => 4 + not as u64,
+            Op::Call { method: true, .. } => 3,
             Op::ArrayRead { .. } | Op::StoreThatSrc(_) => 5,
             _ => 1,
         }

@@ -56,7 +56,9 @@ proptest! {
             lines.join("\n"),
             // Fused argument reads are checked once per call: a call with
             // too few arguments must fail exactly where plain code fails.
-            "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n"
+            // Main.m opens like a method, which a fused call runs itself.
+            "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n\
+             function Main.m 1\npush argument 0\npop pointer 0\npush this 0\npush argument 1\nadd\nreturn\n"
         );
         let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("generated programs load");
         let profile = if web { hack_vm::Profile::Web } else { hack_vm::Profile::Desktop };
@@ -102,7 +104,7 @@ fn command() -> impl Strategy<Value = String> {
         2 => (0u16..2).prop_map(|p| format!("pop pointer {p}")),
         1 => value.prop_map(|v| format!("pop constant {}", v % 6)),
         4 => prop::sample::select(vec!["add", "sub", "neg", "eq", "gt", "lt", "and", "or", "not"]).prop_map(String::from),
-        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2"]).prop_map(String::from),
+        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2"]).prop_map(String::from),
         1 => (0u8..3).prop_map(|l| format!("if-goto L{l}")),
         1 => (0u8..3).prop_map(|l| format!("goto L{l}")),
         1 => Just("return".to_string()),
