@@ -603,6 +603,34 @@ impl Machine {
                     w[sp as usize] = v;
                     dst!(d, v);
                 }
+                Op::MoveRun { from, to, len } => {
+                    if !(fast_sp(sp) && operands_ok([from, to], flags)) {
+                        deopt!();
+                    }
+                    skip!(op, 2 * u64::from(len));
+                    for k in 0..u16::from(len) {
+                        if k > 0 && !fast_sp(sp) {
+                            // A move stored into SP itself: the remaining
+                            // moves run as instructions of their own.
+                            let rest = 2 * u64::from(u16::from(len) - k);
+                            steps -= rest;
+                            pc -= rest as usize;
+                            break;
+                        }
+                        let v = src!(Operand {
+                            off: from.off.wrapping_add(k),
+                            ..from
+                        });
+                        w[usize::from(sp)] = v;
+                        dst!(
+                            Operand {
+                                off: to.off.wrapping_add(k),
+                                ..to
+                            },
+                            v
+                        );
+                    }
+                }
                 Op::BinSS { op: o, a, b } => {
                     if !(fast_sp(sp) && operands_ok([a, b], flags)) {
                         deopt!();
@@ -688,11 +716,15 @@ impl Machine {
                         pc = target as usize;
                     }
                 }
-                Op::ArrayRead { index, base } => {
-                    if !(fast_sp(sp) && operands_ok([index, base], flags)) {
+                Op::ArrayRead { index, base } | Op::ArrayReadPop { index, base, .. } => {
+                    let to = match *op {
+                        Op::ArrayReadPop { to, .. } => Some(to),
+                        _ => None,
+                    };
+                    if !(fast_sp(sp) && operands_ok([index, base, to.unwrap_or(base)], flags)) {
                         deopt!();
                     }
-                    skip!(op, 5);
+                    skip!(op, if to.is_some() { 6 } else { 5 });
                     let a = push_push_op!(Bin::Add, index, base);
                     let top = sp - 1;
                     sp = top;
@@ -701,6 +733,10 @@ impl Machine {
                     let v = rd!(seg[THAT]);
                     w[top as usize] = v;
                     sp = top + 1;
+                    if let Some(to) = to {
+                        sp = top;
+                        dst!(to, v);
+                    }
                 }
                 Op::PtrRead => {
                     if !fast_sp(sp) {

@@ -15,7 +15,7 @@ use crate::machine::{ARGS_FIT, THAT_OK, THIS_OK};
 use crate::program::{Bin, Dst, Op, Operand, Src, ABS, ARG, CONST, LCL, PTR, THAT, THIS};
 
 /// The most VM commands one fused instruction stands for.
-pub(crate) const MAX_FUSED_STEPS: u64 = 5;
+pub(crate) const MAX_FUSED_STEPS: u64 = 8;
 
 /// The fused instruction array (same indexing as `plain`); `starts` holds
 /// each function's first instruction.
@@ -110,6 +110,25 @@ fn is_store_tail(p: &[Op]) -> bool {
     )
 }
 
+/// How many (up to 4) `push from+k; pop to+k` pairs open `p`.
+fn move_run(p: &[Op], from: Src, to: Dst) -> usize {
+    if usize::from(from.base) == CONST || usize::from(to.base) == PTR {
+        return 1;
+    }
+    let shifted = |o: Operand, k: usize| Operand {
+        off: o.off.wrapping_add(k as u16),
+        ..o
+    };
+    (1..4)
+        .take_while(|&k| {
+            let pair = (p.get(2 * k).copied(), p.get(2 * k + 1).copied());
+            pair.0.and_then(src) == Some(shifted(from, k))
+                && pair.1.and_then(dst) == Some(shifted(to, k))
+        })
+        .count()
+        + 1
+}
+
 fn longest(p: &[Op]) -> Op {
     let at = |i: usize| p.get(i).copied().unwrap_or(Op::Halt);
     let (s0, s1) = (src(at(0)), src(at(1)));
@@ -138,6 +157,13 @@ fn longest(p: &[Op]) -> Op {
             }
         }
         if at(2) == Op::Add && at(3) == Op::PopPtr(1) && is_that0(at(4)) {
+            if let Some(to) = dst(at(5)) {
+                return Op::ArrayReadPop {
+                    index: a,
+                    base: b,
+                    to,
+                };
+            }
             return Op::ArrayRead { index: a, base: b };
         }
         if let Some(op) = bin(at(2)) {
@@ -174,6 +200,14 @@ fn longest(p: &[Op]) -> Op {
             return Op::PushReturn(b);
         }
         if let Some(d) = dst(at(1)) {
+            let len = move_run(p, b, d);
+            if len >= 2 {
+                return Op::MoveRun {
+                    from: b,
+                    to: d,
+                    len: len as u8,
+                };
+            }
             return Op::Move(b, d);
         }
         if let Some(b2) = s1 {
@@ -236,15 +270,57 @@ mod tests {
             longest(&prologue),
             Op::Move(Operand::new(ARG, ARGS_FIT, 0), Operand::new(PTR, 0, 0))
         );
+        let copy = [
+            Op::PushArg(1),
+            Op::PopThis(0),
+            Op::PushArg(2),
+            Op::PopThis(1),
+            Op::PushArg(3),
+            Op::PopThis(2),
+            Op::PushArg(5),
+            Op::PopThis(3),
+        ];
+        assert_eq!(
+            longest(&copy),
+            Op::MoveRun {
+                from: Operand::new(ARG, ARGS_FIT, 1),
+                to: Operand::new(THIS, 0, 0),
+                len: 3
+            }
+        );
+        assert_eq!(
+            longest(&[
+                Op::PushConst(0),
+                Op::PopLocal(0),
+                Op::PushConst(1),
+                Op::PopLocal(1)
+            ]),
+            Op::Move(Operand::new(CONST, 0, 0), Operand::new(LCL, 0, 0))
+        );
+        let read_into = [
+            Op::PushConst(2),
+            Op::PushLocal(0),
+            Op::Add,
+            Op::PopPtr(1),
+            Op::PushThat(0),
+            Op::PopLocal(3),
+        ];
+        assert_eq!(
+            longest(&read_into),
+            Op::ArrayReadPop {
+                index: Operand::new(CONST, 0, 2),
+                base: Operand::new(LCL, 0, 0),
+                to: Operand::new(LCL, 0, 3)
+            }
+        );
         assert_eq!(longest(&[Op::Add, Op::Halt]), Op::Add);
         assert_eq!(
             longest(&[Op::PushConst(0), Op::Return]),
             Op::PushReturn(Operand::new(CONST, 0, 0))
         );
-        for op in fuse(&cond, &[])
+        for op in [cond.as_slice(), &read, &store, &copy, &read_into]
             .into_iter()
-            .chain(fuse(&read, &[]))
-            .chain(fuse(&store, &[]))
+            .flat_map(|code| fuse(code, &[]))
         {
             assert!(op.steps() <= MAX_FUSED_STEPS);
         }

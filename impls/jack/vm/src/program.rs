@@ -84,6 +84,14 @@ pub(crate) enum Op {
     Push2(Src, Src),
     /// push a; pop d
     Move(Src, Dst),
+    /// `len` (2..=4) moves from consecutive words to consecutive words:
+    /// push from+k; pop to+k for k in 0..len (same bases; not constants,
+    /// not pointer).
+    MoveRun {
+        from: Src,
+        to: Dst,
+        len: u8,
+    },
     /// push a; push b; op
     BinSS {
         op: Bin,
@@ -127,6 +135,12 @@ pub(crate) enum Op {
     ArrayRead {
         index: Src,
         base: Src,
+    },
+    /// push index; push base; add; pop pointer 1; push that 0; pop d
+    ArrayReadPop {
+        index: Src,
+        base: Src,
+        to: Dst,
     },
     /// add; pop pointer 1; push that 0
     PtrRead,
@@ -207,6 +221,8 @@ impl Op {
             Op::CmpJump { not, .. } => 4 + not as u64,
             Op::Call { method: true, .. } => 3,
             Op::ArrayRead { .. } | Op::StoreThatSrc(_) => 5,
+            Op::ArrayReadPop { .. } => 6,
+            Op::MoveRun { len, .. } => 2 * len as u64,
             _ => 1,
         }
     }

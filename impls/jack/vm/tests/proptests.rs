@@ -99,7 +99,7 @@ fn command() -> impl Strategy<Value = String> {
     prop_oneof![
         4 => value.clone().prop_map(|v| format!("push constant {v}")),
         3 => (seg.clone(), 0u16..4).prop_map(|(s, i)| format!("push {s} {i}")),
-        3 => (seg, 0u16..4).prop_map(|(s, i)| format!("pop {s} {i}")),
+        3 => (seg.clone(), 0u16..4).prop_map(|(s, i)| format!("pop {s} {i}")),
         1 => (0u16..2).prop_map(|p| format!("push pointer {p}")),
         2 => (0u16..2).prop_map(|p| format!("pop pointer {p}")),
         1 => value.prop_map(|v| format!("pop constant {}", v % 6)),
@@ -108,5 +108,13 @@ fn command() -> impl Strategy<Value = String> {
         1 => (0u8..3).prop_map(|l| format!("if-goto L{l}")),
         1 => (0u8..3).prop_map(|l| format!("goto L{l}")),
         1 => Just("return".to_string()),
+        // Shapes the fuser turns into one instruction: runs of moves
+        // between consecutive words, and an array read into a variable.
+        1 => (seg.clone(), 0u16..3, seg.clone(), 0u16..3, 1u16..6).prop_map(|(s, i, d, j, n)| {
+            (0..n).map(|k| format!("push {s} {}\npop {d} {}", i + k, j + k)).collect::<Vec<_>>().join("\n")
+        }),
+        1 => (seg.clone(), 0u16..4, seg.clone(), 0u16..4, seg.clone(), 0u16..4).prop_map(|(a, i, b, j, d, k)| {
+            format!("push {a} {i}\npush {b} {j}\nadd\npop pointer 1\npush that 0\npop {d} {k}")
+        }),
     ]
 }
