@@ -265,6 +265,9 @@ impl Reference {
     /// Coordinates outside 512x256 are computed the same way.
     pub fn pixel(&self, x: usize, y: usize) -> Outcome<PixelValue> {
         match &self.consts {
+            Prepared::F316(k) if self.settings.arith == Arith::SPEC => {
+                pixel_at(&mut F316Engine::spec(), k, x, y)
+            }
             Prepared::F316(k) => pixel_at(&mut F316Engine::new(self.settings.arith), k, x, y),
             Prepared::F64(k) => pixel_at(&mut FloatEngine::new(), k, x, y),
             Prepared::F32(k) => pixel_at(&mut FloatEngine::new(), k, x, y),
@@ -274,6 +277,9 @@ impl Reference {
     /// The whole image, rows in parallel.
     pub fn render(&self) -> RenderedImage {
         match &self.consts {
+            Prepared::F316(k) if self.settings.arith == Arith::SPEC => {
+                image_of(F316Engine::spec, k)
+            }
             Prepared::F316(k) => image_of(|| F316Engine::new(self.settings.arith), k),
             Prepared::F64(k) => image_of(FloatEngine::new, k),
             Prepared::F32(k) => image_of(FloatEngine::new, k),

@@ -11,7 +11,7 @@
 
 use crate::consts::Consts;
 use crate::engine::{Engine, Trap, R};
-use crate::settings::Arith;
+use crate::settings::{Arith, ArithSource, SpecArith};
 use crate::tracer::{Recorder, Tracer, Untraced};
 use crate::vec3::{self, V3};
 use common::jack_int as j;
@@ -78,9 +78,10 @@ impl Traceable for bool {
 }
 
 /// The Float316 engine: the spec's operations under an [`Arith`]
-/// configuration, reporting to a [`Recorder`].
-pub struct F316Engine<Rec: Recorder = Untraced> {
-    arith: Arith,
+/// configuration (given at run time, or [`SpecArith`]), reporting to a
+/// [`Recorder`].
+pub struct F316Engine<Rec: Recorder = Untraced, A: ArithSource = Arith> {
+    arith: A,
     recorder: Rec,
 }
 
@@ -89,6 +90,17 @@ impl F316Engine {
     pub fn new(arith: Arith) -> Self {
         F316Engine {
             arith,
+            recorder: Untraced,
+        }
+    }
+}
+
+impl F316Engine<Untraced, SpecArith> {
+    /// An engine that does not trace, with the spec's arithmetic compiled
+    /// in (the same results as `new(Arith::SPEC)`, faster).
+    pub fn spec() -> Self {
+        F316Engine {
+            arith: SpecArith,
             recorder: Untraced,
         }
     }
@@ -104,7 +116,7 @@ impl<'t> F316Engine<&'t mut Tracer> {
     }
 }
 
-impl<Rec: Recorder> F316Engine<Rec> {
+impl<Rec: Recorder, A: ArithSource> F316Engine<Rec, A> {
     /// Run `body` as the operation `op` on `args`, recording it when tracing.
     #[inline(always)]
     fn traced<T: Traceable>(
@@ -123,6 +135,7 @@ impl<Rec: Recorder> F316Engine<Rec> {
     }
 
     /// `halve(a)`: exponent minus 1 when `a.e > 0`.
+    #[inline(always)]
     pub fn halve(&mut self, a: F316) -> R<F316> {
         self.traced(Op::Halve, &[a], |_| Ok(shift_exponent(a, -1)))
     }
@@ -135,7 +148,7 @@ impl<Rec: Recorder> F316Engine<Rec> {
             }
             let x2 = F316::new(0, j::sub(x.e, 1), x.m);
             let mut y = F316::new(0, j::sub(190, j::halve(x.e)), M_MIN);
-            for _ in 0..s.arith.newton_steps {
+            for _ in 0..s.arith.arith().newton_steps {
                 let t = s.mul(x2, y)?;
                 let t = s.mul(t, y)?;
                 let t = s.sub(THREE_HALVES, t)?;
@@ -192,9 +205,6 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
     if is_zero(small) {
         return Ok(big);
     }
-    if big.s != small.s && big.e == small.e && big.m == small.m {
-        return Ok(F316::ZERO);
-    }
     let mut shift = j::sub(big.e, small.e);
     if arith.add_alignment_off_by_one && shift > 0 {
         shift = j::add(shift, 1);
@@ -214,6 +224,10 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
         m = j::sub(big.m, sm);
         if m > 0 {
             (m, e) = normalise_positive(m, e);
+        } else if big.e == small.e && big.m == small.m {
+            // Exact cancellation (Jack tests for it before aligning; only
+            // equal magnitudes of opposite signs get here with m == 0).
+            return Ok(F316::ZERO);
         } else {
             // Doubling a negative word reaches 0 (a hang) or wraps to a
             // value of at least M_MIN within 16 steps.
@@ -231,24 +245,49 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
 
 /// `mul(a, b)`: the product of the 7-bit halves, low*low dropped unless
 /// the configuration keeps it.
+#[inline(always)]
 fn mul(arith: &Arith, a: F316, b: F316) -> F316 {
     let sign = j::and(j::add(a.s, b.s), 1);
     if is_zero(a) || is_zero(b) {
         return F316::new(sign, 0, 0);
     }
     let mut e = j::sub(j::add(a.e, b.e), 126);
-    let split = |m: i16| (j::div(m, 128).unwrap_or(0), j::and(m, 127));
-    let (ah, al) = split(a.m);
-    let (bh, bl) = split(b.m);
-    let mut mid = j::add(j::mul(ah, bl), j::mul(al, bh));
-    if arith.mul_keeps_low_product {
-        mid = j::add(mid, j::div(j::mul(al, bl), 128).unwrap_or(0));
-    }
-    let mut m = j::add(j::mul(ah, bh), j::div(mid, 128).unwrap_or(0));
+    let mut m = if (a.m | b.m) as u16 <= M_MAX as u16 {
+        mantissa_product_small(arith, a.m, b.m)
+    } else {
+        mantissa_product(arith, a.m, b.m)
+    };
     if m > 0 {
         (m, e) = normalise_positive(m, e);
     }
     F316 { s: sign, e, m }
+}
+
+/// mul's mantissa product for any words, as Jack computes it.
+fn mantissa_product(arith: &Arith, am: i16, bm: i16) -> i16 {
+    let split = |m: i16| (j::div(m, 128).unwrap_or(0), j::and(m, 127));
+    let (ah, al) = split(am);
+    let (bh, bl) = split(bm);
+    let mut mid = j::add(j::mul(ah, bl), j::mul(al, bh));
+    if arith.mul_keeps_low_product {
+        mid = j::add(mid, j::div(j::mul(al, bl), 128).unwrap_or(0));
+    }
+    j::add(j::mul(ah, bh), j::div(mid, 128).unwrap_or(0))
+}
+
+/// [`mantissa_product`] for mantissas in 0..=16383 (normalised ones among
+/// them): the halves are below 128, so no sum exceeds 32384, no word wraps
+/// and each truncating division by 128 is a shift.
+#[inline(always)]
+fn mantissa_product_small(arith: &Arith, am: i16, bm: i16) -> i16 {
+    debug_assert!((0..=M_MAX).contains(&am) && (0..=M_MAX).contains(&bm));
+    let (a, b) = (am as u32, bm as u32);
+    let (ah, al, bh, bl) = (a >> 7, a & 127, b >> 7, b & 127);
+    let mut mid = ah * bl + al * bh;
+    if arith.mul_keeps_low_product {
+        mid += (al * bl) >> 7;
+    }
+    (ah * bh + (mid >> 7)) as i16
 }
 
 /// `div(a, b)`: long division with a shrinking divisor.
@@ -273,6 +312,19 @@ fn div(a: F316, b: F316) -> R<F316> {
     }
     let (q, e) = normalise_positive(q, e);
     Ok(F316 { s: sign, e, m: q })
+}
+
+/// `div(x, g)` when `x` and `g` are positive and share a normalised
+/// mantissa (sqrt's start value has x's mantissa): the long division of
+/// equal normalised mantissas gives 8192, so the quotient is
+/// `(0, x.e + 127 - g.e, 8192)`. `None` for any other operands.
+#[inline(always)]
+fn div_by_same_mantissa(x: F316, g: F316) -> Option<F316> {
+    (x.s == 0 && g.s == 0 && g.m == x.m && is_normalised(x.m)).then(|| F316 {
+        s: 0,
+        e: j::sub(j::add(x.e, 127), g.e),
+        m: M_MIN,
+    })
 }
 
 /// div's quotient loop for any mantissas, as Jack runs it: `d` shrinks by
@@ -388,7 +440,7 @@ fn sqrt_guess(arith: &Arith, x: F316) -> F316 {
     F316::new(0, e, x.m)
 }
 
-impl<Rec: Recorder> Engine for F316Engine<Rec> {
+impl<Rec: Recorder, A: ArithSource> Engine for F316Engine<Rec, A> {
     type N = F316;
 
     fn constant(x: f64) -> Option<F316> {
@@ -407,34 +459,45 @@ impl<Rec: Recorder> Engine for F316Engine<Rec> {
         t
     }
 
+    #[inline(always)]
     fn gt(&mut self, a: F316, b: F316) -> R<bool> {
         self.traced(Op::Gt, &[a, b], |_| Ok(gt(a, b)))
     }
 
+    #[inline(always)]
     fn add(&mut self, a: F316, b: F316) -> R<F316> {
-        self.traced(Op::Add, &[a, b], |s| add(&s.arith, a, b))
+        self.traced(Op::Add, &[a, b], |s| add(&s.arith.arith(), a, b))
     }
 
+    #[inline(always)]
     fn sub(&mut self, a: F316, b: F316) -> R<F316> {
         self.traced(Op::Sub, &[a, b], |s| s.add(a, b.negated()))
     }
 
+    #[inline(always)]
     fn mul(&mut self, a: F316, b: F316) -> R<F316> {
-        self.traced(Op::Mul, &[a, b], |s| Ok(mul(&s.arith, a, b)))
+        self.traced(Op::Mul, &[a, b], |s| Ok(mul(&s.arith.arith(), a, b)))
     }
 
+    #[inline(always)]
     fn div(&mut self, a: F316, b: F316) -> R<F316> {
         self.traced(Op::Div, &[a, b], |_| div(a, b))
     }
 
+    #[inline(always)]
     fn sqrt(&mut self, x: F316) -> R<F316> {
         self.traced(Op::Sqrt, &[x], |s| {
             if x.s == 1 {
                 return Err(Trap::SysError(2));
             }
-            let mut g = sqrt_guess(&s.arith, x);
-            for _ in 0..s.arith.newton_steps {
-                let t = s.div(x, g)?;
+            let mut g = sqrt_guess(&s.arith.arith(), x);
+            for _ in 0..s.arith.arith().newton_steps {
+                // The start value has x's mantissa: its quotient needs no
+                // long division (a traced run records the div as usual).
+                let t = match div_by_same_mantissa(x, g) {
+                    Some(t) if !Rec::ON => t,
+                    _ => s.div(x, g)?,
+                };
                 g = s.add(g, t)?;
                 g = s.halve(g)?;
             }
@@ -442,6 +505,7 @@ impl<Rec: Recorder> Engine for F316Engine<Rec> {
         })
     }
 
+    #[inline(always)]
     fn floor(&mut self, a: F316) -> R<F316> {
         self.traced(Op::Floor, &[a], |s| {
             if a.e < 127 {
@@ -461,14 +525,17 @@ impl<Rec: Recorder> Engine for F316Engine<Rec> {
         })
     }
 
+    #[inline(always)]
     fn mod2(&mut self, a: F316) -> R<F316> {
         self.traced(Op::Mod2, &[a], |_| mod2(a))
     }
 
+    #[inline(always)]
     fn double(&mut self, a: F316) -> R<F316> {
         self.traced(Op::Double, &[a], |_| Ok(shift_exponent(a, 1)))
     }
 
+    #[inline(always)]
     fn quarter(&mut self, a: F316) -> R<F316> {
         self.traced(Op::Quarter, &[a], |_| Ok(shift_exponent(a, -2)))
     }
@@ -539,6 +606,137 @@ mod tests {
                 );
             }
         });
+    }
+
+    /// Jack's `add` in its own order (cancellation tested before aligning,
+    /// every normalising step a loop): the model `add` is checked against.
+    fn add_in_jack_order(arith: &Arith, a: F316, b: F316) -> R<F316> {
+        let (big, small) = if b.e > a.e || (b.e == a.e && b.m > a.m) {
+            (b, a)
+        } else {
+            (a, b)
+        };
+        if is_zero(small) {
+            return Ok(big);
+        }
+        if big.s != small.s && big.e == small.e && big.m == small.m {
+            return Ok(F316::ZERO);
+        }
+        let mut shift = j::sub(big.e, small.e);
+        if arith.add_alignment_off_by_one && shift > 0 {
+            shift = j::add(shift, 1);
+        }
+        let sm = trunc_shift(small.m, shift);
+        let (mut e, mut m);
+        e = big.e;
+        if big.s == small.s {
+            m = j::add(big.m, sm);
+            if m > M_MAX {
+                m = j::halve(m);
+                e = j::add(e, 1);
+            }
+        } else {
+            m = j::sub(big.m, sm);
+            while m < M_MIN {
+                if m == 0 {
+                    return Err(Trap::Hang);
+                }
+                m = j::mul(m, 2);
+                e = j::sub(e, 1);
+            }
+        }
+        Ok(F316 { s: big.s, e, m })
+    }
+
+    /// `add` equals Jack's order for every mantissa word against equal,
+    /// neighbouring, doubled, halved and fixed mantissas, with exponents at
+    /// and around the wrapping edges and every sign pairing.
+    #[test]
+    fn add_equals_jack_order() {
+        use rayon::prelude::*;
+        let exponents = [i16::MIN, -1, 0, 127, 128, 142, i16::MAX];
+        let signs = [(0, 0), (0, 1), (1, 0), (2, 1)];
+        for flag in [false, true] {
+            let arith = Arith {
+                add_alignment_off_by_one: flag,
+                ..Arith::SPEC
+            };
+            (i16::MIN..=i16::MAX).into_par_iter().for_each(|ma| {
+                let others = [
+                    ma,
+                    ma.wrapping_add(1),
+                    ma.wrapping_sub(1),
+                    ma.wrapping_mul(2),
+                    ma / 2,
+                    0,
+                    M_MIN,
+                    M_MAX,
+                    -1,
+                ];
+                for mb in others {
+                    for ea in exponents {
+                        for eb in exponents {
+                            for (sa, sb) in signs {
+                                let (a, b) = (F316::new(sa, ea, ma), F316::new(sb, eb, mb));
+                                assert_eq!(
+                                    add(&arith, a, b),
+                                    add_in_jack_order(&arith, a, b),
+                                    "{a:?} + {b:?}, flag = {flag}"
+                                );
+                            }
+                        }
+                    }
+                }
+            });
+        }
+    }
+
+    /// The shift-only mantissa product equals Jack's for every pair of
+    /// mantissas in 0..=16383 (268 million), with and without the low
+    /// product.
+    #[test]
+    fn small_mantissa_product_equals_jack_on_all_pairs() {
+        use rayon::prelude::*;
+        for keep in [false, true] {
+            let arith = Arith {
+                mul_keeps_low_product: keep,
+                ..Arith::SPEC
+            };
+            (0..=M_MAX).into_par_iter().for_each(|a| {
+                for b in 0..=M_MAX {
+                    assert_eq!(
+                        mantissa_product_small(&arith, a, b),
+                        mantissa_product(&arith, a, b),
+                        "{a} * {b}, keep = {keep}"
+                    );
+                }
+            });
+        }
+    }
+
+    /// sqrt's first quotient without the long division equals `div` for
+    /// every mantissa word, sign and exponents at and around the wrapping
+    /// edges; it applies to every positive normalised `x`.
+    #[test]
+    fn quotient_of_same_mantissas_equals_div() {
+        let exponents = [i16::MIN, -1, 0, 1, 63, 126, 127, 128, 190, i16::MAX];
+        for m in i16::MIN..=i16::MAX {
+            for s in [0, 1, 2, -1] {
+                for xe in exponents {
+                    for ge in exponents {
+                        let (x, g) = (F316::new(s, xe, m), F316::new(0, ge, m));
+                        let fast = div_by_same_mantissa(x, g);
+                        if let Some(q) = fast {
+                            assert_eq!(Ok(q), div(x, g), "{x:?} / {g:?}");
+                        }
+                        assert_eq!(fast.is_some(), s == 0 && is_normalised(m));
+                        // A different mantissa never takes the shortcut.
+                        let other = F316::new(0, ge, m.wrapping_add(1));
+                        assert_eq!(div_by_same_mantissa(x, other), None);
+                    }
+                }
+            }
+        }
     }
 
     /// The closed forms used for speed equal Jack's loops for every word.

@@ -25,14 +25,45 @@ pub struct Arith {
     pub add_alignment_off_by_one: bool,
 }
 
+impl Arith {
+    /// The spec's arithmetic (also `Arith::default()`).
+    pub const SPEC: Arith = Arith {
+        newton_steps: 2,
+        mul_keeps_low_product: false,
+        sqrt_guess_from_biased_difference: false,
+        add_alignment_off_by_one: false,
+    };
+}
+
 impl Default for Arith {
     fn default() -> Self {
-        Arith {
-            newton_steps: 2,
-            mul_keeps_low_product: false,
-            sqrt_guess_from_biased_difference: false,
-            add_alignment_off_by_one: false,
-        }
+        Arith::SPEC
+    }
+}
+
+/// Where a Float316 engine gets its [`Arith`]: a run-time value, or
+/// [`SpecArith`], the spec's arithmetic as a compile-time constant that the
+/// compiler folds into the operations (no variant tests in the hot path).
+pub trait ArithSource: Copy {
+    /// The arithmetic.
+    fn arith(&self) -> Arith;
+}
+
+impl ArithSource for Arith {
+    #[inline(always)]
+    fn arith(&self) -> Arith {
+        *self
+    }
+}
+
+/// [`Arith::SPEC`], known at compile time.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SpecArith;
+
+impl ArithSource for SpecArith {
+    #[inline(always)]
+    fn arith(&self) -> Arith {
+        Arith::SPEC
     }
 }
 
