@@ -34,14 +34,12 @@ fn is_zero(a: F316) -> bool {
 
 /// Double a positive word until it reaches `M_MIN`, subtracting the number
 /// of doublings from `e` (Jack's `while (m < 8192)` loop, in one step: a
-/// positive word never wraps before reaching `M_MIN`).
+/// positive word never wraps before reaching `M_MIN`). Branch-free: no
+/// doubling when `m` is already at least `M_MIN`.
 #[inline(always)]
 fn normalise_positive(m: i16, e: i16) -> (i16, i16) {
     debug_assert!(m > 0);
-    if m >= M_MIN {
-        return (m, e);
-    }
-    let k = (m as u16).leading_zeros() as i16 - 2;
+    let k = ((m as u16).leading_zeros() as i16 - 2).max(0);
     (m << k, j::sub(e, k))
 }
 
@@ -247,16 +245,27 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
 /// the configuration keeps it.
 #[inline(always)]
 fn mul(arith: &Arith, a: F316, b: F316) -> F316 {
+    if (a.m | b.m) as u16 <= M_MAX as u16 {
+        let m = mantissa_product_small(arith, a.m, b.m);
+        // A zero operand has m = 0, which makes the product 0: a positive
+        // product means neither operand is zero, so Jack's zero test fails.
+        if m > 0 {
+            let sign = j::and(j::add(a.s, b.s), 1);
+            let (m, e) = normalise_positive(m, j::sub(j::add(a.e, b.e), 126));
+            return F316 { s: sign, e, m };
+        }
+    }
+    mul_any(arith, a, b)
+}
+
+/// `mul(a, b)` for any words, as Jack computes it.
+fn mul_any(arith: &Arith, a: F316, b: F316) -> F316 {
     let sign = j::and(j::add(a.s, b.s), 1);
     if is_zero(a) || is_zero(b) {
         return F316::new(sign, 0, 0);
     }
     let mut e = j::sub(j::add(a.e, b.e), 126);
-    let mut m = if (a.m | b.m) as u16 <= M_MAX as u16 {
-        mantissa_product_small(arith, a.m, b.m)
-    } else {
-        mantissa_product(arith, a.m, b.m)
-    };
+    let mut m = mantissa_product(arith, a.m, b.m);
     if m > 0 {
         (m, e) = normalise_positive(m, e);
     }
@@ -294,18 +303,19 @@ fn mantissa_product_small(arith: &Arith, am: i16, bm: i16) -> i16 {
 #[inline(always)]
 fn div(a: F316, b: F316) -> R<F316> {
     let sign = j::and(j::add(a.s, b.s), 1);
-    if is_zero(a) {
-        return Ok(F316::new(sign, 0, 0));
-    }
-    if is_zero(b) {
-        return Err(Trap::SysError(1));
-    }
-    let e = j::sub(j::add(a.e, 127), b.e);
+    // Normalised mantissas are not 0, so neither operand is zero.
     let q = if is_normalised(a.m) && is_normalised(b.m) {
         long_division_normalised(a.m, b.m)
     } else {
+        if is_zero(a) {
+            return Ok(F316::new(sign, 0, 0));
+        }
+        if is_zero(b) {
+            return Err(Trap::SysError(1));
+        }
         long_division(a.m, b.m)
     };
+    let e = j::sub(j::add(a.e, 127), b.e);
     // q is a sum of distinct powers 2^0..2^13: 0 <= q <= 16383.
     if q == 0 {
         return Err(Trap::Hang);
@@ -356,17 +366,18 @@ fn is_normalised(m: i16) -> bool {
 #[inline(always)]
 fn long_division_normalised(a: i16, b: i16) -> i16 {
     debug_assert!(is_normalised(a) && is_normalised(b));
-    let (mut r, b) = (i32::from(a), i32::from(b));
-    let mut q = 0i32;
+    let b = b as u32;
+    // The remainder (below 2^14) in the low 16 bits, the quotient bits
+    // above them: one select per step updates both.
+    let mut rq = a as u32;
     for k in 0..7 {
-        let s = r - (b >> k);
-        let taken = s >= 0;
-        q |= i32::from(taken) << (13 - k);
-        if taken {
-            r = s;
+        let d = b >> k;
+        if rq & 0xffff >= d {
+            rq = rq + (1 << (29 - k)) - d;
         }
     }
-    q as i16 | i16::from(LOW_QUOTIENT[((b >> 7) - 64) as usize * REMAINDERS + r as usize])
+    let (q, r) = ((rq >> 16) as i16, (rq & 0xffff) as usize);
+    q | i16::from(LOW_QUOTIENT[((b >> 7) - 64) as usize * REMAINDERS + r])
 }
 
 /// Remainders the table covers per divisor (0..=260 occur).
@@ -689,6 +700,33 @@ mod tests {
                 }
             });
         }
+    }
+
+    /// `mul` equals Jack's order (zero test first) for every mantissa word
+    /// against zero, small, normalised, out-of-range and related mantissas,
+    /// with edge exponents, zero operands and sign pairings.
+    #[test]
+    fn mul_equals_jack_order() {
+        use rayon::prelude::*;
+        let exponents = [i16::MIN, 0, 127, i16::MAX];
+        let signs = [(0, 0), (0, 1), (1, 1), (2, 3)];
+        (i16::MIN..=i16::MAX).into_par_iter().for_each(|ma| {
+            let others = [ma, ma ^ 1, 0, 1, 127, 128, M_MIN, M_MAX, 16384, -1];
+            for mb in others {
+                for ea in exponents {
+                    for eb in exponents {
+                        for (sa, sb) in signs {
+                            let (a, b) = (F316::new(sa, ea, ma), F316::new(sb, eb, mb));
+                            assert_eq!(
+                                mul(&Arith::SPEC, a, b),
+                                mul_any(&Arith::SPEC, a, b),
+                                "{a:?} * {b:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        });
     }
 
     /// The shift-only mantissa product equals Jack's for every pair of
