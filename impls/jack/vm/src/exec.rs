@@ -316,6 +316,45 @@ impl Machine {
                     r
                 }};
             }
+            // `push b; op [; pop d]` with the left operand on the stack.
+            macro_rules! push_op {
+                ($op:expr, $steps:expr, $o:expr, $b:expr $(, $d:expr)?) => {{
+                    let top = sp;
+                    let x = w[top as usize - 1];
+                    let y = src!($b);
+                    w[top as usize] = y;
+                    let Some(r) = apply($o, x, y, os_profile) else {
+                        deopt!()
+                    };
+                    skip!($op, $steps);
+                    w[top as usize - 1] = r;
+                    $(
+                        sp = top - 1;
+                        dst!($d, r);
+                    )?
+                }};
+            }
+            // `push index; push base; add; pop pointer 1; push that 0 [; pop to]`.
+            macro_rules! array_read {
+                (@value $index:expr, $base:expr) => {{
+                    let a = push_push_op!(Bin::Add, $index, $base);
+                    let top = sp - 1;
+                    sp = top;
+                    seg[THAT] = a as u16;
+                    flags |= THAT_OK;
+                    let v = rd!(seg[THAT]);
+                    w[top as usize] = v;
+                    (top, v)
+                }};
+                ($index:expr, $base:expr) => {{
+                    let (top, _) = array_read!(@value $index, $base);
+                    sp = top + 1;
+                }};
+                ($index:expr, $base:expr, $to:expr) => {{
+                    let (_, v) = array_read!(@value $index, $base);
+                    dst!($to, v);
+                }};
+            }
             macro_rules! do_return {
                 () => {{
                     let frame = seg[LCL];
@@ -647,27 +686,17 @@ impl Machine {
                     sp -= 1;
                     dst!(d, r);
                 }
-                Op::BinS { op: o, b } | Op::BinSPop { op: o, b, .. } => {
-                    let d = match *op {
-                        Op::BinSPop { d, .. } => Some(d),
-                        _ => None,
-                    };
-                    if !(fast_sp(sp) && operands_ok([b, d.unwrap_or(b)], flags)) {
+                Op::BinS { op: o, b } => {
+                    if !(fast_sp(sp) && operands_ok([b], flags)) {
                         deopt!();
                     }
-                    let top = sp;
-                    let x = w[top as usize - 1];
-                    let y = src!(b);
-                    w[top as usize] = y;
-                    let Some(r) = apply(o, x, y, os_profile) else {
-                        deopt!()
-                    };
-                    skip!(op, if d.is_some() { 3 } else { 2 });
-                    w[top as usize - 1] = r;
-                    if let Some(d) = d {
-                        sp = top - 1;
-                        dst!(d, r);
+                    push_op!(op, 2, o, b);
+                }
+                Op::BinSPop { op: o, b, d } => {
+                    if !(fast_sp(sp) && operands_ok([b, d], flags)) {
+                        deopt!();
                     }
+                    push_op!(op, 3, o, b, d);
                 }
                 Op::CmpJump {
                     op: o,
@@ -716,27 +745,19 @@ impl Machine {
                         pc = target as usize;
                     }
                 }
-                Op::ArrayRead { index, base } | Op::ArrayReadPop { index, base, .. } => {
-                    let to = match *op {
-                        Op::ArrayReadPop { to, .. } => Some(to),
-                        _ => None,
-                    };
-                    if !(fast_sp(sp) && operands_ok([index, base, to.unwrap_or(base)], flags)) {
+                Op::ArrayRead { index, base } => {
+                    if !(fast_sp(sp) && operands_ok([index, base], flags)) {
                         deopt!();
                     }
-                    skip!(op, if to.is_some() { 6 } else { 5 });
-                    let a = push_push_op!(Bin::Add, index, base);
-                    let top = sp - 1;
-                    sp = top;
-                    seg[THAT] = a as u16;
-                    flags |= THAT_OK;
-                    let v = rd!(seg[THAT]);
-                    w[top as usize] = v;
-                    sp = top + 1;
-                    if let Some(to) = to {
-                        sp = top;
-                        dst!(to, v);
+                    skip!(op, 5);
+                    array_read!(index, base);
+                }
+                Op::ArrayReadPop { index, base, to } => {
+                    if !(fast_sp(sp) && operands_ok([index, base, to], flags)) {
+                        deopt!();
                     }
+                    skip!(op, 6);
+                    array_read!(index, base, to);
                 }
                 Op::PtrRead => {
                     if !fast_sp(sp) {
