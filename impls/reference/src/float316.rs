@@ -45,11 +45,23 @@ fn normalise_positive(m: i16, e: i16) -> (i16, i16) {
 
 /// `m` halved `shift` times, each halving truncating toward zero (none when
 /// `shift <= 0`): one truncating division by `2^shift`, done with shifts.
+/// A non-negative `m` (the usual case) is one arithmetic shift (15 places
+/// already leave 0); a negative one goes through [`trunc_shift_negative`].
 #[inline(always)]
 fn trunc_shift(m: i16, shift: i16) -> i16 {
+    if m < 0 {
+        return trunc_shift_negative(m, shift);
+    }
+    m >> shift.clamp(0, 15)
+}
+
+/// [`trunc_shift`] of a negative word, out of line so that the common case
+/// stays a branch and a shift.
+#[cold]
+#[inline(never)]
+fn trunc_shift_negative(m: i16, shift: i16) -> i16 {
     let n = shift.clamp(0, 16) as u32;
-    let v = i32::from(m);
-    (if v >= 0 { v >> n } else { -((-v) >> n) }) as i16
+    (-((-i32::from(m)) >> n)) as i16
 }
 
 /// `2^i` for `i` in 0..=13 (Jack: a table of powers of two).
