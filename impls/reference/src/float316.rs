@@ -676,7 +676,6 @@ mod tests {
     /// and around the wrapping edges and every sign pairing.
     #[test]
     fn add_equals_jack_order() {
-        use rayon::prelude::*;
         let exponents = [i16::MIN, -1, 0, 127, 128, 142, i16::MAX];
         let signs = [(0, 0), (0, 1), (1, 0), (2, 1)];
         for flag in [false, true] {
@@ -684,8 +683,8 @@ mod tests {
                 add_alignment_off_by_one: flag,
                 ..Arith::SPEC
             };
-            (i16::MIN..=i16::MAX).into_par_iter().for_each(|ma| {
-                let others = [
+            let others = |ma: i16| {
+                [
                     ma,
                     ma.wrapping_add(1),
                     ma.wrapping_sub(1),
@@ -695,23 +694,39 @@ mod tests {
                     M_MIN,
                     M_MAX,
                     -1,
-                ];
-                for mb in others {
-                    for ea in exponents {
-                        for eb in exponents {
-                            for (sa, sb) in signs {
-                                let (a, b) = (F316::new(sa, ea, ma), F316::new(sb, eb, mb));
-                                assert_eq!(
-                                    add(&arith, a, b),
-                                    add_in_jack_order(&arith, a, b),
-                                    "{a:?} + {b:?}, flag = {flag}"
-                                );
-                            }
+                ]
+            };
+            each_operand_pair(others, &exponents, &signs, |a, b| {
+                assert_eq!(
+                    add(&arith, a, b),
+                    add_in_jack_order(&arith, a, b),
+                    "{a:?} + {b:?}, flag = {flag}"
+                );
+            });
+        }
+    }
+
+    /// Calls `check` on (s_a, e_a, m_a) and (s_b, e_b, m_b) for every
+    /// mantissa word m_a (in parallel), every m_b of `others(m_a)`, every
+    /// pair of `exponents` and every pair of `signs`.
+    fn each_operand_pair<const N: usize>(
+        others: impl Fn(i16) -> [i16; N] + Sync,
+        exponents: &[i16],
+        signs: &[(i16, i16)],
+        check: impl Fn(F316, F316) + Sync,
+    ) {
+        use rayon::prelude::*;
+        (i16::MIN..=i16::MAX).into_par_iter().for_each(|ma| {
+            for mb in others(ma) {
+                for &ea in exponents {
+                    for &eb in exponents {
+                        for &(sa, sb) in signs {
+                            check(F316::new(sa, ea, ma), F316::new(sb, eb, mb));
                         }
                     }
                 }
-            });
-        }
+            }
+        });
     }
 
     /// `mul` equals Jack's order (zero test first) for every mantissa word
@@ -719,25 +734,15 @@ mod tests {
     /// with edge exponents, zero operands and sign pairings.
     #[test]
     fn mul_equals_jack_order() {
-        use rayon::prelude::*;
         let exponents = [i16::MIN, 0, 127, i16::MAX];
         let signs = [(0, 0), (0, 1), (1, 1), (2, 3)];
-        (i16::MIN..=i16::MAX).into_par_iter().for_each(|ma| {
-            let others = [ma, ma ^ 1, 0, 1, 127, 128, M_MIN, M_MAX, 16384, -1];
-            for mb in others {
-                for ea in exponents {
-                    for eb in exponents {
-                        for (sa, sb) in signs {
-                            let (a, b) = (F316::new(sa, ea, ma), F316::new(sb, eb, mb));
-                            assert_eq!(
-                                mul(&Arith::SPEC, a, b),
-                                mul_any(&Arith::SPEC, a, b),
-                                "{a:?} * {b:?}"
-                            );
-                        }
-                    }
-                }
-            }
+        let others = |ma: i16| [ma, ma ^ 1, 0, 1, 127, 128, M_MIN, M_MAX, 16384, -1];
+        each_operand_pair(others, &exponents, &signs, |a, b| {
+            assert_eq!(
+                mul(&Arith::SPEC, a, b),
+                mul_any(&Arith::SPEC, a, b),
+                "{a:?} * {b:?}"
+            );
         });
     }
 
