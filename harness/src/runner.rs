@@ -6,8 +6,9 @@
 
 use crate::compare::{compare, odd_one_out, Comparison, Policy, Sides};
 use crate::implementation::{Answer, ImplError, Implementation, Numbers};
+use crate::progress;
 use common::Outcome;
-use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -76,21 +77,15 @@ pub struct RunOptions {
 }
 
 fn bars(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) -> Vec<ProgressBar> {
-    let multi = MultiProgress::with_draw_target(if options.progress {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    });
-    let style = ProgressStyle::with_template("{prefix:>10} {bar:40} {pos}/{len} {msg} ({eta})")
-        .expect("the template is valid");
+    let multi = progress::multi(options.progress);
     impls
         .iter()
         .map(|imp| {
-            let bar = multi.add(ProgressBar::new(set.vectors.len() as u64));
-            bar.set_style(style.clone());
-            bar.set_prefix(imp.label());
-            bar.set_message(set.name.clone());
-            bar
+            multi.add(progress::items(
+                set.vectors.len() as u64,
+                &imp.label(),
+                &set.name,
+            ))
         })
         .collect()
 }

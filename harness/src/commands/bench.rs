@@ -8,7 +8,6 @@ use crate::implementation::ImplName;
 use crate::report::model::BenchRow;
 use crate::report::{measure, ORACLE};
 use anyhow::{Context, Result};
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -33,7 +32,7 @@ pub fn run(args: BenchArgs) -> Result<ExitCode> {
     } else {
         args.implementations.clone()
     };
-    let progress = std::io::stderr().is_terminal();
+    let progress = crate::progress::wanted();
     let set = measure::full_image_set();
     let oracle = measure::render(ORACLE, &set, progress).context("the ref-f64 oracle")?;
     let mut rows = Vec::new();

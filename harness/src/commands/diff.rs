@@ -10,7 +10,6 @@ use crate::impls;
 use crate::runner::{diff_set, LevelReport, RunOptions};
 use crate::text;
 use anyhow::{bail, Context};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use vectors::{Level, Vector, VectorSet};
@@ -122,7 +121,7 @@ pub fn run(args: DiffArgs) -> anyhow::Result<ExitCode> {
     let refs: Vec<&dyn crate::implementation::Implementation> =
         opened.iter().map(|b| b.as_ref()).collect();
     let options = RunOptions {
-        progress: std::io::stderr().is_terminal(),
+        progress: crate::progress::wanted(),
     };
     let mut reports: Vec<LevelReport> = sets
         .iter()

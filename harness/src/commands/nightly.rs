@@ -12,6 +12,7 @@ use crate::exhaustive;
 use crate::implementation::{ImplName, Implementation};
 use crate::impls;
 use crate::localize::{localizable, localize};
+use crate::progress;
 use crate::report::images::Grid;
 use crate::report::measure::{self, FullRender};
 use crate::report::model::{
@@ -24,7 +25,6 @@ use crate::report::{
 use crate::runner::{self, ImplRun, RunOptions};
 use crate::selftest;
 use anyhow::{Context, Result};
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -64,10 +64,14 @@ struct Steps {
 }
 
 impl Steps {
+    /// Record `step` as finished now, and say so on standard error (the
+    /// long steps have progress bars; this line is the log of the run).
     fn done(&mut self, step: &str) {
+        let seconds = self.last.elapsed().as_secs_f64();
+        eprintln!("nightly: {step}: {seconds:.1} s");
         self.list.push(StepTiming {
             step: step.into(),
-            seconds: self.last.elapsed().as_secs_f64(),
+            seconds,
         });
         self.last = Instant::now();
     }
@@ -77,7 +81,7 @@ impl Steps {
 pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     let started = Instant::now();
     let progress = RunOptions {
-        progress: std::io::stderr().is_terminal(),
+        progress: crate::progress::wanted(),
     };
     let mut steps = Steps {
         list: Vec::new(),
@@ -87,7 +91,12 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
 
     // Which implementations can run here.
     let mut open: Vec<Box<dyn Implementation>> = Vec::new();
+    let bar = progress::show(
+        progress::items(ImplName::ALL.len() as u64, "open", "implementations"),
+        progress.progress,
+    );
     for name in ImplName::ALL {
+        bar.set_message(name.as_str());
         let status = match impls::open(name) {
             Ok(imp) => {
                 open.push(imp);
@@ -104,7 +113,9 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
             },
         };
         builder.report_mut().implementations.push(status);
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     let by_name = |n: ImplName| open.iter().find(|i| i.label() == n.as_str());
     let group = |names: &[ImplName]| -> Vec<&dyn Implementation> {
         names
@@ -245,7 +256,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         let result = if label == "jack" {
             // Through the crate directly: the same pixels, with the VM
             // instructions each took.
-            jack_render().and_then(|(full, costs)| {
+            jack_render(progress.progress).and_then(|(full, costs)| {
                 let total = costs.data().iter().sum();
                 add_render(&mut builder, &full, &spec, Some(total))?;
                 builder.set_cost_map(&costs)?;
@@ -268,8 +279,14 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     // The slow path: the whole Jack program from Main.main, drawing on the
     // Hack screen with its Float316 counters, must draw what the entry
     // points computed.
-    if rendered.iter().any(|r| r == "jack") {
-        match jack_main_screen() {
+    let jack_total = builder
+        .report()
+        .renders
+        .iter()
+        .find(|r| r.label == "jack")
+        .and_then(|r| r.vm_instructions);
+    if let Some(expected) = jack_total {
+        match jack_main_screen(expected, progress.progress) {
             Ok(full) => {
                 add_render(&mut builder, &full, &spec, None)?;
                 rendered.push(full.label);
@@ -295,7 +312,12 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
             }
         }
     }
+    let bar = progress::show(
+        progress::items(pairs.len() as u64, "pairs", "image pairs compared"),
+        progress.progress,
+    );
     for (a, b) in &pairs {
+        bar.set_message(format!("{a} against {b}"));
         let localizer = pixel_localizer(find(a), find(b), tracer, [a, b]);
         // A pixel of the Main.main screen is reproduced through jack's
         // entry point (against ref-f316 when the pair is jack's own).
@@ -317,7 +339,9 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
                 builder.write_repro(&pixel(x, y))?;
             }
         }
+        bar.inc(1);
     }
+    bar.finish_and_clear();
     if rendered.iter().any(|r| r == "ref-f64") {
         for label in &rendered {
             let point = builder.speed_point(label)?;
@@ -530,14 +554,20 @@ fn add_render(
 }
 
 /// The Jack program's whole image through its pixel entry point, with the
-/// per-pixel VM instruction counts (the cost map).
-fn jack_render() -> Result<(FullRender, Grid<u64>)> {
+/// per-pixel VM instruction counts (the cost map); a bar of pixels done
+/// when `shown`.
+fn jack_render(shown: bool) -> Result<(FullRender, Grid<u64>)> {
     use common::image_consts::{HEIGHT, WIDTH};
     let start = Instant::now();
     let raymarcher = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
     let setup_s = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let render = raymarcher.render()?;
+    let bar = progress::show(
+        progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
+        shown,
+    );
+    let render = raymarcher.render_rows_observed(0..HEIGHT, &|_| bar.inc(1))?;
+    bar.finish_and_clear();
     let render_s = start.elapsed().as_secs_f64();
     let pixels = render
         .pixels
@@ -548,11 +578,17 @@ fn jack_render() -> Result<(FullRender, Grid<u64>)> {
     Ok((full, Grid::new(WIDTH, HEIGHT, costs)?))
 }
 
-/// The Hack screen after `Main.main` ran to its end with SPACE pressed.
-fn jack_main_screen() -> Result<FullRender> {
+/// The Hack screen after `Main.main` ran to its end with SPACE pressed;
+/// a bar of VM instructions, `expected` of them, when `shown`.
+fn jack_main_screen(expected: u64, shown: bool) -> Result<FullRender> {
     use common::image_consts::{HEIGHT, WIDTH};
     let start = Instant::now();
-    let screen = match jack::run_main(jack::Profile::Desktop, JACK_MAIN_BUDGET)? {
+    let bar = progress::show(progress::instructions(Some(expected), "Main.main"), shown);
+    let run = jack::run_main(jack::Profile::Desktop, JACK_MAIN_BUDGET, &mut |n| {
+        bar.set_position(n)
+    });
+    bar.finish_and_clear();
+    let screen = match run? {
         common::Outcome::Value(screen) => screen,
         other => anyhow::bail!("Main.main did not finish: {}", other.map(|_| "screen")),
     };

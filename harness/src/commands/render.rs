@@ -5,6 +5,7 @@
 //! To add an implementation, add an arm to [`render_image`] that returns a
 //! [`Rendered`]; writing the files is shared.
 
+use crate::progress;
 use anyhow::{bail, Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::Outcome;
@@ -137,8 +138,13 @@ fn render_gpu(name: &str, scene: &Scene, settings: Settings) -> Result<Rendered>
 fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
     require_seed_scene("jack", scene, settings)?;
     let jack = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
-    let values: Vec<Outcome<PixelValue>> = jack
-        .render()?
+    let bar = progress::show(
+        progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
+        progress::wanted(),
+    );
+    let render = jack.render_rows_observed(0..HEIGHT, &|_| bar.inc(1))?;
+    bar.finish_and_clear();
+    let values: Vec<Outcome<PixelValue>> = render
         .pixels
         .into_iter()
         .map(|p| {

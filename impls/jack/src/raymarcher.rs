@@ -386,12 +386,27 @@ impl Raymarcher {
 
     /// The rows `rows` of the image, pixels in parallel.
     pub fn render_rows(&self, rows: std::ops::Range<usize>) -> Result<Render, JackError> {
+        self.render_rows_observed(rows, &|_| {})
+    }
+
+    /// Like [`Raymarcher::render_rows`], telling `done` the VM
+    /// instructions of each pixel as it finishes (from any thread, in no
+    /// particular order: for a progress bar).
+    pub fn render_rows_observed(
+        &self,
+        rows: std::ops::Range<usize>,
+        done: &(dyn Fn(u64) + Sync),
+    ) -> Result<Render, JackError> {
         let coords: Vec<(usize, usize)> =
             rows.flat_map(|y| (0..WIDTH).map(move |x| (x, y))).collect();
         let pixels = coords
             .par_iter()
-            .map(|&(x, y)| self.pixel(x, y))
-            .collect::<Result<Vec<_>, _>>()?;
+            .map(|&(x, y)| {
+                let pixel = self.pixel(x, y)?;
+                done(pixel.instructions);
+                Ok(pixel)
+            })
+            .collect::<Result<Vec<_>, JackError>>()?;
         Ok(Render { pixels })
     }
 

@@ -51,11 +51,17 @@ impl Raymarcher {
     }
 }
 
+/// Instructions between two progress reports of [`run_main`].
+const PROGRESS_EVERY: u64 = 100_000_000;
+
 /// Run the whole program as a user would: `Main.main` from the start,
 /// SPACE pressed, until it returns (or `max_instructions` run out: a hang).
+/// `progress` is told the instructions run so far every 100 million
+/// (about a third of a second of emulation).
 pub fn run_main(
     profile: Profile,
     max_instructions: u64,
+    progress: &mut dyn FnMut(u64),
 ) -> Result<Outcome<ScreenImage>, JackError> {
     let program = sources::program(profile)?;
     let keys = KeyScript::parse("SPACE", KeyScript::DEFAULT_HOLD).expect("SPACE is a key name");
@@ -67,7 +73,7 @@ pub fn run_main(
             ..Config::default()
         },
     );
-    let exit = match m.run(Some(max_instructions)) {
+    let exit = match m.run_observed(Some(max_instructions), PROGRESS_EVERY, progress) {
         Exit::Halted => Exit::Returned(0),
         other => other,
     };

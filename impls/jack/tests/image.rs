@@ -105,7 +105,7 @@ fn the_whole_image_matches_the_reference() {
 #[test]
 #[ignore = "full program run: nightly"]
 fn the_whole_program_draws_the_reference() {
-    let screen = jack::run_main(Profile::Desktop, 200_000_000_000)
+    let screen = jack::run_main(Profile::Desktop, 200_000_000_000, &mut |_| {})
         .unwrap()
         .value()
         .expect("Main.main returns");

@@ -2,6 +2,7 @@
 //! from its entry on the emulator and report the instruction count, how it
 //! ended (with the Jack call stack) and optionally the screen as PNG.
 
+use crate::progress;
 use anyhow::Context;
 use hack_vm::{Config, Exit, KeyScript, Machine, Profile, Program, Ram};
 use std::path::{Path, PathBuf};
@@ -119,6 +120,11 @@ fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
         .with_context(|| format!("loading the VM code compiled from {}", dir.display()))
 }
 
+/// Instructions between two updates of the progress counter.
+const PROGRESS_EVERY: u64 = 50_000_000;
+
+/// Run `program` from its entry, counting instructions on a progress line
+/// when standard error is a terminal.
 fn run_one(
     program: &Arc<Program>,
     config: Config,
@@ -126,7 +132,12 @@ fn run_one(
 ) -> (Profile, Machine, Exit) {
     let profile = config.profile;
     let mut machine = Machine::new(Arc::clone(program), config);
-    let exit = machine.run(budget);
+    let bar = progress::show(
+        progress::instructions(budget, &profile.to_string()),
+        progress::wanted(),
+    );
+    let exit = machine.run_observed(budget, PROGRESS_EVERY, &mut |n| bar.set_position(n));
+    bar.finish_and_clear();
     (profile, machine, exit)
 }
 

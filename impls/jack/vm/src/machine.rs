@@ -206,6 +206,30 @@ impl Machine {
         self.drive::<false>(budget, None)
     }
 
+    /// Like [`Machine::run`], in slices of at most `every` instructions,
+    /// telling `seen` the instruction count after each slice (for a
+    /// progress bar on a long run). Ends as `run(budget)` would: slicing
+    /// changes neither the count nor the machine's state.
+    pub fn run_observed(
+        &mut self,
+        budget: Option<u64>,
+        every: u64,
+        seen: &mut dyn FnMut(u64),
+    ) -> Exit {
+        let every = every.max(1);
+        let start = self.steps;
+        loop {
+            let left = budget.map(|b| b.saturating_sub(self.steps - start));
+            let slice = left.map_or(every, |l| l.min(every));
+            let exit = self.run(Some(slice));
+            seen(self.steps);
+            let more_budget = left.is_none_or(|l| l > slice);
+            if !(matches!(exit, Exit::Budget { .. }) && more_budget) {
+                return exit;
+            }
+        }
+    }
+
     /// Like [`Machine::run`], telling `watcher` about every call to and
     /// return from a function whose id is `true` in `watch` (indexed by
     /// [`FnId`]).

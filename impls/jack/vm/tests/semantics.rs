@@ -245,6 +245,42 @@ fn budget_stops_exactly_and_reports_the_call_stack() {
 }
 
 #[test]
+fn an_observed_run_ends_like_a_plain_one_and_reports_every_slice() {
+    let mut plain = load(&[("Main.vm", FIB)]);
+    assert_eq!(plain.run(None), Exit::Halted);
+    let total = plain.steps();
+    for every in [1, 7, 100, total, total + 1] {
+        let mut m = load(&[("Main.vm", FIB)]);
+        let mut seen = Vec::new();
+        assert_eq!(
+            m.run_observed(None, every, &mut |n| seen.push(n)),
+            Exit::Halted
+        );
+        assert_eq!(m.steps(), total, "every {every}");
+        assert_eq!(m.ram().read(263), 55);
+        // One report a slice (and one more if the end comes right after a
+        // slice's last instruction), never going back.
+        let slices = total.div_ceil(every) as usize;
+        assert!((slices..=slices + 1).contains(&seen.len()), "every {every}");
+        assert!(seen.windows(2).all(|w| w[0] <= w[1]), "every {every}");
+        assert_eq!(seen.last(), Some(&total));
+    }
+    // A budget below the program's length stops exactly there, with the
+    // call stack, however it is sliced; a zero slice counts as one.
+    for every in [0, 1, 10, 24, 25, 26, 1000] {
+        let mut m = load(&[("Main.vm", FIB)]);
+        let mut last = 0;
+        let e = m.run_observed(Some(25), every, &mut |n| last = n);
+        assert_eq!(m.steps(), 25, "every {every}");
+        assert_eq!(last, 25);
+        let Exit::Budget { stack } = e else {
+            panic!("every {every}: {e}")
+        };
+        assert_eq!(stack.0.last().map(String::as_str), Some("Main.fib"));
+    }
+}
+
+#[test]
 fn runtime_errors_of_segments() {
     let src = "
 function Main.args 0
