@@ -202,7 +202,7 @@ impl Gpu {
         } = Device::open()?;
         let layout = crate::kernel::bind_group_layout(&device);
         let compile = |spec: &KernelSpec| Kernel::new(&device, &health, &layout, spec);
-        Ok(Gpu {
+        let gpu = Gpu {
             f316_ops: compile(&float316::OPS)?,
             f316_sdf: compile(&float316::SDF)?,
             f316_pixels: compile(&float316::PIXELS)?,
@@ -213,7 +213,23 @@ impl Gpu {
             health,
             layout,
             adapter,
-        })
+        };
+        gpu.warm_up()?;
+        Ok(gpu)
+    }
+
+    /// Dispatch every kernel once on one item. A driver may compile a
+    /// kernel's machine code only at its first dispatch (lavapipe does:
+    /// 13 s for the Float316 pixel kernel when Mesa's shader cache is
+    /// cold), and that belongs to set-up, not to the first measured batch.
+    fn warm_up(&self) -> Result<(), GpuError> {
+        let one = common::F316::ONE;
+        self.f316_ops(&[(common::Op::Add, one, one)])?;
+        self.f316_sdf(&[[one; 3]])?;
+        self.f316_pixels(&[(256, 128)])?;
+        self.f32_sdf(&[[1.0; 3]])?;
+        self.f32_pixels(&[(256, 128)])?;
+        Ok(())
     }
 
     /// The adapter the kernels run on.
