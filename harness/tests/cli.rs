@@ -1,4 +1,4 @@
-//! The command-line contract of diff, localize, selftest and bench: exit codes,
+//! The command-line contract of diff, localize, selftest, bench and jack: exit codes,
 //! repro files that reproduce, errors that name the field.
 
 use std::path::Path;
@@ -154,4 +154,97 @@ fn bench_prints_and_writes_the_speed_and_error_table() {
     assert_eq!(rows[0]["implementation"], "ref-f64");
     assert_eq!(rows[0]["pixel_flips"], 0);
     assert_eq!(rows[1]["pixels"], 131072);
+}
+
+/// A directory holding `Main.jack` with `source`.
+fn jack_main(source: &str) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("Main.jack"), source).unwrap();
+    dir
+}
+
+/// A Jack class `Main` whose `main` prints `Main.half(arg)`: `x / 2`,
+/// which rounds differently under the two profiles when x is negative.
+fn half_program(arg: i16) -> tempfile::TempDir {
+    jack_main(&format!(
+        "class Main {{\n    function void main() {{\n        do Output.printInt(Main.half({arg}));\n        return;\n    }}\n    function int half(int x) {{ return x / 2; }}\n}}\n"
+    ))
+}
+
+/// `harness jack SUBCOMMAND DIR ARGS...`.
+fn jack(subcommand: &str, dir: &Path, args: &[&str]) -> Output {
+    let dir = dir.display().to_string();
+    let mut all = vec!["jack", subcommand, &dir];
+    all.extend(args);
+    harness(&all)
+}
+
+#[test]
+fn jack_compile_then_run_prints_the_count_the_end_and_the_screen() {
+    let src = half_program(-9);
+    let out = tempfile::tempdir().unwrap();
+    let vm = out.path().join("vm");
+    let o = jack("compile", src.path(), &["--out", &vm.display().to_string()]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(vm.join("Main.vm").is_file());
+    let png = out.path().join("screen.png");
+    let o = jack("run", &vm, &["--screen", &png.display().to_string()]);
+    assert!(o.status.success(), "{}", text(&o));
+    let t = text(&o);
+    assert!(
+        t.contains("instructions: ") && t.contains("end: halted"),
+        "{t}"
+    );
+    let screen = image::open(&png).unwrap().to_luma8();
+    assert_eq!(screen.dimensions(), (512, 256));
+    // "-4" in the top-left character cell: some black pixels there.
+    assert!((0..16).any(|x| (0..11).any(|y| screen.get_pixel(x, y).0[0] == 0)));
+}
+
+#[test]
+fn jack_compile_errors_name_file_line_and_column() {
+    let src =
+        jack_main("class Main {\n  function void main() {\n    let x = ;\n    return;\n  }\n}\n");
+    let out = src.path().join("out");
+    let o = jack(
+        "compile",
+        src.path(),
+        &["--out", &out.display().to_string()],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("Main.jack:3:"), "{}", text(&o));
+}
+
+#[test]
+fn jack_run_stops_a_runaway_program_at_its_budget_with_the_call_stack() {
+    let src = jack_main("class Main {\n  function void main() { do Main.spin(); return; }\n  function void spin() { while (true) { } return; }\n}\n");
+    let o = jack("run", src.path(), &["--max-instructions", "1000"]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let t = text(&o);
+    assert!(t.contains("instructions: 1000"), "{t}");
+    assert!(t.contains("Main.main > Main.spin"), "{t}");
+}
+
+#[test]
+fn compare_profiles_names_the_first_call_whose_result_differs() {
+    let src = half_program(-9);
+    let o = jack("run", src.path(), &["--compare-profiles"]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let t = text(&o);
+    assert!(t.contains("call traces: differ after 2 matching calls and returns, in Sys.init > Main.main > Main.half"), "{t}");
+    assert!(t.contains("desktop: Main.half returned -4"), "{t}");
+    assert!(t.contains("web: Main.half returned -5"), "{t}");
+    assert!(
+        t.contains("screens: ") && t.contains("pixels differ"),
+        "{t}"
+    );
+    // Without a negative division the profiles agree.
+    let src = half_program(9);
+    let o = jack("run", src.path(), &["--compare-profiles"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let t = text(&o);
+    assert!(
+        t.contains("call traces: same") && t.contains("screens: same"),
+        "{t}"
+    );
 }

@@ -47,40 +47,10 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         profile_functions: args.profile_functions,
     };
     if args.compare_profiles {
-        let mut runs: Vec<(Profile, Machine, Exit)> = Vec::new();
-        for p in Profile::ALL {
-            let program = load(&args.dir, p)?;
-            runs.push(run_one(&program, config(p), args.max_instructions));
-        }
-        for (p, m, e) in &runs {
-            println!("{p}: {} instructions, {e}", m.steps());
-        }
-        let (a, b) = (&runs[0], &runs[1]);
-        let diff = screen_diff(a.1.ram(), b.1.ram());
-        let same_end = a.2 == b.2;
-        println!("end states: {}", if same_end { "same" } else { "differ" });
-        match diff {
-            None => println!("screens: same"),
-            Some((count, (x, y))) => println!("screens: {count} pixels differ, first at ({x},{y})"),
-        }
-        if let Some(path) = &args.screen {
-            for (p, m, _) in &runs {
-                let out = path.with_file_name(format!(
-                    "{}-{p}.{}",
-                    path.file_stem().unwrap_or_default().to_string_lossy(),
-                    path.extension().unwrap_or_default().to_string_lossy()
-                ));
-                write_screen(m.ram(), &out)?;
-            }
-        }
-        return Ok(if same_end && diff.is_none() {
-            ExitCode::SUCCESS
-        } else {
-            ExitCode::from(1)
-        });
+        return compare_profiles(&args, config);
     }
-    let program = load(&args.dir, args.profile)?;
-    let (_, machine, exit) = run_one(&program, config(args.profile), args.max_instructions);
+    let mut machine = Machine::new(load(&args.dir, args.profile)?, config(args.profile));
+    let exit = finish(&mut machine, args.max_instructions, args.profile);
     println!("instructions: {}", machine.steps());
     println!("end: {exit}");
     if args.profile_functions {
@@ -97,6 +67,76 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+/// Run the program under both profiles side by side: the first call or
+/// return where their call traces part, then each run to its end, its
+/// end state and screen. Exit 0 when nothing differs.
+fn compare_profiles(
+    args: &RunArgs,
+    config: impl Fn(Profile) -> Config,
+) -> anyhow::Result<ExitCode> {
+    let [pa, pb] = Profile::ALL;
+    let mut a = Machine::new(load(&args.dir, pa)?, config(pa));
+    let mut b = Machine::new(load(&args.dir, pb)?, config(pb));
+    let bar = progress::show(
+        progress::instructions(args.max_instructions, "traces"),
+        progress::wanted(),
+    );
+    let traces = hack_vm::compare_call_traces(&mut a, &mut b, args.max_instructions, &mut |n| {
+        bar.set_position(n)
+    });
+    bar.finish_and_clear();
+    let mut ends = Vec::new();
+    for (p, machine) in [(pa, &mut a), (pb, &mut b)] {
+        let left = args
+            .max_instructions
+            .map(|max| max.saturating_sub(machine.steps()));
+        ends.push(finish(machine, left, p));
+    }
+    for ((p, m), e) in [(pa, &a), (pb, &b)].into_iter().zip(&ends) {
+        println!("{p}: {} instructions, {e}", m.steps());
+    }
+    let same_end = ends[0] == ends[1];
+    println!("end states: {}", if same_end { "same" } else { "differ" });
+    let diff = screen_diff(a.ram(), b.ram());
+    match diff {
+        None => println!("screens: same"),
+        Some((count, (x, y))) => println!("screens: {count} pixels differ, first at ({x},{y})"),
+    }
+    let show = |e: &Option<hack_vm::CallEvent>| {
+        e.as_ref()
+            .map_or("(the run had ended)".to_string(), ToString::to_string)
+    };
+    match &traces.divergence {
+        None => println!("call traces: same ({} calls and returns)", traces.matching),
+        Some(d) => {
+            println!(
+                "call traces: differ after {} matching calls and returns, in {}",
+                traces.matching,
+                d.stack.join(" > ")
+            );
+            println!("  {pa}: {}", show(&d.a));
+            println!("  {pb}: {}", show(&d.b));
+        }
+    }
+    if let Some(path) = &args.screen {
+        for (p, m) in [(pa, &a), (pb, &b)] {
+            let out = path.with_file_name(format!(
+                "{}-{p}.{}",
+                path.file_stem().unwrap_or_default().to_string_lossy(),
+                path.extension().unwrap_or_default().to_string_lossy()
+            ));
+            write_screen(m.ram(), &out)?;
+        }
+    }
+    Ok(
+        if same_end && diff.is_none() && traces.divergence.is_none() {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(1)
+        },
+    )
 }
 
 /// The program of `dir`: its .jack files compiled under `profile` if it has
@@ -123,22 +163,16 @@ fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
 /// Instructions between two updates of the progress counter.
 const PROGRESS_EVERY: u64 = 50_000_000;
 
-/// Run `program` from its entry, counting instructions on a progress line
-/// when standard error is a terminal.
-fn run_one(
-    program: &Arc<Program>,
-    config: Config,
-    budget: Option<u64>,
-) -> (Profile, Machine, Exit) {
-    let profile = config.profile;
-    let mut machine = Machine::new(Arc::clone(program), config);
+/// Run `machine` on for at most `budget` more instructions, counting them
+/// on a progress line when standard error is a terminal.
+fn finish(machine: &mut Machine, budget: Option<u64>, label: Profile) -> Exit {
     let bar = progress::show(
-        progress::instructions(budget, &profile.to_string()),
+        progress::instructions(budget.map(|b| machine.steps() + b), label.name()),
         progress::wanted(),
     );
     let exit = machine.run_observed(budget, PROGRESS_EVERY, &mut |n| bar.set_position(n));
     bar.finish_and_clear();
-    (profile, machine, exit)
+    exit
 }
 
 /// Number of differing pixels and the first (row-major), if any differ.

@@ -9,7 +9,8 @@
 //!   [`Machine::call`] calls any function by name; both take an instruction
 //!   budget and end with an [`Exit`] (with the Jack call stack where it
 //!   matters). [`Machine::run_watched`] reports calls of chosen functions to
-//!   a [`Watcher`].
+//!   a [`Watcher`]; [`compare_call_traces`] runs two machines side by side
+//!   and names the first call or return where they differ.
 //!
 //! Speed: the program is decoded once into compact instructions with
 //! resolved jumps and calls, and common command sequences are fused
@@ -24,6 +25,7 @@ mod load;
 mod machine;
 mod parse;
 mod program;
+mod trace_diff;
 
 pub use error::LoadError;
 pub use exit::{CallStack, Exit};
@@ -31,3 +33,4 @@ pub use jack_os::{KeyScript, Profile, Ram};
 pub use load::IMPLICIT;
 pub use machine::{Config, Machine, Register, UnknownFunction, Watcher, MAX_DEPTH};
 pub use program::{FnId, Function, Program};
+pub use trace_diff::{compare_call_traces, CallEvent, TraceComparison, TraceDivergence};

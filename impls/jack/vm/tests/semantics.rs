@@ -1,5 +1,9 @@
 //! Edge cases of every VM command and of the machine (spec §1, §2).
 
+#[macro_use]
+#[path = "support/fib.rs"]
+mod fib;
+
 use hack_vm::{Config, Exit, FnId, KeyScript, Machine, Program, Ram, Register, Watcher};
 
 fn load(sources: &[(&str, &str)]) -> Machine {
@@ -175,30 +179,14 @@ fn more_than_240_statics_fail_when_accessed() {
     assert_eq!(stack, "C1.f");
 }
 
-const FIB: &str = "
-function Main.fib 0
-push argument 0
-push constant 2
-lt
-if-goto BASE
-push argument 0
-push constant 2
-sub
-call Main.fib 1
-push argument 0
-push constant 1
-sub
-call Main.fib 1
-add
-return
-label BASE
-push argument 0
-return
-function Main.main 0
+const FIB: &str = concat!(
+    fib_function!(),
+    "function Main.main 0
 push constant 10
 call Main.fib 1
 return
-";
+"
+);
 
 #[test]
 fn host_calls_return_values_and_leave_the_stack_clean() {
