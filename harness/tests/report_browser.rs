@@ -71,30 +71,8 @@ fn the_report_opens_in_headless_chromium_with_its_sections_and_images() {
     );
     let tmp = tempfile::tempdir().unwrap();
     let report = build_report(tmp.path());
-    let profile = tmp.path().join("chromium-profile");
-    let out = Command::new(CHROMIUM)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            "--allow-file-access-from-files",
-            &format!("--user-data-dir={}", profile.display()),
-            "--dump-dom",
-        ])
-        .arg(format!("file://{}", report.join("index.html").display()))
-        .output()
-        .expect("chromium runs");
-    let dom = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "chromium failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let page = format!("file://{}", report.join("index.html").display());
+    let dom = dump_dom(tmp.path(), &page);
     for section in [
         "summary",
         "levels",
@@ -127,4 +105,45 @@ fn the_report_opens_in_headless_chromium_with_its_sections_and_images() {
     let (loaded, total) = (attr("data-images-loaded"), attr("data-images-total"));
     assert!(total >= 4, "only {total} images on the page");
     assert_eq!(loaded, total, "{loaded} of {total} images decoded");
+    // The pair's pixel table starts folded; a link to one of its rows (the
+    // target of a box on the overlay) unfolds it.
+    assert!(dom.contains("<details class=\"pixels\"><summary>"));
+    let row = dom
+        .split("<tr id=\"")
+        .nth(1)
+        .and_then(|rest| rest.split('"').next())
+        .expect("a divergent pixel's row");
+    let dom = dump_dom(tmp.path(), &format!("{page}#{row}"));
+    assert!(
+        dom.contains("<details class=\"pixels\" open=\"\"><summary>"),
+        "following #{row} left its table folded"
+    );
+}
+
+/// The DOM headless Chromium builds from `url` (scripts run).
+fn dump_dom(tmp: &std::path::Path, url: &str) -> String {
+    let profile = tmp.join("chromium-profile");
+    let out = Command::new(CHROMIUM)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--allow-file-access-from-files",
+            &format!("--user-data-dir={}", profile.display()),
+            "--dump-dom",
+            url,
+        ])
+        .output()
+        .expect("chromium runs");
+    assert!(
+        out.status.success(),
+        "chromium failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
 }

@@ -231,7 +231,10 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
             for c in &level.comparisons {
                 let mut row = summarise(c, &level.set, &first_op);
                 row.level = "unary-exhaustive".into();
-                row.scope = format!("{} (every {step}. input)", level.set);
+                row.scope = match step {
+                    1 => format!("{} (every input)", level.set),
+                    n => format!("{} (one input in {n})", level.set),
+                };
                 builder.report_mut().comparisons.push(row);
             }
         }

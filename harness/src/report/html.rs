@@ -97,6 +97,7 @@ body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:0;c
 header{background:#1d2430;color:#fff;padding:18px 32px}
 header h1{margin:0 0 4px;font-size:22px}
 header .meta{color:#c9d1dc;font-size:13px}
+header code{background:#2e3848;color:#fff}
 nav{padding:8px 32px;background:#e9edf2;font-size:14px;position:sticky;top:0;z-index:3}
 nav a{margin-right:14px;color:#1a4f8b;text-decoration:none}
 main{padding:8px 32px 40px;max-width:1200px}
@@ -135,6 +136,9 @@ const IMAGE_CHECK: &str = r#"
 window.addEventListener('load',function(){var imgs=document.querySelectorAll('img'),ok=0;
 imgs.forEach(function(i){if(i.complete&&i.naturalWidth>0){ok++}else{i.classList.add('broken');i.alt='missing: '+i.getAttribute('src')}});
 document.body.setAttribute('data-images-loaded',ok);document.body.setAttribute('data-images-total',imgs.length);});
+function openTarget(){var t=location.hash&&document.getElementById(decodeURIComponent(location.hash.slice(1)));
+for(var e=t;e;e=e.parentElement){if(e.tagName==='DETAILS'){e.open=true}}if(t){t.scrollIntoView()}}
+window.addEventListener('hashchange',openTarget);window.addEventListener('load',openTarget);
 "#;
 
 /// Render the page for `report`, with the trend table from `history`
@@ -421,8 +425,9 @@ fn pairs(h: &mut String, r: &Report) {
         if !p.divergences.is_empty() {
             let _ = write!(
                 h,
-                "<p>First divergent operation: {}</p>",
-                esc(&p.localization)
+                "<p>First divergent operation: {}</p><details class=pixels><summary>{} listed divergent pixels: first divergent operation and repro command of each (click a box on the overlay for its row)</summary>",
+                esc(&p.localization),
+                p.divergences.len()
             );
             table_head(
                 h,
@@ -443,7 +448,7 @@ fn pairs(h: &mut String, r: &Report) {
                 // The row is the target of its mark's link.
                 let _ = write!(h, "<tr id=\"{id}-{}-{}\">{}</tr>", d.x, d.y, cells.concat());
             }
-            h.push_str("</table>");
+            h.push_str("</table></details>");
             if p.unlisted > 0 {
                 let _ = write!(h, "<p>{} more divergent pixels not listed.</p>", p.unlisted);
             }
