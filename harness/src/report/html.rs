@@ -414,10 +414,13 @@ fn pairs(h: &mut String, r: &Report) {
         if let Some(heat) = &p.heat {
             let _ = write!(
                 h,
-                "<figure><img class=px src=\"{}\" alt=\"shade error heat map\"><img class=legend src=\"{}\" alt=\"colour bar\"><figcaption>|shade A − shade B| per pixel, log scale, black = identical; mean {}, max {}</figcaption></figure>",
+                "<figure><img class=px src=\"{}\" alt=\"shade error heat map\"><img class=legend src=\"{}\" alt=\"colour bar\"><figcaption>|shade A − shade B| per pixel, log scale, black = identical; mean {}, p50 {}, p95 {}, p99 {}, max {}</figcaption></figure>",
                 esc(&heat.image),
                 esc(&heat.legend),
                 short_number(heat.mean_abs),
+                short_number(heat.percentiles_abs[0]),
+                short_number(heat.percentiles_abs[1]),
+                short_number(heat.percentiles_abs[2]),
                 short_number(heat.max_abs)
             );
         }

@@ -63,7 +63,7 @@ pub struct ReportBuilder {
     renders: BTreeMap<String, RenderImages>,
 }
 
-/// File-name-safe form of a label (`ref-f316/mul-low` -> `ref-f316_mul-low`).
+/// File-name-safe form of a label (`ref-f316+newton-1` -> `ref-f316_newton-1`).
 fn file_stem(label: &str) -> String {
     label
         .chars()
@@ -196,6 +196,7 @@ impl ReportBuilder {
                     legend,
                     mean_abs,
                     max_abs,
+                    percentiles_abs: percentiles(diff.data(), HEAT_PERCENTILES),
                 });
             }
         }
@@ -326,13 +327,28 @@ fn mean_max(values: &[f64]) -> (f64, f64) {
     (mean, max)
 }
 
+/// The percentiles of the heat map's summary.
+const HEAT_PERCENTILES: [f64; 3] = [0.50, 0.95, 0.99];
+
+/// The smallest value that the fraction `q` of `values` does not exceed,
+/// for each `q` (nearest rank; 0 for no values).
+fn percentiles<const N: usize>(values: &[f64], qs: [f64; N]) -> [f64; N] {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    qs.map(|q| {
+        let rank = (q * sorted.len() as f64).ceil() as usize;
+        sorted.get(rank.max(1) - 1).copied().unwrap_or(0.0)
+    })
+}
+
 /// The cheapest Float316 reference variant (label `ref-f316` or
-/// `ref-f316/...`) whose dithered image equals the spec's, with its cost.
+/// `ref-f316+VARIANT`, as `impls::open_label` names them) whose dithered
+/// image equals the spec's, with its cost.
 pub fn cheapest_spec_identical(points: &[SpeedPoint]) -> Option<String> {
     points
         .iter()
         .filter(|p| p.identical_to_spec == Some(true))
-        .filter(|p| p.label == "ref-f316" || p.label.starts_with("ref-f316/"))
+        .filter(|p| p.label == "ref-f316" || p.label.starts_with("ref-f316+"))
         .min_by(|a, b| a.time_per_pixel_s.total_cmp(&b.time_per_pixel_s))
         .map(|p| {
             format!(

@@ -202,6 +202,10 @@ pub struct HeatMap {
     pub mean_abs: f64,
     /// Maximum absolute shade difference.
     pub max_abs: f64,
+    /// Absolute shade difference that 50 %, 95 % and 99 % of the pixels do
+    /// not exceed (what a percentile threshold would have to allow).
+    #[serde(default)]
+    pub percentiles_abs: [f64; 3],
 }
 
 /// One pixel whose dithered bit differs between two renders.
@@ -250,7 +254,7 @@ pub struct SpeedError {
     /// The plot (SVG), relative path; empty when there was nothing to plot.
     pub plot: String,
     /// The cheapest precision variant whose dithered image equals the
-    /// spec's, with its cost, e.g. `ref-f316/mul-low (1.9 µs/pixel)`.
+    /// spec's, with its cost, e.g. `ref-f316+newton-3 (1.9 µs per pixel)`.
     pub cheapest_spec_identical: Option<String>,
 }
 

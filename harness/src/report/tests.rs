@@ -86,6 +86,10 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
     let heat = pair.heat.unwrap();
     assert!((heat.max_abs - 0.4).abs() < 1e-12);
     assert!((heat.mean_abs - (0.4 + 1e-4) / 8.0).abs() < 1e-9);
+    // Six of the eight pixels agree: p50 is 0; p95 and p99 are the largest.
+    assert_eq!(heat.percentiles_abs[0], 0.0);
+    assert!((heat.percentiles_abs[1] - 0.4).abs() < 1e-12);
+    assert!((heat.percentiles_abs[2] - 0.4).abs() < 1e-12);
     for rel in [&pair.overlay, &heat.image, &heat.legend] {
         assert!(b.stage.path().join(rel).is_file(), "{rel} not written");
     }
@@ -166,14 +170,17 @@ fn cheapest_variant_is_the_fastest_identical_float316_reference() {
     };
     let points = [
         p("ref-f316", 3e-6, Some(true)),
-        p("ref-f316/sqrt-1-step", 1e-6, Some(false)),
-        p("ref-f316/mul-low", 2e-6, Some(true)),
+        p("ref-f316+newton-1", 1e-6, Some(false)),
+        p("ref-f316+mul-low-product", 2e-6, Some(true)),
         p("gpu-f316", 1e-9, Some(true)),
+        p("ref-f64", 1e-8, Some(true)),
     ];
     assert_eq!(
         cheapest_spec_identical(&points).as_deref(),
-        Some("ref-f316/mul-low (2.0 µs per pixel)")
+        Some("ref-f316+mul-low-product (2.0 µs per pixel)")
     );
+    // The labels are those the nightly renders its variants under.
+    assert!(crate::impls::open_label("ref-f316+mul-low-product").is_ok());
     assert_eq!(cheapest_spec_identical(&points[1..2]), None);
 }
 
@@ -236,4 +243,19 @@ fn report_json_refuses_other_schemas() {
     r.schema_version = 99;
     let err = Report::from_json(&r.to_json().unwrap()).unwrap_err();
     assert!(err.to_string().contains("schema_version"), "{err}");
+}
+
+#[test]
+fn percentiles_are_nearest_rank_values() {
+    let values: Vec<f64> = (1..=100).rev().map(f64::from).collect();
+    assert_eq!(
+        percentiles(&values, [0.5, 0.95, 0.99, 1.0]),
+        [50.0, 95.0, 99.0, 100.0]
+    );
+    assert_eq!(percentiles(&[7.0], [0.01, 0.5]), [7.0, 7.0]);
+    assert_eq!(percentiles(&[], [0.5]), [0.0]);
+    // 131072 pixels, 613 of them differing by 0.25: p95 is 0, p99.9 not.
+    let mut shades = vec![0.0; 131_072];
+    shades[..613].fill(0.25);
+    assert_eq!(percentiles(&shades, [0.95, 0.999]), [0.0, 0.25]);
 }
