@@ -259,7 +259,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         let result = if label == "jack" {
             // Through the crate directly: the same pixels, with the VM
             // instructions each took.
-            jack_render(progress.progress).and_then(|(full, costs)| {
+            jack_render().and_then(|(full, costs)| {
                 let total = costs.data().iter().sum();
                 add_render(&mut builder, &full, &spec, Some(total))?;
                 builder.set_cost_map(&costs)?;
@@ -557,20 +557,14 @@ fn add_render(
 }
 
 /// The Jack program's whole image through its pixel entry point, with the
-/// per-pixel VM instruction counts (the cost map); a bar of pixels done
-/// when `shown`.
-fn jack_render(shown: bool) -> Result<(FullRender, Grid<u64>)> {
+/// per-pixel VM instruction counts (the cost map).
+fn jack_render() -> Result<(FullRender, Grid<u64>)> {
     use common::image_consts::{HEIGHT, WIDTH};
     let start = Instant::now();
     let raymarcher = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
     let setup_s = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let bar = progress::show(
-        progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
-        shown,
-    );
-    let render = raymarcher.render_rows_observed(0..HEIGHT, &|_| bar.inc(1))?;
-    bar.finish_and_clear();
+    let render = impls::jack::render_with_bar(&raymarcher)?;
     let render_s = start.elapsed().as_secs_f64();
     let pixels = render
         .pixels

@@ -5,7 +5,6 @@
 //! To add an implementation, add an arm to [`render_image`] that returns a
 //! [`Rendered`]; writing the files is shared.
 
-use crate::progress;
 use anyhow::{bail, Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::Outcome;
@@ -138,13 +137,7 @@ fn render_gpu(name: &str, scene: &Scene, settings: Settings) -> Result<Rendered>
 fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
     require_seed_scene("jack", scene, settings)?;
     let jack = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
-    let bar = progress::show(
-        progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
-        progress::wanted(),
-    );
-    let render = jack.render_rows_observed(0..HEIGHT, &|_| bar.inc(1))?;
-    bar.finish_and_clear();
-    let values: Vec<Outcome<PixelValue>> = render
+    let values: Vec<Outcome<PixelValue>> = crate::impls::jack::render_with_bar(&jack)?
         .pixels
         .into_iter()
         .map(|p| {

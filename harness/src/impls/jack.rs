@@ -20,6 +20,18 @@ pub struct JackAdapter {
     profile: Profile,
 }
 
+/// The whole image through the pixel entry point, pixels in parallel,
+/// with a bar of pixels done when standard error is a terminal.
+pub fn render_with_bar(raymarcher: &Raymarcher) -> Result<jack::Render, JackError> {
+    let bar = crate::progress::show(
+        crate::progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
+        crate::progress::wanted(),
+    );
+    let render = raymarcher.render_rows_observed(0..HEIGHT, &|| bar.inc(1));
+    bar.finish_and_clear();
+    render
+}
+
 fn failed(e: JackError) -> ImplError {
     ImplError::Failed(e.to_string())
 }

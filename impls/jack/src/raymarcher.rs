@@ -386,16 +386,16 @@ impl Raymarcher {
 
     /// The rows `rows` of the image, pixels in parallel.
     pub fn render_rows(&self, rows: std::ops::Range<usize>) -> Result<Render, JackError> {
-        self.render_rows_observed(rows, &|_| {})
+        self.render_rows_observed(rows, &|| {})
     }
 
-    /// Like [`Raymarcher::render_rows`], telling `done` the VM
-    /// instructions of each pixel as it finishes (from any thread, in no
-    /// particular order: for a progress bar).
+    /// Like [`Raymarcher::render_rows`], calling `done` as each pixel
+    /// finishes (from any thread, in no particular order: for a progress
+    /// bar).
     pub fn render_rows_observed(
         &self,
         rows: std::ops::Range<usize>,
-        done: &(dyn Fn(u64) + Sync),
+        done: &(dyn Fn() + Sync),
     ) -> Result<Render, JackError> {
         let coords: Vec<(usize, usize)> =
             rows.flat_map(|y| (0..WIDTH).map(move |x| (x, y))).collect();
@@ -403,7 +403,7 @@ impl Raymarcher {
             .par_iter()
             .map(|&(x, y)| {
                 let pixel = self.pixel(x, y)?;
-                done(pixel.instructions);
+                done();
                 Ok(pixel)
             })
             .collect::<Result<Vec<_>, JackError>>()?;
