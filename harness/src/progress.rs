@@ -11,7 +11,7 @@ pub fn wanted() -> bool {
 }
 
 /// Where bars draw: standard error when `shown`, nowhere otherwise.
-pub fn target(shown: bool) -> ProgressDrawTarget {
+fn target(shown: bool) -> ProgressDrawTarget {
     if shown {
         ProgressDrawTarget::stderr()
     } else {
