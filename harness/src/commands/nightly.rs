@@ -97,21 +97,18 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     );
     for name in ImplName::ALL {
         bar.set_message(name.as_str());
-        let status = match impls::open(name) {
-            Ok(imp) => {
-                open.push(imp);
-                ImplStatus {
-                    name: name.as_str().into(),
-                    available: true,
-                    note: None,
-                }
-            }
-            Err(e) => ImplStatus {
-                name: name.as_str().into(),
-                available: false,
-                note: Some(e.to_string()),
-            },
+        let start = Instant::now();
+        let opened = impls::open(name);
+        let mut status = ImplStatus {
+            name: name.as_str().into(),
+            available: opened.is_ok(),
+            open_s: start.elapsed().as_secs_f64(),
+            ..ImplStatus::default()
         };
+        match opened {
+            Ok(imp) => open.push(imp),
+            Err(e) => status.note = Some(e.to_string()),
+        }
         builder.report_mut().implementations.push(status);
         bar.inc(1);
     }

@@ -232,13 +232,14 @@ fn summary(h: &mut String, r: &Report) {
         h.push_str("</ul>");
     }
     h.push_str("<h3>Implementations</h3>");
-    table_head(h, ["name", "available", "note"]);
+    table_head(h, ["name", "available", "opening", "note"]);
     for i in &r.implementations {
         row(
             h,
             &[
                 td_code(&i.name),
                 td(yes_no(Some(i.available))),
+                td(seconds(i.open_s)),
                 td(esc(i.note.as_deref().unwrap_or(""))),
             ],
         );
@@ -822,7 +823,16 @@ mod tests {
                 ..WorstError::default()
             }),
         });
+        r.implementations.push(ImplStatus {
+            name: "gpu-f316".into(),
+            available: true,
+            open_s: 2.5,
+            note: None,
+        });
         let page = render(&r, &History::default());
+        assert!(page.contains(
+            "<td><code>gpu-f316</code></td><td><span class=ok>yes</span></td><td>2.5 s</td>"
+        ));
         assert!(page.contains(
             "<tr><td>ops-nightly</td><td>underflow</td><td class=n>3</td><td>V 3 · E 0 · H 0 · D 0 · <span class=bad>≠ 2</span></td><td>V 3 · E 0 · H 0 · D 0</td>"
         ));

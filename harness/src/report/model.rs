@@ -76,6 +76,10 @@ pub struct ImplStatus {
     pub available: bool,
     /// Why not, or a note on the device it ran on.
     pub note: Option<String>,
+    /// Seconds spent opening it (compiling kernels or the Jack program,
+    /// initialising), whether or not it opened.
+    #[serde(default)]
+    pub open_s: f64,
 }
 
 /// The comparison of two implementations at one level.
