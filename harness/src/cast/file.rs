@@ -138,7 +138,11 @@ impl<'a> Fields<'a> {
     }
 
     fn field(&self, key: &str) -> String {
-        format!("{}.{key}", self.path)
+        if self.path.is_empty() {
+            key.to_string()
+        } else {
+            format!("{}.{key}", self.path)
+        }
     }
 
     /// An error about `key`: at its value when it is there, else at the
