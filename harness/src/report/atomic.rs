@@ -284,9 +284,10 @@ mod tests {
         fs::create_dir(&dead).unwrap();
         fs::write(dead.join("report.json"), "{}").unwrap();
         // A live process's (this one's parent) run is left alone.
-        let live = root
-            .path()
-            .join(format!(".nightly.staging-{}", std::os::unix::process::parent_id()));
+        let live = root.path().join(format!(
+            ".nightly.staging-{}",
+            std::os::unix::process::parent_id()
+        ));
         fs::create_dir(&live).unwrap();
         let other = root.path().join(".other.staging-99999999");
         fs::create_dir(&other).unwrap();

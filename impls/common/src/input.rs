@@ -101,16 +101,31 @@ mod tests {
         let p = temp("bad.jack", b"class Main {\n  // caf\xe9\n}\n");
         let err = read_text(&p).unwrap_err();
         assert!(
-            matches!(err, InputError::NotUtf8 { line: 2, column: 9, .. }),
+            matches!(
+                err,
+                InputError::NotUtf8 {
+                    line: 2,
+                    column: 9,
+                    ..
+                }
+            ),
             "{err:?}"
         );
-        assert!(err.to_string().ends_with("bad.jack:2:9: not valid UTF-8 text"), "{err}");
+        assert!(
+            err.to_string()
+                .ends_with("bad.jack:2:9: not valid UTF-8 text"),
+            "{err}"
+        );
         let p = temp("multi.jack", "é\u{e9}x\u{80}".as_bytes());
         assert_eq!(read_text(&p).unwrap(), "ééx\u{80}");
         let p = temp("first.jack", b"\xff");
         assert!(matches!(
             read_text(&p).unwrap_err(),
-            InputError::NotUtf8 { line: 1, column: 1, .. }
+            InputError::NotUtf8 {
+                line: 1,
+                column: 1,
+                ..
+            }
         ));
     }
 
@@ -127,8 +142,14 @@ mod tests {
         ));
         assert_eq!(read_text_limited(&p, 11).unwrap().len(), 11);
         let err = read_text(Path::new("/no/such/file")).unwrap_err();
-        assert!(err.to_string().starts_with("cannot read /no/such/file: "), "{err}");
-        assert!(std::error::Error::source(&err).is_none(), "the cause is printed once");
+        assert!(
+            err.to_string().starts_with("cannot read /no/such/file: "),
+            "{err}"
+        );
+        assert!(
+            std::error::Error::source(&err).is_none(),
+            "the cause is printed once"
+        );
     }
 
     #[cfg(unix)]
@@ -138,7 +159,10 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let fifo = dir.join("set.json");
         let _ = std::fs::remove_file(&fifo);
-        let made = std::process::Command::new("mkfifo").arg(&fifo).status().unwrap();
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap();
         assert!(made.success());
         let err = read_text(&fifo).unwrap_err();
         assert!(matches!(err, InputError::NotAFile { .. }), "{err:?}");

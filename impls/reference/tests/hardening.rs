@@ -17,6 +17,12 @@ fn an_sdf_point_beyond_the_float_range_is_out_of_domain() {
         Outcome::Value(_)
     ));
     let huge = [F316::new(1, 1151, 16383), F316::ZERO, F316::ZERO];
-    assert_eq!(Reference::seed(RefImpl::F64).sdf(huge), Outcome::OutOfDomain);
-    assert_eq!(Reference::seed(RefImpl::F32).sdf(huge), Outcome::OutOfDomain);
+    assert_eq!(
+        Reference::seed(RefImpl::F64).sdf(huge),
+        Outcome::OutOfDomain
+    );
+    assert_eq!(
+        Reference::seed(RefImpl::F32).sdf(huge),
+        Outcome::OutOfDomain
+    );
 }

@@ -14,12 +14,15 @@ use jack_os::Profile;
 
 const PRIMITIVES: [&str; 3] = ["int", "char", "boolean"];
 
+/// A class's VM text and the Jack position of each of its lines.
+pub type ClassCode = (String, Vec<Pos>);
+
 /// Compiles one class to VM text with the Jack position of each of its
 /// lines, or returns every error found in it.
 pub fn compile_class<'a>(
     class: &'a Class,
     program: &'a Program<'a>,
-) -> Result<(String, Vec<Pos>), Vec<(Pos, ErrorKind)>> {
+) -> Result<ClassCode, Vec<(Pos, ErrorKind)>> {
     let mut g = Gen::new(class, program);
     g.class_checks();
     for sub in &class.subroutines {
