@@ -17,6 +17,7 @@ pub mod implementation;
 pub mod impls;
 pub mod localize;
 pub mod measure;
+pub mod output;
 pub mod progress;
 pub mod report;
 pub mod runner;
