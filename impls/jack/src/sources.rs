@@ -19,6 +19,9 @@ pub const SOURCES: [(&str, &str); 8] = [
     ("Vec.jack", include_str!("../raymarcher/Vec.jack")),
 ];
 
+/// The raymarcher's bindings (`raymarcher/bindings.toml`), as TOML text.
+pub const BINDINGS: &str = include_str!("../raymarcher/bindings.toml");
+
 /// Compile the embedded sources with the compiler of the official tool
 /// `profile` names (desktop or web IDE) and load the VM code.
 pub fn program(profile: Profile) -> Result<Arc<Program>, JackError> {
