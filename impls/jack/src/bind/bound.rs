@@ -128,12 +128,12 @@ impl Query {
 }
 
 /// The normalised coordinates of pixel (x, y) as the reference computes
-/// them: u = (x - 256) / 128 and v = -((y - 128) / 128), both exact in
+/// them: u = (x - 256) / 256 and v = -((y - 128) / 256), both exact in
 /// Float316 (v's sign flipped even at zero).
 pub fn normalized_coords(x: usize, y: usize) -> (F316, F316) {
     let exact = |n: f64| F316::from_f64_truncating(n).expect("pixel coordinates fit Float316");
-    let u = exact((x as f64 - 256.0) / 128.0);
-    let v = exact((y as f64 - 128.0) / 128.0).negated();
+    let u = exact((x as f64 - 256.0) / 256.0);
+    let v = exact((y as f64 - 128.0) / 256.0).negated();
     (u, v)
 }
 

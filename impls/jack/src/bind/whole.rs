@@ -146,7 +146,7 @@ impl Capturer<'_> {
                 let float = &self.bound.float;
                 let u = float.read_float(ram, u).to_f64();
                 let v = float.read_float(ram, v).to_f64();
-                ((u * 128.0 + 256.0).round() as i32, (128.0 - v * 128.0).round() as i32)
+                ((u * 256.0 + 256.0).round() as i32, (128.0 - v * 256.0).round() as i32)
             }
             _ => return None,
         };
