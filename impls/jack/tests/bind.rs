@@ -124,3 +124,62 @@ fn normalized_coordinates_are_the_references() {
         assert_eq!(jack::normalized_coords(3, y).1, coords(3, y).1, "y = {y}");
     }
 }
+
+/// Every record's result is what ref-f316 gives on the same operands.
+fn replays_to_the_reference(trace: &[common::TraceRecord]) {
+    assert!(!trace.is_empty());
+    for r in trace {
+        let want = reference::op(r.op, &r.args, reference::Arith::default()).unwrap();
+        assert_eq!(r.result, want, "{r}");
+    }
+}
+
+#[test]
+fn whole_program_mode_captures_the_first_rows_and_their_traces() {
+    for (b, name) in [(bound(), "raymarcher"), (port(), "port")] {
+        let run = b.run_whole(&[(5, 1)], 400_000_000, &mut |_| {}).unwrap();
+        assert_eq!(run.outcome, common::Outcome::Hang, "{name}: the budget ends the run");
+        let done: Vec<usize> = (0..run.shades.len())
+            .filter(|&i| run.captured[i].is_some() || run.shades[i].is_some())
+            .collect();
+        assert!(done.len() > 600, "{name}: {} pixels", done.len());
+        for &i in done.iter().step_by(37) {
+            let (x, y) = (i % 512, i / 512);
+            let want = entry().pixel(x, y).unwrap().outcome.value().unwrap();
+            if let Some(white) = run.captured[i] {
+                assert_eq!(white, want.white, "{name} ({x},{y})");
+            }
+            if let Some(shade) = run.shades[i] {
+                assert_eq!(shade, want.value, "{name} ({x},{y})");
+            }
+        }
+        replays_to_the_reference(&run.traces[&(5, 1)]);
+    }
+    // The raymarcher's per-pixel function is the whole pixel: its trace is
+    // the entry point's.
+    let run = bound().run_whole(&[(5, 1)], 400_000_000, &mut |_| {}).unwrap();
+    let whole = &run.traces[&(5, 1)];
+    let query = entry().trace_pixel(5, 1).unwrap();
+    assert_eq!(whole.len(), query.len());
+    assert!(whole.iter().zip(&query).all(|(a, b)| a.same_computation(b)));
+    assert!(whole[0].path.join(" > ").contains("Main.main > Image.render > Image.shadeAt"));
+}
+
+/// The whole program (`cargo test --release -p jack -- --ignored`).
+#[test]
+#[ignore = "full program runs: nightly"]
+fn whole_program_mode_captures_the_render() {
+    let render = entry().render().unwrap();
+    let want: Vec<bool> = render
+        .pixels
+        .iter()
+        .map(|p| p.outcome.value().unwrap().white)
+        .collect();
+    for b in [bound(), port()] {
+        let run = b.run_whole(&[(330, 150)], 40_000_000_000, &mut |_| {}).unwrap();
+        assert_eq!(run.outcome, common::Outcome::Value(()));
+        assert_eq!(run.image(), want);
+        assert_eq!(run.screen, want);
+        replays_to_the_reference(&run.traces[&(330, 150)]);
+    }
+}
