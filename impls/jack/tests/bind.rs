@@ -7,11 +7,7 @@ use std::sync::OnceLock;
 
 fn bound() -> &'static BoundProgram {
     static B: OnceLock<BoundProgram> = OnceLock::new();
-    B.get_or_init(|| {
-        let program = JackProgram::from_jack(&jack::sources::SOURCES, Profile::Desktop).unwrap();
-        let bindings: Bindings = toml::from_str(jack::sources::BINDINGS).unwrap();
-        BoundProgram::open(&program, &bindings, Budgets::default()).unwrap()
-    })
+    B.get_or_init(|| jack::sources::bound(Profile::Desktop, Budgets::default()).unwrap())
 }
 
 fn entry() -> &'static Raymarcher {
@@ -43,7 +39,10 @@ fn ops_sdf_and_pixels_agree_with_the_entry_points() {
         }
     }
     let p = [F316::new(0, 127, 8192), F316::ZERO, F316::new(0, 128, 8192)];
-    assert_eq!(bound().sdf(p).unwrap().outcome, entry().sdf(p).unwrap().outcome);
+    assert_eq!(
+        bound().sdf(p).unwrap().outcome,
+        entry().sdf(p).unwrap().outcome
+    );
     let tb: Vec<_> = bound().trace_sdf(p).unwrap();
     let te: Vec<_> = entry().trace_sdf(p).unwrap();
     assert_eq!(tb.len(), te.len());
@@ -93,7 +92,10 @@ fn the_port_agrees_with_the_raymarcher() {
         }
     }
     let p = [F316::new(0, 127, 8192), F316::ZERO, F316::new(0, 128, 8192)];
-    assert_eq!(port().sdf(p).unwrap().outcome, entry().sdf(p).unwrap().outcome);
+    assert_eq!(
+        port().sdf(p).unwrap().outcome,
+        entry().sdf(p).unwrap().outcome
+    );
     for (x, y) in [(330, 150), (100, 200), (0, 0), (511, 255)] {
         assert_eq!(
             port().pixel(x, y).unwrap().outcome,
@@ -113,8 +115,11 @@ fn normalized_coordinates_are_the_references() {
             common::Outcome::Value(OpValue::Num(v)) => v,
             other => panic!("{other:?}"),
         };
-        let divs: Vec<&common::TraceRecord> =
-            t.iter().filter(|r| r.op == common::Op::Div).take(2).collect();
+        let divs: Vec<&common::TraceRecord> = t
+            .iter()
+            .filter(|r| r.op == common::Op::Div)
+            .take(2)
+            .collect();
         (num(divs[0]), num(divs[1]).negated())
     };
     for x in 0..512 {
@@ -138,7 +143,11 @@ fn replays_to_the_reference(trace: &[common::TraceRecord]) {
 fn whole_program_mode_captures_the_first_rows_and_their_traces() {
     for (b, name) in [(bound(), "raymarcher"), (port(), "port")] {
         let run = b.run_whole(&[(5, 1)], 400_000_000, &mut |_| {}).unwrap();
-        assert_eq!(run.outcome, common::Outcome::Hang, "{name}: the budget ends the run");
+        assert_eq!(
+            run.outcome,
+            common::Outcome::Hang,
+            "{name}: the budget ends the run"
+        );
         let done: Vec<usize> = (0..run.shades.len())
             .filter(|&i| run.captured[i].is_some() || run.shades[i].is_some())
             .collect();
@@ -157,12 +166,17 @@ fn whole_program_mode_captures_the_first_rows_and_their_traces() {
     }
     // The raymarcher's per-pixel function is the whole pixel: its trace is
     // the entry point's.
-    let run = bound().run_whole(&[(5, 1)], 400_000_000, &mut |_| {}).unwrap();
+    let run = bound()
+        .run_whole(&[(5, 1)], 400_000_000, &mut |_| {})
+        .unwrap();
     let whole = &run.traces[&(5, 1)];
     let query = entry().trace_pixel(5, 1).unwrap();
     assert_eq!(whole.len(), query.len());
     assert!(whole.iter().zip(&query).all(|(a, b)| a.same_computation(b)));
-    assert!(whole[0].path.join(" > ").contains("Main.main > Image.render > Image.shadeAt"));
+    assert!(whole[0]
+        .path
+        .join(" > ")
+        .contains("Main.main > Image.render > Image.shadeAt"));
 }
 
 /// The whole program (`cargo test --release -p jack -- --ignored`).
@@ -176,7 +190,9 @@ fn whole_program_mode_captures_the_render() {
         .map(|p| p.outcome.value().unwrap().white)
         .collect();
     for b in [bound(), port()] {
-        let run = b.run_whole(&[(330, 150)], 40_000_000_000, &mut |_| {}).unwrap();
+        let run = b
+            .run_whole(&[(330, 150)], 40_000_000_000, &mut |_| {})
+            .unwrap();
         assert_eq!(run.outcome, common::Outcome::Value(()));
         assert_eq!(run.image(), want);
         assert_eq!(run.screen, want);

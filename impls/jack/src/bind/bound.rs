@@ -342,7 +342,11 @@ impl BoundProgram {
     }
 
     /// Write point `p` into `m`'s SDF input objects; the registers.
-    pub(crate) fn prepare_sdf(&self, m: &mut Machine, p: [F316; 3]) -> Result<(&Query, Regs), JackError> {
+    pub(crate) fn prepare_sdf(
+        &self,
+        m: &mut Machine,
+        p: [F316; 3],
+    ) -> Result<(&Query, Regs), JackError> {
         let q = self.sdf_query()?;
         let regs = q.regs.clone();
         let ram = m.ram_mut();
@@ -379,8 +383,13 @@ impl BoundProgram {
     pub fn sdf(&self, p: [F316; 3]) -> Result<Counted<(F316, F316)>, JackError> {
         let mut m = self.machine();
         let (q, mut regs) = self.prepare_sdf(&mut m, p)?;
-        let (outcome, instructions) =
-            run_all(&mut m, &q.calls, &mut regs, self.budgets.sdf, self.out_of_domain)?;
+        let (outcome, instructions) = run_all(
+            &mut m,
+            &q.calls,
+            &mut regs,
+            self.budgets.sdf,
+            self.out_of_domain,
+        )?;
         Ok(Counted {
             outcome: outcome.map(|_| self.sdf_value(&m, q, &regs)),
             instructions,
@@ -421,8 +430,13 @@ impl BoundProgram {
     pub fn pixel(&self, x: usize, y: usize) -> Result<Counted<Shaded>, JackError> {
         let mut m = self.machine();
         let (q, mut regs) = self.prepare_pixel(&mut m, x, y)?;
-        let (outcome, instructions) =
-            run_all(&mut m, &q.calls, &mut regs, self.budgets.pixel, self.out_of_domain)?;
+        let (outcome, instructions) = run_all(
+            &mut m,
+            &q.calls,
+            &mut regs,
+            self.budgets.pixel,
+            self.out_of_domain,
+        )?;
         Ok(Counted {
             outcome: outcome.map(|_| Shaded {
                 value: self.float.read_float(m.ram(), regs[pixel_reg::SHADE]),
@@ -566,7 +580,7 @@ fn sdf_query(
         regs: vec![0; 7],
     };
     let direct = q.uses(DISTANCE) && q.uses(COLOUR);
-    if !direct && !(q.uses(HIT) && hit.is_some()) {
+    if !(direct || q.uses(HIT) && hit.is_some()) {
         return Err(BindError::new(
             "sdf",
             "no statement gives `distance` and `colour` (assign or pass both, or give `hit` \
@@ -577,7 +591,7 @@ fn sdf_query(
     if q.uses(P) && vec3.is_none() {
         return Err(BindError::new("sdf", "`p` is used but no `vec3` layout is bound").into());
     }
-    if !q.uses(P) && !(q.uses(X) && q.uses(Y) && q.uses(Z)) {
+    if !(q.uses(P) || q.uses(X) && q.uses(Y) && q.uses(Z)) {
         return Err(BindError::new(
             "sdf",
             "the statements pass neither the point `p` nor all of `x`, `y`, `z`",
@@ -594,7 +608,9 @@ fn sdf_query(
         }
     }
     if q.needs_object(HIT) {
-        let hit = hit.ok_or_else(|| BindError::new("sdf", "`hit` is passed but no `sdf_result` layout is bound"))?;
+        let hit = hit.ok_or_else(|| {
+            BindError::new("sdf", "`hit` is passed but no `sdf_result` layout is bound")
+        })?;
         q.regs[HIT] = hit.make_compound(m, float, &zero[..2])?;
     }
     Ok(q)
@@ -602,7 +618,11 @@ fn sdf_query(
 
 /// Check the pixel statements give a shade and a white bit, and make their
 /// objects.
-fn pixel_query(m: &mut Machine, calls: Vec<Call>, float: &ObjectLayout) -> Result<Query, JackError> {
+fn pixel_query(
+    m: &mut Machine,
+    calls: Vec<Call>,
+    float: &ObjectLayout,
+) -> Result<Query, JackError> {
     use pixel_reg::*;
     let mut q = Query {
         calls,
@@ -614,7 +634,9 @@ fn pixel_query(m: &mut Machine, calls: Vec<Call>, float: &ObjectLayout) -> Resul
         }
     }
     if q.needs_object(WHITE) {
-        return Err(BindError::new("pixel", "`white` is a boolean: assign it, do not pass it").into());
+        return Err(
+            BindError::new("pixel", "`white` is a boolean: assign it, do not pass it").into(),
+        );
     }
     for reg in [U, V, SHADE] {
         if q.needs_object(reg) {

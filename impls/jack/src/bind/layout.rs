@@ -6,8 +6,8 @@
 
 use super::error::BindError;
 use super::signatures::Signatures;
-use super::statement::{compile, Call, Classes, Context, Slot, Ty};
 use super::spec::Layout;
+use super::statement::{compile, Call, Classes, Context, Slot, Ty};
 use super::vm::{call_returning, Regs};
 use crate::JackError;
 use common::F316;
@@ -166,7 +166,11 @@ impl ObjectLayout {
     /// The float at `addr` (a float layout).
     #[inline]
     pub fn read_float(&self, ram: &Ram, addr: i16) -> F316 {
-        F316::new(self.get(ram, addr, 0), self.get(ram, addr, 1), self.get(ram, addr, 2))
+        F316::new(
+            self.get(ram, addr, 0),
+            self.get(ram, addr, 1),
+            self.get(ram, addr, 2),
+        )
     }
 
     /// Write `v` into the float at `addr` (a float layout).

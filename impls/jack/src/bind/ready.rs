@@ -25,7 +25,11 @@ const SLICE: u64 = 1 << 20;
 
 /// The key script of `keys` held `hold` instructions each; errors name
 /// `field`.
-pub(crate) fn key_script(field: &str, keys: &str, hold: Option<u64>) -> Result<KeyScript, BindError> {
+pub(crate) fn key_script(
+    field: &str,
+    keys: &str,
+    hold: Option<u64>,
+) -> Result<KeyScript, BindError> {
     KeyScript::parse(keys, hold.unwrap_or(KeyScript::DEFAULT_HOLD))
         .map_err(|e| BindError::new(field, e.to_string()))
 }
@@ -158,7 +162,11 @@ fn run_until_call(mut m: Machine, target: FnId, budget: u64) -> Result<Machine, 
                      check `ready.keys` or raise `ready.budget`"
                 ))
             }
-            exit => return Err(format!("the run ended first, after {used} instructions: {exit}")),
+            exit => {
+                return Err(format!(
+                    "the run ended first, after {used} instructions: {exit}"
+                ))
+            }
         }
     }
 }

@@ -211,7 +211,13 @@ impl BoundProgram {
         let mut m = self.machine();
         let (bound, mut regs) = self.prepare_op(&mut m, op, args)?;
         let call = bound.call.clone();
-        self.traced(&mut m, std::slice::from_ref(&call), &mut regs, self.budgets.op, &op.to_string())
+        self.traced(
+            &mut m,
+            std::slice::from_ref(&call),
+            &mut regs,
+            self.budgets.op,
+            &op.to_string(),
+        )
     }
 
     /// The op trace of one SDF query at `p`.
@@ -228,6 +234,12 @@ impl BoundProgram {
         let mut m = self.machine();
         let (q, mut regs) = self.prepare_pixel(&mut m, x, y)?;
         let calls = q.calls.clone();
-        self.traced(&mut m, &calls, &mut regs, self.budgets.pixel, &format!("pixel({x},{y})"))
+        self.traced(
+            &mut m,
+            &calls,
+            &mut regs,
+            self.budgets.pixel,
+            &format!("pixel({x},{y})"),
+        )
     }
 }

@@ -189,7 +189,12 @@ pub(crate) fn compile(
         .function_id(&name)
         .ok_or_else(|| err(signatures.missing(&name)))?;
     signatures
-        .check(&name, args.len(), target.is_some(), context.var(owner).is_some())
+        .check(
+            &name,
+            args.len(),
+            target.is_some(),
+            context.var(owner).is_some(),
+        )
         .map_err(err)?;
     Ok(Call {
         function,

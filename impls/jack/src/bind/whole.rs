@@ -53,7 +53,16 @@ impl WholeSetup {
         let context = pixel_context(true);
         let statement = |field: &str, text: &Option<String>| {
             text.as_ref()
-                .map(|t| compile(field, t, &context, classes, &program.program, &program.signatures))
+                .map(|t| {
+                    compile(
+                        field,
+                        t,
+                        &context,
+                        classes,
+                        &program.program,
+                        &program.signatures,
+                    )
+                })
                 .transpose()
         };
         let pixel = statement("capture.pixel", &capture.pixel)?;
@@ -146,7 +155,10 @@ impl Capturer<'_> {
                 let float = &self.bound.float;
                 let u = float.read_float(ram, u).to_f64();
                 let v = float.read_float(ram, v).to_f64();
-                ((u * 256.0 + 256.0).round() as i32, (128.0 - v * 256.0).round() as i32)
+                (
+                    (u * 256.0 + 256.0).round() as i32,
+                    (128.0 - v * 256.0).round() as i32,
+                )
             }
             _ => return None,
         };
@@ -303,7 +315,8 @@ impl BoundProgram {
             other => other,
         };
         let mut run = cap.run;
-        run.outcome = outcome_of(exit, self.out_of_domain, || "the whole program".into())?.map(|_| ());
+        run.outcome =
+            outcome_of(exit, self.out_of_domain, || "the whole program".into())?.map(|_| ());
         run.instructions = m.steps();
         run.screen = read_screen(m.ram(), 0..HEIGHT);
         Ok(run)
