@@ -9,7 +9,9 @@
 
 use crate::cast::file::{FieldError, Fields};
 use crate::cast::{Entry, Kind, Opener, Request, VariantInfo, VariantRole};
-use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
+use crate::implementation::{
+    Answer, Bitmap, ImageAnswers, ImplError, Implementation, Num, Numbers,
+};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{OpValue, Outcome, TraceRecord};
 pub use jack::Profile;
@@ -78,15 +80,20 @@ impl Opener for JackOpener {
 /// The Jack raymarcher under one OS profile.
 pub struct JackAdapter {
     raymarcher: Raymarcher,
+    profile: Profile,
     label: String,
 }
 
+/// Instruction budget of the whole program's run from `Main.main` (the
+/// image takes about 21 billion).
+const MAIN_BUDGET: u64 = 60_000_000_000;
+
 /// The whole image through the pixel entry point, pixels in parallel,
-/// with a bar of pixels done when standard error is a terminal.
-pub fn render_with_bar(raymarcher: &Raymarcher) -> Result<jack::Render, JackError> {
+/// with a bar of pixels done when `shown` (on a terminal).
+fn render_with_bar(raymarcher: &Raymarcher, shown: bool) -> Result<jack::Render, JackError> {
     let bar = crate::progress::show(
         crate::progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
-        crate::progress::wanted(),
+        shown,
     );
     let render = raymarcher.render_rows_observed(0..HEIGHT, &|| bar.inc(1));
     bar.finish_and_clear();
@@ -103,7 +110,11 @@ impl JackAdapter {
         let raymarcher = Raymarcher::new(profile, Budgets::default()).map_err(|e| {
             ImplError::Unavailable(format!("the Jack raymarcher does not build: {e}"))
         })?;
-        Ok(JackAdapter { raymarcher, label })
+        Ok(JackAdapter {
+            raymarcher,
+            profile,
+            label,
+        })
     }
 
     fn answer(&self, v: &Vector) -> Result<Outcome<Answer>, ImplError> {
@@ -183,6 +194,54 @@ impl Implementation for JackAdapter {
 
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
         batch.iter().map(|v| self.answer(v)).collect()
+    }
+
+    /// Every pixel through the entry point, with the VM instructions each
+    /// took.
+    fn render_image(&self, progress: bool) -> Option<Result<ImageAnswers, ImplError>> {
+        Some(
+            render_with_bar(&self.raymarcher, progress)
+                .map_err(failed)
+                .map(|render| ImageAnswers {
+                    costs: Some(render.pixels.iter().map(|p| p.instructions).collect()),
+                    pixels: render
+                        .pixels
+                        .into_iter()
+                        .map(|p| {
+                            p.outcome.map(|s| Answer::Pixel {
+                                shade: Num::F316(s.value),
+                                white: s.white,
+                            })
+                        })
+                        .collect(),
+                }),
+        )
+    }
+
+    /// The Hack screen after `Main.main` ran to its end with SPACE pressed.
+    fn program_screen(
+        &self,
+        expected_cost: Option<u64>,
+        progress: bool,
+    ) -> Option<Result<Bitmap, ImplError>> {
+        let bar = crate::progress::show(
+            crate::progress::instructions(expected_cost, "Main.main"),
+            progress,
+        );
+        let run = jack::run_main(self.profile, MAIN_BUDGET, &mut |n| bar.set_position(n));
+        bar.finish_and_clear();
+        Some(match run {
+            Ok(Outcome::Value(screen)) => Ok(Bitmap {
+                width: WIDTH,
+                height: HEIGHT,
+                white: screen.white,
+            }),
+            Ok(other) => Err(ImplError::Failed(format!(
+                "Main.main did not finish: {}",
+                other.map(|_| "screen")
+            ))),
+            Err(e) => Err(failed(e)),
+        })
     }
 
     fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {
