@@ -6,6 +6,7 @@
 pub mod ops;
 pub mod pixels;
 pub mod sdf;
+pub mod testfloat;
 
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
