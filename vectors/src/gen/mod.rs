@@ -5,6 +5,7 @@
 
 pub mod ops;
 pub mod pixels;
+pub mod classes;
 pub mod sdf;
 pub mod testfloat;
 
