@@ -33,7 +33,9 @@ pub enum Command {
     Bench(commands::bench::BenchArgs),
     /// Everything: levels, unary checks, self-test, renders, speed and error; HTML + JSON report.
     Nightly(commands::nightly::NightlyArgs),
-    /// Vector sets: regenerate the committed ones, check a file.
+    /// A binary operation over every equivalence class of its operands, bit for bit.
+    Sweep(commands::sweep::SweepArgs),
+    /// Vector sets: regenerate the committed ones, check a file, TestFloat-style cases.
     #[command(subcommand)]
     Vectors(commands::vectors::VectorsCommand),
 }
@@ -47,6 +49,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Diff(args) => commands::diff::run(args),
         Command::Localize(args) => commands::localize::run(args),
         Command::Selftest(args) => commands::selftest::run(args),
+        Command::Sweep(args) => commands::sweep::run(args),
         Command::Vectors(cmd) => commands::vectors::run(cmd),
         Command::Check(args) => commands::check::run(args),
         Command::Bench(args) => commands::bench::run(args),

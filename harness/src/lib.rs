@@ -19,4 +19,5 @@ pub mod progress;
 pub mod report;
 pub mod runner;
 pub mod selftest;
+pub mod sweep;
 pub mod text;

@@ -8,4 +8,5 @@ pub mod localize;
 pub mod nightly;
 pub mod render;
 pub mod selftest;
+pub mod sweep;
 pub mod vectors;

@@ -22,7 +22,7 @@
 //! | 2 | 2,448 | 1,254,528 |
 
 use super::Draw;
-use crate::set::{OpVector, Vector};
+use crate::set::{Level, OpVector, Vector, VectorSet};
 use common::{Op, F316};
 use std::fmt;
 use std::str::FromStr;
@@ -308,6 +308,25 @@ pub fn cases(op: Op, level: CaseLevel, seed: u64) -> Vec<Vector> {
         out.push(vector(RANDOM_CATEGORY, a, Some(b)));
     }
     out
+}
+
+/// The default seed of the random pairs.
+pub const DEFAULT_SEED: u64 = 316;
+
+/// The cases of `ops` at `level` as one vector set, named
+/// `testfloat-LEVEL` (or `testfloat-LEVEL-OP` for a single operation).
+pub fn set(ops: &[Op], level: CaseLevel, seed: u64) -> VectorSet {
+    let name = match ops {
+        [op] => format!("testfloat-{level}-{op}"),
+        _ => format!("testfloat-{level}"),
+    };
+    let description = format!(
+        "TestFloat-style Float316 cases, level {level}: sign x exponent table x mantissa pattern \
+         table{} (docs/coverage.md)",
+        if level == CaseLevel::Two { ", then weighted random pairs" } else { "" }
+    );
+    let vectors = ops.iter().flat_map(|&op| cases(op, level, seed)).collect();
+    VectorSet::new(&name, Level::Ops, &description, Some(seed), vectors)
 }
 
 #[cfg(test)]
