@@ -33,6 +33,8 @@ pub enum Command {
     Bench(commands::bench::BenchArgs),
     /// Everything: levels, unary checks, self-test, renders, speed and error; HTML + JSON report.
     Nightly(commands::nightly::NightlyArgs),
+    /// Join the reports of `diff --shard K/N` runs into the whole campaign's report.
+    Merge(commands::merge::MergeArgs),
     /// A binary operation over every equivalence class of its operands, bit for bit.
     Sweep(commands::sweep::SweepArgs),
     /// Vector sets: regenerate the committed ones, check a file, TestFloat-style cases.
@@ -49,6 +51,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Diff(args) => commands::diff::run(args),
         Command::Localize(args) => commands::localize::run(args),
         Command::Selftest(args) => commands::selftest::run(args),
+        Command::Merge(args) => commands::merge::run(args),
         Command::Sweep(args) => commands::sweep::run(args),
         Command::Vectors(cmd) => commands::vectors::run(cmd),
         Command::Check(args) => commands::check::run(args),

@@ -5,6 +5,7 @@ pub mod check;
 pub mod diff;
 pub mod jack;
 pub mod localize;
+pub mod merge;
 pub mod nightly;
 pub mod render;
 pub mod selftest;
