@@ -19,8 +19,9 @@ fn without_timings(mut r: LevelReport) -> LevelReport {
 #[test]
 fn four_shards_merge_into_the_unsharded_report() {
     let set = testfloat::set(&[common::Op::Add], CaseLevel::Two, testfloat::DEFAULT_SEED);
-    let clean = harness::impls::open_label("ref-f316").unwrap();
-    let faulty = harness::impls::open_label("ref-f316+add-align-off-by-one").unwrap();
+    let cast = harness::cast::Cast::builtin();
+    let clean = cast.open("ref-f316").unwrap();
+    let faulty = cast.open("ref-f316+add-align-off-by-one").unwrap();
     let impls: Vec<&dyn Implementation> = vec![clean.as_ref(), faulty.as_ref()];
     let options = RunOptions::default();
     let whole = run_shard(&impls, &set, Shard::WHOLE, options);

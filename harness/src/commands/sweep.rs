@@ -7,7 +7,7 @@
 //! Exit 0: no divergence; 1: a divergence or a failed implementation;
 //! 2: usage or input error.
 
-use crate::impls;
+use crate::cast::Cast;
 use crate::report::atomic::write_file;
 use crate::sweep::{sweep, SweepResult};
 use anyhow::Context;
@@ -77,7 +77,7 @@ fn print_result(r: &SweepResult) {
 }
 
 /// Run `harness sweep`.
-pub fn run(args: SweepArgs) -> anyhow::Result<ExitCode> {
+pub fn run(args: SweepArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     if let Some(path) = &args.json {
         crate::output::check_file(path, "--json")?;
     }
@@ -89,7 +89,7 @@ pub fn run(args: SweepArgs) -> anyhow::Result<ExitCode> {
     anyhow::ensure!(labels.len() >= 2, "a sweep compares at least two implementations");
     let opened = labels
         .iter()
-        .map(|l| impls::open_label(l).with_context(|| format!("implementation `{l}`")))
+        .map(|l| cast.open(l).with_context(|| format!("implementation `{l}`")))
         .collect::<Result<Vec<_>, _>>()?;
     let refs: Vec<&dyn crate::implementation::Implementation> =
         opened.iter().map(|b| b.as_ref()).collect();

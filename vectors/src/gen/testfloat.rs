@@ -329,9 +329,32 @@ pub fn set(ops: &[Op], level: CaseLevel, seed: u64) -> VectorSet {
     VectorSet::new(&name, Level::Ops, &description, Some(seed), vectors)
 }
 
+/// The set a `testfloat-LEVEL[-OP]` name stands for (with the default
+/// seed), or `None` for any other name.
+pub fn named(name: &str) -> Option<VectorSet> {
+    let rest = name.strip_prefix("testfloat-")?;
+    let (level, op) = match rest.split_once('-') {
+        Some((level, op)) => (level, Some(op.parse::<Op>().ok()?)),
+        None => (rest, None),
+    };
+    let level: CaseLevel = level.parse().ok()?;
+    let ops = op.map_or_else(|| Op::ALL.to_vec(), |op| vec![op]);
+    Some(set(&ops, level, DEFAULT_SEED))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn names_stand_for_their_sets() {
+        let s = named("testfloat-1-sqrt").unwrap();
+        assert_eq!((s.name.as_str(), s.vectors.len()), ("testfloat-1-sqrt", 408));
+        assert_eq!(named("testfloat-1").unwrap().vectors.len(), 7 * 408 + 5 * 46_656);
+        for bad in ["testfloat-3", "testfloat-1-nope", "ops-small", "testfloat-"] {
+            assert!(named(bad).is_none(), "{bad}");
+        }
+    }
 
     #[test]
     fn counts_match_the_documented_table() {
