@@ -133,6 +133,7 @@ fn a_syntax_error_points_into_the_users_file() {
     let message = UserShader::check(&source, &ShaderOptions::default())
         .expect_err("does not parse")
         .to_string();
+    eprintln!("{message}");
     let at = format!("{}:5:5: error: ", path.display());
     assert!(message.starts_with(&at), "{message}");
     assert!(
@@ -214,4 +215,20 @@ fn the_language_comes_from_the_extension() {
         Some(Language::Wgsl)
     );
     assert_eq!(Language::from_extension(Path::new("x.txt")), None);
+}
+
+/// Shadertoy's usual idioms (a version line, precision, macros with
+/// arguments, structs, inout, while/continue, matrices) run unmodified.
+#[test]
+fn shadertoy_idioms_run_unmodified() {
+    let Some(shader) = open("tests/shaders/idioms.glsl", ShaderOptions::default()) else {
+        return;
+    };
+    let (shade, _) = f32_image(shader.render().expect("render"));
+    let sky = shade[0];
+    assert!(shade.iter().all(|v| (0.0..=1.0).contains(v)));
+    assert!(
+        shade.iter().any(|&v| (v - sky).abs() > 0.1),
+        "not a flat image"
+    );
 }
