@@ -375,8 +375,7 @@ pub fn localizable(a: &dyn Implementation, b: &dyn Implementation) -> Result<(),
     for imp in [a, b] {
         let numbers = match imp.numbers() {
             Numbers::Float316 => continue,
-            Numbers::F64 => "f64",
-            Numbers::F32 => "f32",
+            other => other.name(),
         };
         return Err(LocalizeError::Unsupported(format!(
             "{} computes with {numbers}: it has no Float316 operations to compare op by op \
