@@ -22,8 +22,6 @@ use vectors::{Level, Vector};
 /// The `shader` kind (no built-in entries).
 pub struct ShaderKind;
 
-const FIELDS: &str = "kind, path, numbers, language, shade, loop_limit, timeout_s";
-
 impl Kind for ShaderKind {
     fn name(&self) -> &'static str {
         "shader"
@@ -58,7 +56,6 @@ impl Kind for ShaderKind {
         if let Some(seconds) = positive(fields, "timeout_s")? {
             options.time_limit = Duration::from_secs(seconds);
         }
-        fields.finish(FIELDS)?;
         // The front end alone (no device) decides the levels; a shader that
         // does not compile is still an entry, whose opening fails with the
         // diagnostic, like any component that does not start.
