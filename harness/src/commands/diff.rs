@@ -6,7 +6,8 @@
 //! Exit 0: no divergence; 1: divergence; 2: usage or input error (also when
 //! an implementation is unavailable: nothing was compared).
 
-use crate::impls;
+use crate::cast::Cast;
+use crate::report::atomic::{write_file, StagingDir};
 use crate::runner::{diff_set, LevelReport, RunOptions};
 use crate::text;
 use anyhow::{bail, Context};
@@ -39,8 +40,8 @@ impl LevelArg {
 /// Arguments of `harness diff`.
 #[derive(Debug, clap::Args)]
 pub struct DiffArgs {
-    /// The implementation under test (ref-f64, ref-f32, ref-f316, jack,
-    /// gpu-f32, gpu-f316; `NAME+FAULT` injects a fault, e.g.
+    /// The implementation under test: a label of the cast (`harness cast`
+    /// lists them; `NAME+FAULT` injects a fault, e.g.
     /// ref-f316+sqrt-floor-div, jack+web-divide, ref-f64+f32-oracle).
     pub a: String,
     /// The implementation it is compared with.
@@ -88,35 +89,43 @@ pub fn sets_for(level: Option<LevelArg>, file: Option<&Path>) -> anyhow::Result<
 }
 
 /// Write `report.json` and a one-line repro file per kept divergence,
-/// recording the repro paths in the report.
+/// recording the repro paths in the report. `repro/` is replaced whole
+/// (files of an earlier run must not linger beside this report), and
+/// `report.json` atomically.
 pub fn write_report(dir: &Path, reports: &mut [LevelReport]) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let repro_dir = dir.join("repro");
-    std::fs::create_dir_all(&repro_dir)
-        .with_context(|| format!("creating {}", repro_dir.display()))?;
+    let stage = StagingDir::new(&repro_dir)?;
     for report in reports.iter_mut() {
         for c in &mut report.comparisons {
             for d in &mut c.divergences {
                 if matches!(d.input, Vector::Image(_)) {
                     continue;
                 }
-                let file = repro_dir.join(format!("{}.json", d.input.slug()));
-                VectorSet::repro(d.input.clone()).save(&file)?;
-                d.repro = Some(file.display().to_string());
+                let name = format!("{}.json", d.input.slug());
+                VectorSet::repro(d.input.clone()).save(&stage.path().join(&name))?;
+                d.repro = Some(repro_dir.join(name).display().to_string());
             }
         }
     }
     let json = serde_json::to_string_pretty(reports).context("serialising the report")?;
-    let path = dir.join("report.json");
-    std::fs::write(&path, json).with_context(|| format!("writing {}", path.display()))
+    stage.commit()?;
+    write_file(&dir.join("report.json"), json.as_bytes())
 }
 
 /// Run `harness diff`.
-pub fn run(args: DiffArgs) -> anyhow::Result<ExitCode> {
+pub fn run(args: DiffArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
+    if let Some(dir) = &args.report {
+        crate::output::check_dir(dir, "--report")?;
+    }
     let sets = sets_for(args.level, args.vectors.as_deref())?;
     let labels: Vec<String> = [args.a, args.b].into_iter().chain(args.more).collect();
     let opened = labels
         .iter()
-        .map(|l| impls::open_label(l).with_context(|| format!("implementation `{l}`")))
+        .map(|l| {
+            cast.open(l)
+                .with_context(|| format!("implementation `{l}`"))
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let refs: Vec<&dyn crate::implementation::Implementation> =
         opened.iter().map(|b| b.as_ref()).collect();

@@ -6,8 +6,7 @@
 //! triples `s,e,m:s,e,m:s,e,m`. Exit 0: the answers agree; 1: they differ
 //! (the localization is printed); 2: usage or input error.
 
-use crate::implementation::ImplName;
-use crate::impls;
+use crate::cast::Cast;
 use crate::localize::localize;
 use anyhow::{bail, Context};
 use common::{Op, F316};
@@ -17,8 +16,9 @@ use vectors::{OpVector, PixelVector, SdfVector, Vector};
 /// Arguments of `harness localize`.
 #[derive(Debug, clap::Args)]
 pub struct LocalizeArgs {
-    /// One implementation (a Float316 one: ref-f316, jack, gpu-f316, or
-    /// one with a fault: ref-f316+sqrt-floor-div, jack+web-divide).
+    /// One implementation: a Float316 one of the cast (ref-f316, jack,
+    /// gpu-f316, a declared one, or one with a fault:
+    /// ref-f316+sqrt-floor-div, jack+web-divide).
     pub a: String,
     /// The other.
     pub b: String,
@@ -43,15 +43,19 @@ pub struct LocalizeArgs {
 }
 
 fn ints<T: std::str::FromStr>(s: &str, n: usize, what: &str) -> anyhow::Result<Vec<T>> {
-    let parts: Vec<T> = s
-        .split(',')
-        .map(|p| p.trim().parse::<T>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| anyhow::anyhow!("{what}: `{s}` is not {n} comma-separated numbers"))?;
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != n {
         bail!("{what}: `{s}` is not {n} comma-separated numbers");
     }
-    Ok(parts)
+    parts
+        .iter()
+        .map(|p| {
+            p.parse::<T>().map_err(|_| match p.parse::<f64>() {
+                Ok(_) => anyhow::anyhow!("{what}: `{p}` is out of range"),
+                Err(_) => anyhow::anyhow!("{what}: `{p}` in `{s}` is not a number"),
+            })
+        })
+        .collect()
 }
 
 fn triple(s: &str, what: &str) -> anyhow::Result<F316> {
@@ -62,9 +66,9 @@ fn triple(s: &str, what: &str) -> anyhow::Result<F316> {
 /// The input the arguments name.
 pub fn input_of(args: &LocalizeArgs) -> anyhow::Result<Vector> {
     if let Some(p) = &args.pixel {
-        let xy: Vec<u16> = ints(p, 2, "--pixel")?;
-        if usize::from(xy[0]) >= common::image_consts::WIDTH
-            || usize::from(xy[1]) >= common::image_consts::HEIGHT
+        let xy: Vec<u64> = ints(p, 2, "--pixel")?;
+        if xy[0] >= common::image_consts::WIDTH as u64
+            || xy[1] >= common::image_consts::HEIGHT as u64
         {
             bail!(
                 "--pixel: ({},{}) is outside the 512x256 image",
@@ -74,8 +78,8 @@ pub fn input_of(args: &LocalizeArgs) -> anyhow::Result<Vector> {
         }
         return Ok(Vector::Pixel(PixelVector {
             category: "localize".into(),
-            x: xy[0],
-            y: xy[1],
+            x: xy[0] as u16,
+            y: xy[1] as u16,
         }));
     }
     if let Some(p) = &args.point {
@@ -117,11 +121,14 @@ pub fn input_of(args: &LocalizeArgs) -> anyhow::Result<Vector> {
 }
 
 /// Run `harness localize`.
-pub fn run(args: LocalizeArgs) -> anyhow::Result<ExitCode> {
+pub fn run(args: LocalizeArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     let input = input_of(&args)?;
-    let a = impls::open_label(&args.a).with_context(|| format!("implementation `{}`", args.a))?;
-    let b = impls::open_label(&args.b).with_context(|| format!("implementation `{}`", args.b))?;
-    let tracer = impls::open(ImplName::RefF316)?;
+    let open = |label: &str| {
+        cast.open(label)
+            .with_context(|| format!("implementation `{label}`"))
+    };
+    let (a, b) = (open(&args.a)?, open(&args.b)?);
+    let tracer = open(&cast.tracer().name)?;
     let found = localize(a.as_ref(), b.as_ref(), tracer.as_ref(), &input)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&found)?);

@@ -27,7 +27,7 @@ fn numbers(n: usize) -> Vec<F316> {
             x ^= x >> 7;
             x ^= x << 17;
             let e = 100 + (x >> 8) % 60;
-            let m = if x % 7 == 0 {
+            let m = if x.is_multiple_of(7) {
                 (x >> 20) % 16384
             } else {
                 8192 + (x >> 20) % 8192

@@ -176,7 +176,7 @@ fn engines_agree(case: &EngineCase, engine: Engine) -> Result<(), TestCaseError>
     prop_assert_eq!(b.engine(), Engine::Native);
     let watch = vec![true; program.functions().len()];
     let (mut log_a, mut log_b) = (Log::default(), Log::default());
-    let mut run = |m: &mut Machine, log: &mut Log, budget| {
+    let run = |m: &mut Machine, log: &mut Log, budget| {
         if case.watched {
             m.run_watched(Some(budget), &watch, log)
         } else {

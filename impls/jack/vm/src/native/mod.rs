@@ -28,6 +28,8 @@ use std::time::{Duration, Instant};
 
 /// Which engine runs a [`Machine`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+// The hidden variant is a test switch, not a reserved future variant.
+#[allow(clippy::manual_non_exhaustive)]
 pub enum Engine {
     /// The interpreter (`exec.rs`) alone.
     Interp,
@@ -181,9 +183,12 @@ impl Native {
         sig.params.push(AbiParam::new(types::I32));
         sig.returns.push(AbiParam::new(types::I32));
         let ids: Vec<FuncId> = (0..program.functions.len())
-            .map(|i| module.declare_function(&format!("vm{i}"), Linkage::Local, &sig))
-            .collect::<Result<_, _>>()
-            .map_err(|e| format!("cranelift: {e}"))?;
+            .map(|i| {
+                module
+                    .declare_function(&format!("vm{i}"), Linkage::Local, &sig)
+                    .map_err(|e| format!("cranelift: {e}"))
+            })
+            .collect::<Result<_, _>>()?;
         let target = module.target_config();
         let mut block_at = vec![(0, NO_BLOCK); program.plain.len()];
         let mut ctx = module.make_context();
