@@ -81,7 +81,10 @@ fn pixels(snapshot: &Machine) -> u64 {
 fn jack_raymarcher(c: &mut Criterion) {
     let program = raymarcher();
     match program.compile_native(hack_vm::Profile::Desktop) {
-        Ok(t) => eprintln!("raymarcher compiled to native code in {:.3} s", t.as_secs_f64()),
+        Ok(t) => eprintln!(
+            "raymarcher compiled to native code in {:.3} s",
+            t.as_secs_f64()
+        ),
         Err(e) => eprintln!("no native code: {e}"),
     }
     let mut g = c.benchmark_group("hack-vm");
