@@ -95,7 +95,12 @@ pub fn merge(parts: &[Vec<LevelReport>]) -> Result<Merged, MergeError> {
         }
         let shape = |p: &[LevelReport]| -> Vec<(String, Vec<String>)> {
             p.iter()
-                .map(|r| (r.set.clone(), r.runs.iter().map(|s| s.label.clone()).collect()))
+                .map(|r| {
+                    (
+                        r.set.clone(),
+                        r.runs.iter().map(|s| s.label.clone()).collect(),
+                    )
+                })
                 .collect()
         };
         if shape(part) != shape(first) {
@@ -124,7 +129,10 @@ fn merge_set<'a>(parts: impl Iterator<Item = &'a LevelReport>) -> Result<LevelRe
         run.error = parts.iter().find_map(|p| p.runs[i].error.clone());
     }
     let pairs = |p: &LevelReport| -> Vec<(String, String)> {
-        p.comparisons.iter().map(|c| (c.a.clone(), c.b.clone())).collect()
+        p.comparisons
+            .iter()
+            .map(|c| (c.a.clone(), c.b.clone()))
+            .collect()
     };
     if let Some(p) = parts.iter().find(|p| pairs(p) != pairs(parts[0])) {
         return Err(MergeError::Mismatch(format!(
@@ -173,7 +181,11 @@ fn merge_comparison<'a>(parts: impl Iterator<Item = &'a Comparison>, vectors: us
         s.mean_abs = if s.values == 0 {
             0.0
         } else {
-            stats.iter().map(|t| t.mean_abs * t.values as f64).sum::<f64>() / s.values as f64
+            stats
+                .iter()
+                .map(|t| t.mean_abs * t.values as f64)
+                .sum::<f64>()
+                / s.values as f64
         };
         s
     });

@@ -111,15 +111,15 @@ pub fn sweep(
         );
         let report = diff_set(impls, &set, RunOptions::default());
         result.swept += set.vectors.len() as u64;
-        result.failures.extend(
-            report
-                .failures()
-                .map(|(label, e)| format!("{label}: {e}")),
-        );
+        result
+            .failures
+            .extend(report.failures().map(|(label, e)| format!("{label}: {e}")));
         for c in report.comparisons {
             result.divergent += (c.divergences.len() + c.omitted) as u64;
             let room = KEPT.saturating_sub(result.divergences.len());
-            result.divergences.extend(c.divergences.into_iter().take(room));
+            result
+                .divergences
+                .extend(c.divergences.into_iter().take(room));
         }
         on_chunk(set.vectors.len() as u64);
     }

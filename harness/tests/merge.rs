@@ -26,9 +26,19 @@ fn four_shards_merge_into_the_unsharded_report() {
     let options = RunOptions::default();
     let whole = run_shard(&impls, &set, Shard::WHOLE, options);
     let c = &whole.comparisons[0];
-    assert!(c.omitted > 0, "the fault diverges on more cases than are kept");
+    assert!(
+        c.omitted > 0,
+        "the fault diverges on more cases than are kept"
+    );
     let parts: Vec<Vec<LevelReport>> = (0..4)
-        .map(|k| vec![run_shard(&impls, &set, Shard { index: k, count: 4 }, options)])
+        .map(|k| {
+            vec![run_shard(
+                &impls,
+                &set,
+                Shard { index: k, count: 4 },
+                options,
+            )]
+        })
         .collect();
     let merged = merge(&parts).unwrap();
     assert!(merged.missing.is_empty());
@@ -45,5 +55,8 @@ fn four_shards_merge_into_the_unsharded_report() {
         merge(&twice).unwrap_err(),
         MergeError::Duplicate(Shard { index: 1, count: 4 })
     );
-    assert_eq!(merge(&[vec![whole]]).unwrap_err(), MergeError::NotSharded(0));
+    assert_eq!(
+        merge(&[vec![whole]]).unwrap_err(),
+        MergeError::NotSharded(0)
+    );
 }

@@ -10,8 +10,8 @@ pub mod set;
 pub mod shard;
 mod validate;
 
-pub use shard::Shard;
 pub use set::{
     load_named, sets_dir, ImageVector, Level, OpVector, PixelVector, SdfVector, SetError, Vector,
     VectorSet, FORMAT_VERSION,
 };
+pub use shard::Shard;

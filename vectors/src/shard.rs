@@ -69,12 +69,9 @@ impl FromStr for Shard {
 /// FNV-1a (64 bits) over the vector's slug: stable across runs, machines
 /// and versions of the generators.
 pub fn identity_hash(vector: &Vector) -> u64 {
-    vector
-        .slug()
-        .bytes()
-        .fold(0xcbf2_9ce4_8422_2325, |h, b| {
-            (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-        })
+    vector.slug().bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
 }
 
 #[cfg(test)]
@@ -91,7 +88,11 @@ mod tests {
         for k in 0..n {
             let shard = Shard { index: k, count: n };
             let part: Vec<_> = vectors.iter().filter(|v| shard.contains(v)).collect();
-            assert!(part.len() > vectors.len() / 8, "shard {k} has {}", part.len());
+            assert!(
+                part.len() > vectors.len() / 8,
+                "shard {k} has {}",
+                part.len()
+            );
             seen += part.len();
         }
         assert_eq!(seen, vectors.len());
@@ -105,7 +106,10 @@ mod tests {
         let reversed: Vec<bool> = vectors.iter().rev().map(|v| shard.contains(v)).collect();
         assert!(alone.iter().eq(reversed.iter().rev()));
         // The hash is pinned: changing it would move every saved campaign.
-        assert_eq!(identity_hash(&vectors[0]), identity_hash(&vectors[0].clone()));
+        assert_eq!(
+            identity_hash(&vectors[0]),
+            identity_hash(&vectors[0].clone())
+        );
         // FNV-1a of this slug, computed independently of this code.
         assert_eq!(vectors[0].slug(), "op-mul-0--1-0-0--1-0");
         assert_eq!(identity_hash(&vectors[0]), 0x95b6f607845baef3);

@@ -3,7 +3,7 @@
 //! result of its class's representative, with the exponent shifted by the
 //! amount the argument says (and the same outcome kind).
 
-use common::{Op, Outcome, OpValue, F316};
+use common::{Op, OpValue, Outcome, F316};
 use proptest::prelude::*;
 use reference::Arith;
 use vectors::gen::classes::{class_of, representative, SWEPT};

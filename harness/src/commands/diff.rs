@@ -7,8 +7,8 @@
 //! an implementation is unavailable: nothing was compared).
 
 use crate::cast::Cast;
-use crate::report::atomic::{write_file, StagingDir};
 use crate::merge::run_shard;
+use crate::report::atomic::{write_file, StagingDir};
 use crate::runner::{LevelReport, RunOptions};
 use crate::text;
 use anyhow::{bail, Context};

@@ -50,12 +50,20 @@ pub fn run(args: MergeArgs) -> anyhow::Result<ExitCode> {
     let present = merged.count as usize - merged.missing.len();
     println!("shards: {present} of {}", merged.count);
     if !merged.missing.is_empty() {
-        let list: Vec<String> = merged.missing.iter().map(|k| format!("{k}/{}", merged.count)).collect();
+        let list: Vec<String> = merged
+            .missing
+            .iter()
+            .map(|k| format!("{k}/{}", merged.count))
+            .collect();
         println!("missing shards: {}", list.join(", "));
     }
     if let Some(dir) = &args.out {
         println!("report: {}", dir.join("report.json").display());
     }
     let diverged = merged.reports.iter().any(LevelReport::diverged);
-    Ok(if diverged || !merged.missing.is_empty() { ExitCode::from(1) } else { ExitCode::SUCCESS })
+    Ok(if diverged || !merged.missing.is_empty() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
 }

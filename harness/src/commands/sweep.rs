@@ -53,7 +53,11 @@ fn print_result(r: &SweepResult) {
         r.shard,
         r.swept,
         r.classes,
-        if r.limited { " (stopped at --limit)" } else { "" },
+        if r.limited {
+            " (stopped at --limit)"
+        } else {
+            ""
+        },
         seconds(r.seconds),
         r.cases_per_second() / 1e6,
     );
@@ -86,10 +90,16 @@ pub fn run(args: SweepArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     } else {
         args.impls
     };
-    anyhow::ensure!(labels.len() >= 2, "a sweep compares at least two implementations");
+    anyhow::ensure!(
+        labels.len() >= 2,
+        "a sweep compares at least two implementations"
+    );
     let opened = labels
         .iter()
-        .map(|l| cast.open(l).with_context(|| format!("implementation `{l}`")))
+        .map(|l| {
+            cast.open(l)
+                .with_context(|| format!("implementation `{l}`"))
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let refs: Vec<&dyn crate::implementation::Implementation> =
         opened.iter().map(|b| b.as_ref()).collect();
@@ -97,26 +107,36 @@ pub fn run(args: SweepArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     let total = vectors::gen::classes::class_count(args.op);
     let bar = crate::progress::show(
         crate::progress::items(
-            args.limit.or(total.map(|t| t / u64::from(shard.count))).unwrap_or(0),
+            args.limit
+                .or(total.map(|t| t / u64::from(shard.count)))
+                .unwrap_or(0),
             "sweep",
             "classes",
         ),
         crate::progress::wanted(),
     );
-    let result = sweep(&refs, args.op, shard, args.limit, |n| bar.inc(n))
-        .map_err(anyhow::Error::msg)?;
+    let result =
+        sweep(&refs, args.op, shard, args.limit, |n| bar.inc(n)).map_err(anyhow::Error::msg)?;
     bar.finish_and_clear();
     print_result(&result);
     if let Some(path) = &args.json {
-        let dir = path.parent().map(|p| p.join("repro")).unwrap_or_else(|| "repro".into());
+        let dir = path
+            .parent()
+            .map(|p| p.join("repro"))
+            .unwrap_or_else(|| "repro".into());
         if !result.divergences.is_empty() {
             std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
         }
         for d in &result.divergences {
-            VectorSet::repro(d.input.clone()).save(&dir.join(format!("{}.json", d.input.slug())))?;
+            VectorSet::repro(d.input.clone())
+                .save(&dir.join(format!("{}.json", d.input.slug())))?;
         }
         let json = serde_json::to_string_pretty(&result).context("serialising the sweep")?;
         write_file(path, json.as_bytes())?;
     }
-    Ok(if result.failed() { ExitCode::from(1) } else { ExitCode::SUCCESS })
+    Ok(if result.failed() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
 }

@@ -3,9 +3,9 @@
 //! hard cases. The same seed always gives the same vectors, so the
 //! committed sets can be rebuilt bit for bit.
 
+pub mod classes;
 pub mod ops;
 pub mod pixels;
-pub mod classes;
 pub mod sdf;
 pub mod testfloat;
 

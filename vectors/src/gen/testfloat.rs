@@ -320,7 +320,8 @@ pub fn set(ops: &[Op], level: CaseLevel, seed: u64) -> VectorSet {
         [op] => format!("testfloat-{level}-{op}"),
         _ => format!("testfloat-{level}"),
     };
-    let description = format!(
+    let description =
+        format!(
         "TestFloat-style Float316 cases, level {level}: sign x exponent table x mantissa pattern \
          table{} (docs/coverage.md)",
         if level == CaseLevel::Two { ", then weighted random pairs" } else { "" }
@@ -349,8 +350,14 @@ mod tests {
     #[test]
     fn names_stand_for_their_sets() {
         let s = named("testfloat-1-sqrt").unwrap();
-        assert_eq!((s.name.as_str(), s.vectors.len()), ("testfloat-1-sqrt", 408));
-        assert_eq!(named("testfloat-1").unwrap().vectors.len(), 7 * 408 + 5 * 46_656);
+        assert_eq!(
+            (s.name.as_str(), s.vectors.len()),
+            ("testfloat-1-sqrt", 408)
+        );
+        assert_eq!(
+            named("testfloat-1").unwrap().vectors.len(),
+            7 * 408 + 5 * 46_656
+        );
         for bad in ["testfloat-3", "testfloat-1-nope", "ops-small", "testfloat-"] {
             assert!(named(bad).is_none(), "{bad}");
         }
