@@ -10,10 +10,12 @@
 pub mod cli;
 pub mod commands;
 pub mod compare;
+pub mod contain;
 pub mod exhaustive;
 pub mod implementation;
 pub mod impls;
 pub mod localize;
+pub mod pipe;
 pub mod progress;
 pub mod report;
 pub mod runner;

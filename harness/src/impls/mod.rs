@@ -5,18 +5,19 @@ pub mod gpu;
 pub mod jack;
 pub mod reference;
 
+use crate::contain::Contained;
 use crate::implementation::{ImplError, ImplName, Implementation, UnknownImpl};
 
 /// The clean implementation `name`, ready to evaluate. Fails with
 /// [`ImplError::Unavailable`] (saying why) when it cannot run here.
 pub fn open(name: ImplName) -> Result<Box<dyn Implementation>, ImplError> {
-    Ok(match name {
+    Ok(Contained::boxed(match name {
         ImplName::RefF64 | ImplName::RefF32 | ImplName::RefF316 => {
             Box::new(reference::RefAdapter::new(name)?)
         }
         ImplName::GpuF32 | ImplName::GpuF316 => Box::new(gpu::GpuAdapter::new(name)?),
         ImplName::Jack => Box::new(jack::JackAdapter::new(jack::Profile::Desktop)?),
-    })
+    }))
 }
 
 /// An implementation by its label: a name, optionally with `+FAULT`:
@@ -30,7 +31,7 @@ pub fn open_label(label: &str) -> Result<Box<dyn Implementation>, OpenError> {
     };
     let name: ImplName = name.parse()?;
     Ok(match (name, fault) {
-        (_, None) => open(name)?,
+        (_, None) => return Ok(open(name)?),
         (ImplName::RefF64, Some("f32-oracle")) => {
             Box::new(reference::RefAdapter::f32_posing_as_f64()?)
         }
@@ -43,6 +44,7 @@ pub fn open_label(label: &str) -> Result<Box<dyn Implementation>, OpenError> {
         (ImplName::Jack, Some("web-divide")) => jack::open_web_profile()?,
         (_, Some(f)) => return Err(OpenError::Fault(format!("{name} has no fault `{f}`"))),
     })
+    .map(Contained::boxed)
 }
 
 /// Why an implementation label could not be opened.

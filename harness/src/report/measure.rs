@@ -105,7 +105,9 @@ pub fn render(label: &str, set: &VectorSet, progress: bool) -> Result<FullRender
         .next()
         .context("the runner returned no run")?;
     let render_s = start.elapsed().as_secs_f64();
-    let answers = run.answers.map_err(|e| anyhow!("{label}: {e}"))?;
+    let answers = run
+        .answers
+        .map_err(|e| anyhow::Error::new(e).context(label.to_string()))?;
     let pixels = answers
         .iter()
         .map(|a| match a {
