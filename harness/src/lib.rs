@@ -15,6 +15,7 @@ pub mod exhaustive;
 pub mod implementation;
 pub mod impls;
 pub mod localize;
+pub mod output;
 pub mod pipe;
 pub mod progress;
 pub mod report;
