@@ -37,15 +37,25 @@ fn adapter() {
     let _ = out.flush();
     let mut lines = stdin.lines().map_while(Result::ok);
     while let Some(header) = lines.next() {
-        let Ok(batch) = serde_json::from_str::<Batch>(&header) else { return };
+        let Ok(batch) = serde_json::from_str::<Batch>(&header) else {
+            return;
+        };
         for line in lines.by_ref().take(batch.count) {
-            let Ok(q) = serde_json::from_str::<Request>(&line) else { return };
+            let Ok(q) = serde_json::from_str::<Request>(&line) else {
+                return;
+            };
             let args: Vec<F316> = std::iter::once(q.a).chain(q.b).collect();
             let _ = match reference::op(q.op, &args, reference::Arith::SPEC) {
                 Ok(Outcome::Value(OpValue::Num(t))) => {
-                    writeln!(out, r#"{{"id":{},"value":[{},{},{}]}}"#, q.id, t.s, t.e, t.m)
+                    writeln!(
+                        out,
+                        r#"{{"id":{},"value":[{},{},{}]}}"#,
+                        q.id, t.s, t.e, t.m
+                    )
                 }
-                Ok(Outcome::Value(OpValue::Bool(b))) => writeln!(out, r#"{{"id":{},"value":{b}}}"#, q.id),
+                Ok(Outcome::Value(OpValue::Bool(b))) => {
+                    writeln!(out, r#"{{"id":{},"value":{b}}}"#, q.id)
+                }
                 Ok(Outcome::SysError(c)) => {
                     writeln!(out, r#"{{"id":{},"outcome":"sys_error","code":{c}}}"#, q.id)
                 }
@@ -53,7 +63,11 @@ fn adapter() {
                 _ => writeln!(out, r#"{{"id":{},"outcome":"out_of_domain"}}"#, q.id),
             };
         }
-        let _ = writeln!(out, r#"{{"batch":{},"count":{}}}"#, batch.batch, batch.count);
+        let _ = writeln!(
+            out,
+            r#"{{"batch":{},"count":{}}}"#,
+            batch.batch, batch.count
+        );
         let _ = out.flush();
     }
 }
@@ -62,7 +76,9 @@ fn adapter() {
 fn ops(n: usize) -> VectorSet {
     let base = vectors::load_named("ops-nightly").expect("the committed set");
     let vectors: Vec<Vector> = base.vectors.iter().cycle().take(n).cloned().collect();
-    assert!(vectors.iter().all(|v| matches!(v, Vector::Op(OpVector { .. }))));
+    assert!(vectors
+        .iter()
+        .all(|v| matches!(v, Vector::Op(OpVector { .. }))));
     VectorSet::new("bench", Level::Ops, "", None, vectors)
 }
 
@@ -75,7 +91,11 @@ fn bench(c: &mut Criterion, group: &str, pipe: &Pipe, n: usize, samples: usize) 
     g.bench_function("ops answers", |b| {
         b.iter(|| {
             let runs = run(&[pipe], &set, RunOptions::default());
-            assert!(runs[0].answers.is_ok(), "{:?}", runs[0].answers.as_ref().err());
+            assert!(
+                runs[0].answers.is_ok(),
+                "{:?}",
+                runs[0].answers.as_ref().err()
+            );
         })
     });
     g.finish();

@@ -274,7 +274,9 @@ fn on_worker<T: Send + 'static>(
         .map_err(|e| ImplError::Failed(format!("{label}: cannot start a worker thread: {e}")))?;
     wait(&rx, limit).ok_or_else(|| {
         // The worker catches panics, so it always sends unless it is gone.
-        ImplError::Failed(format!("{label}: its worker thread ended without an answer"))
+        ImplError::Failed(format!(
+            "{label}: its worker thread ended without an answer"
+        ))
     })
 }
 
@@ -358,10 +360,6 @@ impl Implementation for Contained {
         self.inner.label()
     }
 
-    fn name(&self) -> crate::implementation::ImplName {
-        self.inner.name()
-    }
-
     fn numbers(&self) -> Numbers {
         self.inner.numbers()
     }
@@ -418,11 +416,9 @@ impl Implementation for Contained {
         let one = std::slice::from_ref(input);
         match on_worker(&label, limit, move || catch(|| inner.trace(&owned)))? {
             Some(Ok(trace)) => trace,
-            Some(Err(message)) => {
-                Err(Failure::new(&label, FailureKind::Panic, message, one)
-                    .after(Vec::new(), one)
-                    .into())
-            }
+            Some(Err(message)) => Err(Failure::new(&label, FailureKind::Panic, message, one)
+                .after(Vec::new(), one)
+                .into()),
             None => Err(Failure::new(
                 &label,
                 FailureKind::Hang,

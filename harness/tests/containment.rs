@@ -60,7 +60,10 @@ fn contained_run(subject: &dyn Implementation, kept: usize) -> Failure {
     }
     match report.comparisons.first() {
         Some(c) => {
-            assert_eq!(c.vectors, kept, "the answers before the failure are compared");
+            assert_eq!(
+                c.vectors, kept,
+                "the answers before the failure are compared"
+            );
             assert!(!c.diverged);
         }
         None => assert_eq!(kept, 0, "nothing to compare"),
@@ -74,7 +77,10 @@ fn an_adapter_that_exits_before_its_handshake_is_named_with_its_stderr() {
     let f = failure(&e);
     assert_eq!(f.kind, FailureKind::EarlyExit);
     let text = f.to_string();
-    assert!(text.contains("py-early-exit exited before its handshake"), "{text}");
+    assert!(
+        text.contains("py-early-exit exited before its handshake"),
+        "{text}"
+    );
     assert!(text.contains("exited with status 3"), "{text}");
     assert!(text.contains("my-port: cannot open port.cfg"), "{text}");
 }
@@ -85,8 +91,14 @@ fn an_adapter_that_crashes_mid_batch_keeps_its_answers_and_shows_its_stderr() {
     let f = contained_run(&pipe, 5);
     assert_eq!(f.kind, FailureKind::Crash);
     let text = f.to_string();
-    assert!(text.contains("exited with status 1 after answering 5 of the 10 inputs"), "{text}");
-    assert!(text.contains("ZeroDivisionError: in my_port.double"), "{text}");
+    assert!(
+        text.contains("exited with status 1 after answering 5 of the 10 inputs"),
+        "{text}"
+    );
+    assert!(
+        text.contains("ZeroDivisionError: in my_port.double"),
+        "{text}"
+    );
     // It takes no more batches afterwards.
     let again = pipe.eval(&doubles().vectors).unwrap_err();
     assert_eq!(failure(&again).kind, FailureKind::NotRun);
@@ -97,7 +109,11 @@ fn an_adapter_that_hangs_is_stopped_by_the_watchdog() {
     let pipe = misbehaving("hang").unwrap();
     let f = contained_run(&pipe, 5);
     assert_eq!(f.kind, FailureKind::Hang);
-    assert!(f.to_string().contains("no answer within the watchdog's 3.0 s"), "{f}");
+    assert!(
+        f.to_string()
+            .contains("no answer within the watchdog's 3.0 s"),
+        "{f}"
+    );
 }
 
 #[test]
@@ -122,7 +138,11 @@ fn a_wrong_id_is_named_with_the_field() {
 fn a_wrong_count_is_named_with_the_field() {
     let f = contained_run(&misbehaving("wrong-count").unwrap(), 10);
     assert_eq!(f.kind, FailureKind::Protocol);
-    assert!(f.to_string().contains("field `count`: 11, after 10 answers to 10 requests"), "{f}");
+    assert!(
+        f.to_string()
+            .contains("field `count`: 11, after 10 answers to 10 requests"),
+        "{f}"
+    );
 }
 
 /// A test fault: ref-f316, except that it panics on its sixth vector
@@ -159,7 +179,10 @@ impl Implementation for Faulty {
 
 fn faulty(panics: bool) -> Contained {
     let inner = impls::open(ImplName::RefF316).unwrap();
-    Contained::new(Box::new(Faulty { inner, panics }), Watchdog::fixed(Duration::from_secs(2)))
+    Contained::new(
+        Box::new(Faulty { inner, panics }),
+        Watchdog::fixed(Duration::from_secs(2)),
+    )
 }
 
 #[test]
@@ -167,9 +190,15 @@ fn an_in_process_panic_becomes_a_failure_of_its_input() {
     let f = contained_run(&faulty(true), 5);
     assert_eq!(f.kind, FailureKind::Panic);
     let text = f.to_string();
-    assert!(text.starts_with("ref-f316+panics panicked on input #5 double((1,125,8692))"), "{text}");
+    assert!(
+        text.starts_with("ref-f316+panics panicked on input #5 double((1,125,8692))"),
+        "{text}"
+    );
     assert!(text.contains("attempt to multiply with overflow"), "{text}");
-    assert!(text.contains("containment.rs:"), "the panic's location: {text}");
+    assert!(
+        text.contains("containment.rs:"),
+        "the panic's location: {text}"
+    );
 }
 
 #[test]
@@ -177,7 +206,10 @@ fn an_in_process_endless_loop_becomes_a_hang_of_its_batch() {
     let f = contained_run(&faulty(false), 0);
     assert_eq!(f.kind, FailureKind::Hang);
     assert!(f.input.is_none(), "a hang names its batch");
-    assert!(f.to_string().contains("on the batch of inputs #0..#9"), "{f}");
+    assert!(
+        f.to_string().contains("on the batch of inputs #0..#9"),
+        "{f}"
+    );
 }
 
 #[test]

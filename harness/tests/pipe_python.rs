@@ -22,8 +22,17 @@ fn the_python_float316_adapter_agrees_with_ref_f316_on_every_ops_set() {
             continue;
         }
         let report = diff_set(&[reference.as_ref(), &pipe], &set, RunOptions::default());
-        assert_eq!(report.failures().count(), 0, "{}", harness::text::level_report(&report));
-        assert!(!report.diverged(), "{}", harness::text::level_report(&report));
+        assert_eq!(
+            report.failures().count(),
+            0,
+            "{}",
+            harness::text::level_report(&report)
+        );
+        assert!(
+            !report.diverged(),
+            "{}",
+            harness::text::level_report(&report)
+        );
         compared += report.comparisons[0].vectors;
     }
     assert!(compared > 1000, "{compared} vectors");

@@ -85,7 +85,8 @@ impl Port {
                 let op = q.op.ok_or_else(|| missing("op"))?;
                 let args: Vec<F316> = q.a.into_iter().chain(q.b).collect();
                 if q.trace {
-                    let t = reference::trace_op(op, &args, self.arith).map_err(|e| e.to_string())?;
+                    let t =
+                        reference::trace_op(op, &args, self.arith).map_err(|e| e.to_string())?;
                     (outcome(t.outcome, op_value), Some(t.records))
                 } else {
                     let o = reference::op(op, &args, self.arith).map_err(|e| e.to_string())?;
@@ -106,8 +107,14 @@ impl Port {
                 }
             }
             "pixels" => {
-                let (x, y) = (q.x.ok_or_else(|| missing("x"))?, q.y.ok_or_else(|| missing("y"))?);
-                let uv = [q.u.ok_or_else(|| missing("u"))?, q.v.ok_or_else(|| missing("v"))?];
+                let (x, y) = (
+                    q.x.ok_or_else(|| missing("x"))?,
+                    q.y.ok_or_else(|| missing("y"))?,
+                );
+                let uv = [
+                    q.u.ok_or_else(|| missing("u"))?,
+                    q.v.ok_or_else(|| missing("v"))?,
+                ];
                 let pixel = |p: reference::PixelValue| {
                     let shade = p.value.triple.map(triple).unwrap_or_default();
                     format!(r#""shade":{shade},"white":{}"#, p.white)
@@ -119,7 +126,10 @@ impl Port {
                         .map_err(|e| e.to_string())?;
                     (outcome(t.outcome, pixel), Some(t.records))
                 } else {
-                    let o = self.scene.pixel_from_coords(x, y, uv).map_err(|e| e.to_string())?;
+                    let o = self
+                        .scene
+                        .pixel_from_coords(x, y, uv)
+                        .map_err(|e| e.to_string())?;
                     (outcome(o, pixel), None)
                 }
             }
@@ -144,7 +154,8 @@ impl Port {
 }
 
 fn run(settings: Settings) -> Result<(), String> {
-    let scene = Reference::new(RefImpl::F316, &Scene::default(), settings).map_err(|e| e.to_string())?;
+    let scene =
+        Reference::new(RefImpl::F316, &Scene::default(), settings).map_err(|e| e.to_string())?;
     let port = Port {
         arith: settings.arith,
         scene,
@@ -163,13 +174,20 @@ fn run(settings: Settings) -> Result<(), String> {
         let header = header.map_err(io)?;
         let batch: Batch = serde_json::from_str(&header).map_err(|e| format!("batch line: {e}"))?;
         for _ in 0..batch.count {
-            let line = lines.next().ok_or("input ended inside a batch")?.map_err(io)?;
+            let line = lines
+                .next()
+                .ok_or("input ended inside a batch")?
+                .map_err(io)?;
             let q: Request = serde_json::from_str(&line).map_err(|e| format!("request: {e}"))?;
             writeln!(out, "{}", port.answer(&batch.level, &q)?).map_err(io)?;
         }
-        writeln!(out, r#"{{"batch":{},"count":{}}}"#, batch.batch, batch.count)
-            .and_then(|()| out.flush())
-            .map_err(io)?;
+        writeln!(
+            out,
+            r#"{{"batch":{},"count":{}}}"#,
+            batch.batch, batch.count
+        )
+        .and_then(|()| out.flush())
+        .map_err(io)?;
     }
     Ok(())
 }

@@ -11,7 +11,12 @@ use harness::runner::{diff_set, RunOptions};
 use vectors::{Level, Vector};
 
 fn adapter(label: &str, args: &[&str]) -> Pipe {
-    Pipe::open(&PipeConfig::new(label, env!("CARGO_BIN_EXE_ref-pipe"), args)).unwrap()
+    Pipe::open(&PipeConfig::new(
+        label,
+        env!("CARGO_BIN_EXE_ref-pipe"),
+        args,
+    ))
+    .unwrap()
 }
 
 fn small_set(level: Level) -> vectors::VectorSet {
@@ -26,9 +31,18 @@ fn the_clean_adapter_agrees_with_ref_f316_at_every_level_it_declares() {
     for level in Level::ALL {
         let set = small_set(level);
         let report = diff_set(&[reference.as_ref(), &pipe], &set, RunOptions::default());
-        assert_eq!(report.failures().count(), 0, "{}", harness::text::level_report(&report));
+        assert_eq!(
+            report.failures().count(),
+            0,
+            "{}",
+            harness::text::level_report(&report)
+        );
         assert_eq!(report.comparisons.len(), 1);
-        assert!(!report.diverged(), "{}", harness::text::level_report(&report));
+        assert!(
+            !report.diverged(),
+            "{}",
+            harness::text::level_report(&report)
+        );
     }
 }
 
@@ -38,7 +52,11 @@ fn the_faulty_adapter_is_detected_and_localized_to_mul_through_its_trace() {
     let reference = impls::open(ImplName::RefF316).unwrap();
     let set = small_set(Level::Pixels);
     let report = diff_set(&[reference.as_ref(), &pipe], &set, RunOptions::default());
-    assert!(report.diverged(), "{}", harness::text::level_report(&report));
+    assert!(
+        report.diverged(),
+        "{}",
+        harness::text::level_report(&report)
+    );
     let first = &report.comparisons[0].divergences[0];
     assert!(matches!(first.input, Vector::Pixel(_)));
     let found = localize(reference.as_ref(), &pipe, reference.as_ref(), &first.input).unwrap();
@@ -55,12 +73,22 @@ fn the_faulty_adapter_is_detected_and_localized_to_mul_through_its_trace() {
     assert!(matches!((a.m - b.m).abs(), 1 | 2), "{found}");
     // The ops level finds it too: in mul, and in inv_sqrt, which calls mul
     // and is localized to it.
-    let ops = diff_set(&[reference.as_ref(), &pipe], &small_set(Level::Ops), RunOptions::default());
+    let ops = diff_set(
+        &[reference.as_ref(), &pipe],
+        &small_set(Level::Ops),
+        RunOptions::default(),
+    );
     let c = &ops.comparisons[0];
     assert!(c.diverged);
     for d in &c.divergences {
-        let Vector::Op(o) = &d.input else { panic!("an ops vector") };
-        assert!(matches!(o.op, Op::Mul | Op::InvSqrt), "{}", harness::text::level_report(&ops));
+        let Vector::Op(o) = &d.input else {
+            panic!("an ops vector")
+        };
+        assert!(
+            matches!(o.op, Op::Mul | Op::InvSqrt),
+            "{}",
+            harness::text::level_report(&ops)
+        );
         let found = localize(reference.as_ref(), &pipe, reference.as_ref(), &d.input).unwrap();
         assert_eq!(found.origin.map(|o| o.op), Some(Op::Mul), "{}", d.input);
     }

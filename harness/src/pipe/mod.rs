@@ -9,8 +9,8 @@
 //! field, with the last lines of its stderr; the answers before it are
 //! kept.
 
-pub mod protocol;
 mod process;
+pub mod protocol;
 
 use crate::contain::{Failure, FailureKind, Watchdog};
 use crate::implementation::{Answer, ImplError, Implementation, Num, Numbers};
@@ -101,7 +101,7 @@ impl Pipe {
         let which = match hello.numbers {
             Numbers::Float316 => RefImpl::F316,
             Numbers::F32 => RefImpl::F32,
-            Numbers::F64 => RefImpl::F64,
+            Numbers::F64 | Numbers::Ieee { .. } => RefImpl::F64,
         };
         Ok(Pipe {
             label: config.label.clone(),
@@ -196,7 +196,10 @@ impl Pipe {
             }
             None => Reply {
                 answers: Vec::new(),
-                failure: Some((FailureKind::Crash, "its reader ended without a reply".into())),
+                failure: Some((
+                    FailureKind::Crash,
+                    "its reader ended without a reply".into(),
+                )),
             },
         };
         match reply.failure {
@@ -216,10 +219,6 @@ impl Pipe {
 impl Implementation for Pipe {
     fn label(&self) -> String {
         self.label.clone()
-    }
-
-    fn name(&self) -> crate::implementation::ImplName {
-        crate::implementation::ImplName::RefF316
     }
 
     fn numbers(&self) -> Numbers {
@@ -247,7 +246,11 @@ impl Implementation for Pipe {
                 self.hello.levels
             )));
         }
-        Ok(self.ask(batch, false)?.into_iter().map(|(o, _)| o).collect())
+        Ok(self
+            .ask(batch, false)?
+            .into_iter()
+            .map(|(o, _)| o)
+            .collect())
     }
 
     /// The adapter's trace of `input`. For a pixel, the adapter traces its
@@ -258,7 +261,10 @@ impl Implementation for Pipe {
             return Err(ImplError::Unsupported(format!("{}: op traces", self.label)));
         }
         if !self.supports(input.level()) {
-            return Err(ImplError::Unsupported(format!("the {} level", input.level())));
+            return Err(ImplError::Unsupported(format!(
+                "the {} level",
+                input.level()
+            )));
         }
         let answered = self.ask(std::slice::from_ref(input), true)?;
         let own = answered
@@ -267,11 +273,12 @@ impl Implementation for Pipe {
             .and_then(|(_, t)| t)
             .unwrap_or_default();
         let mut records = match input {
-            Vector::Pixel(p) => self
-                .tracer
-                .trace_pixel_coords(usize::from(p.x), usize::from(p.y))
-                .map_err(|e| ImplError::Failed(e.to_string()))?
-                .records,
+            Vector::Pixel(p) => {
+                self.tracer
+                    .trace_pixel_coords(usize::from(p.x), usize::from(p.y))
+                    .map_err(|e| ImplError::Failed(e.to_string()))?
+                    .records
+            }
             _ => Vec::new(),
         };
         records.extend(own);

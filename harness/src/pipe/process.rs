@@ -13,8 +13,8 @@ use std::collections::VecDeque;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::Path;
 use std::process::{Child, ChildStdout, Command, Stdio};
-use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
@@ -164,13 +164,20 @@ impl Adapter {
             command.current_dir(dir);
         }
         let mut child = command.spawn().map_err(|e| {
-            let place = dir.map(|d| format!(" in {}", d.display())).unwrap_or_default();
+            let place = dir
+                .map(|d| format!(" in {}", d.display()))
+                .unwrap_or_default();
             StartError::Spawn(format!("cannot start `{program}`{place}: {e}"))
         })?;
-        let (stdin, stdout, stderr) = match (child.stdin.take(), child.stdout.take(), child.stderr.take()) {
-            (Some(i), Some(o), Some(e)) => (i, o, e),
-            _ => return Err(StartError::Spawn(format!("`{program}`: its pipes could not be opened"))),
-        };
+        let (stdin, stdout, stderr) =
+            match (child.stdin.take(), child.stdout.take(), child.stderr.take()) {
+                (Some(i), Some(o), Some(e)) => (i, o, e),
+                _ => {
+                    return Err(StartError::Spawn(format!(
+                        "`{program}`: its pipes could not be opened"
+                    )))
+                }
+            };
         let (to_writer, writer_rx) = mpsc::channel::<String>();
         let (to_reader, reader_rx) = mpsc::channel::<Pending>();
         let (stderr_tx, stderr_done) = mpsc::channel();
@@ -199,7 +206,11 @@ impl Adapter {
             Box::new(move || {
                 let mut stdin = std::io::BufWriter::with_capacity(1 << 16, stdin);
                 for text in writer_rx {
-                    if stdin.write_all(text.as_bytes()).and_then(|()| stdin.flush()).is_err() {
+                    if stdin
+                        .write_all(text.as_bytes())
+                        .and_then(|()| stdin.flush())
+                        .is_err()
+                    {
                         break;
                     }
                 }
@@ -224,7 +235,10 @@ impl Adapter {
             Ok(Some(line)) => return Ok((adapter, line)),
             Ok(None) | Err(mpsc::RecvTimeoutError::Disconnected) => StartError::Failed {
                 kind: FailureKind::EarlyExit,
-                message: format!("it {} before writing its handshake line", adapter.shared.exit_status()),
+                message: format!(
+                    "it {} before writing its handshake line",
+                    adapter.shared.exit_status()
+                ),
                 stderr: adapter.shared.stderr_tail(),
             },
             Err(mpsc::RecvTimeoutError::Timeout) => {
@@ -265,7 +279,10 @@ impl Adapter {
         q.next_id += pending.requests.len() as u64;
         q.next_batch += 1;
         let ahead = self.shared.in_flight.fetch_add(1, Ordering::Relaxed) as u64;
-        let sent = q.to_reader.as_ref().is_some_and(|r| r.send(pending).is_ok())
+        let sent = q
+            .to_reader
+            .as_ref()
+            .is_some_and(|r| r.send(pending).is_ok())
             && q.to_writer.as_ref().is_some_and(|w| w.send(lines).is_ok());
         if !sent {
             return Err("its pipes are closed".into());
@@ -359,7 +376,10 @@ fn reader(
                 let why = lock(&shared.queue).stopped.clone().unwrap_or_default();
                 let _ = later.reply.send(Reply {
                     answers: Vec::new(),
-                    failure: Some((FailureKind::NotRun, format!("an earlier batch failed: {why}"))),
+                    failure: Some((
+                        FailureKind::NotRun,
+                        format!("an earlier batch failed: {why}"),
+                    )),
                 });
             }
             return;
@@ -379,7 +399,11 @@ fn read_batch(
     let protocol = |k: usize, e: String| {
         Some((
             FailureKind::Protocol,
-            format!("answer line {} of batch {} ({n} requests): {e}", k + 1, p.batch),
+            format!(
+                "answer line {} of batch {} ({n} requests): {e}",
+                k + 1,
+                p.batch
+            ),
         ))
     };
     loop {
@@ -392,7 +416,10 @@ fn read_batch(
                     answers,
                     Some((
                         FailureKind::Crash,
-                        format!("{status} after answering {k} of the {n} inputs of batch {}", p.batch),
+                        format!(
+                            "{status} after answering {k} of the {n} inputs of batch {}",
+                            p.batch
+                        ),
                     )),
                 );
             }
@@ -406,7 +433,10 @@ fn read_batch(
             Err(e) => return (answers, protocol(k, e.to_string())),
             Ok(Line::End { batch, count }) => {
                 let problem = if batch != p.batch {
-                    Some(format!("field `batch`: closes batch {batch}, expected {}", p.batch))
+                    Some(format!(
+                        "field `batch`: closes batch {batch}, expected {}",
+                        p.batch
+                    ))
                 } else if count != n as u64 || k != n {
                     Some(format!(
                         "field `count`: {count}, after {k} answers to {n} requests"
@@ -415,7 +445,10 @@ fn read_batch(
                     None
                 };
                 return match problem {
-                    Some(m) => (answers, protocol(k, format!("{m}; the line: `{}`", protocol::excerpt(buf)))),
+                    Some(m) => (
+                        answers,
+                        protocol(k, format!("{m}; the line: `{}`", protocol::excerpt(buf))),
+                    ),
                     None => (answers, None),
                 };
             }
@@ -427,14 +460,19 @@ fn read_batch(
                         p.batch
                     ))
                 } else if id != expected {
-                    Some(format!("field `id`: {id}, expected {expected} (answers come in request order)"))
+                    Some(format!(
+                        "field `id`: {id}, expected {expected} (answers come in request order)"
+                    ))
                 } else if request.trace && trace.is_none() {
                     Some("field `trace`: missing, and the request asked for the op trace".into())
                 } else {
                     None
                 };
                 if let Some(m) = problem {
-                    return (answers, protocol(k, format!("{m}; the line: `{}`", protocol::excerpt(buf))));
+                    return (
+                        answers,
+                        protocol(k, format!("{m}; the line: `{}`", protocol::excerpt(buf))),
+                    );
                 }
                 answers.push((outcome, trace));
             }

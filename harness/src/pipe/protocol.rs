@@ -69,33 +69,32 @@ pub fn excerpt(line: &str) -> String {
     }
 }
 
-/// The number type named in a handshake.
-fn numbers_named(name: &str) -> Option<Numbers> {
-    match name {
-        "float316" => Some(Numbers::Float316),
-        "f64" => Some(Numbers::F64),
-        "f32" => Some(Numbers::F32),
-        _ => None,
-    }
-}
-
 /// Read the adapter's handshake line.
 pub fn read_handshake(line: &str) -> Result<Handshake, LineError> {
-    let raw: RawHandshake = serde_json::from_str(line)
-        .map_err(|e| diagnose::<RawHandshake>(line, e, &["protocol", "name", "numbers", "levels", "trace"]))?;
+    let raw: RawHandshake = serde_json::from_str(line).map_err(|e| {
+        diagnose::<RawHandshake>(line, e, &["protocol", "name", "numbers", "levels", "trace"])
+    })?;
     let err = |field: &str, message: String| LineError::new(Some(field), message, line);
     match raw.protocol {
         Some(VERSION) => {}
-        Some(v) => return Err(err("protocol", format!("version {v}; this harness speaks {VERSION}"))),
+        Some(v) => {
+            return Err(err(
+                "protocol",
+                format!("version {v}; this harness speaks {VERSION}"),
+            ))
+        }
         None => return Err(err("protocol", format!("missing (expected {VERSION})"))),
     }
     let name = raw
         .name
         .filter(|n| !n.is_empty())
         .ok_or_else(|| err("name", "missing or empty".into()))?;
-    let numbers = raw.numbers.ok_or_else(|| err("numbers", "missing".into()))?;
-    let numbers = numbers_named(&numbers)
-        .ok_or_else(|| err("numbers", format!("`{numbers}` (expected float316, f64 or f32)")))?;
+    let numbers = raw
+        .numbers
+        .ok_or_else(|| err("numbers", "missing".into()))?;
+    let numbers: Numbers = numbers
+        .parse()
+        .map_err(|e: crate::implementation::UnknownNumbers| err("numbers", e.to_string()))?;
     let levels = raw
         .levels
         .filter(|l| !l.is_empty())
@@ -139,7 +138,13 @@ pub fn batch_line(out: &mut String, batch: u64, level: Level, count: usize) {
 
 /// One request line. `coords` are the pixel's normalized coordinates in
 /// the adapter's numbers (pixels level only); `trace` asks for its op trace.
-pub fn request_line(out: &mut String, id: u64, input: &Vector, coords: Option<[Num; 2]>, trace: bool) {
+pub fn request_line(
+    out: &mut String,
+    id: u64,
+    input: &Vector,
+    coords: Option<[Num; 2]>,
+    trace: bool,
+) {
     let _ = write!(out, r#"{{"id":{id}"#);
     match input {
         Vector::Op(o) => {
@@ -236,7 +241,11 @@ impl<'de> Visitor<'de> for WireVisitor {
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Wire, A::Error> {
-        let bad = || de::Error::custom("expected a Float316 triple [s,e,m] of three integers in -32768..=32767");
+        let bad = || {
+            de::Error::custom(
+                "expected a Float316 triple [s,e,m] of three integers in -32768..=32767",
+            )
+        };
         let mut t = [0i16; 3];
         for slot in &mut t {
             *slot = seq.next_element::<i16>()?.ok_or_else(bad)?;
@@ -338,7 +347,9 @@ fn diagnose<T: serde::de::DeserializeOwned>(
         return LineError::new(None, "not a JSON object", line);
     };
     for field in fields {
-        let Some(v) = object.get(*field) else { continue };
+        let Some(v) = object.get(*field) else {
+            continue;
+        };
         if let Err(fe) = serde_json::from_value::<T>(serde_json::json!({ *field: v })) {
             return LineError::new(Some(field), fe.to_string(), line);
         }
@@ -364,7 +375,13 @@ pub fn read_line(line: &str, expect: &Expect) -> Result<Line, LineError> {
     let trace = raw
         .trace
         .as_ref()
-        .map(|records| records.iter().enumerate().map(|(i, r)| record(r, i, line)).collect())
+        .map(|records| {
+            records
+                .iter()
+                .enumerate()
+                .map(|(i, r)| record(r, i, line))
+                .collect()
+        })
         .transpose()?;
     let outcome = match trap(raw.outcome.as_deref(), raw.code, "", line)? {
         Some(t) => t,
@@ -388,10 +405,18 @@ fn trap<T>(
         Some("out_of_domain") => Some(Outcome::OutOfDomain),
         Some("sys_error") => {
             let code = code.ok_or_else(|| {
-                LineError::new(Some(&field("code")), "missing (a sys_error carries its code)", line)
+                LineError::new(
+                    Some(&field("code")),
+                    "missing (a sys_error carries its code)",
+                    line,
+                )
             })?;
             let code = i16::try_from(code).map_err(|_| {
-                LineError::new(Some(&field("code")), format!("{code} is not a Jack word"), line)
+                LineError::new(
+                    Some(&field("code")),
+                    format!("{code} is not a Jack word"),
+                    line,
+                )
             })?;
             Some(Outcome::SysError(code))
         }
@@ -411,19 +436,23 @@ fn num(w: Option<&Wire>, field: &str, numbers: Numbers, line: &str) -> Result<Nu
     match (w, numbers) {
         (None, _) => Err(err("missing".into())),
         (Some(Wire::Triple(t)), Numbers::Float316) => Ok(Num::F316(*t)),
-        (Some(Wire::Number(x)), Numbers::F64) => Ok(Num::F64(*x)),
         (Some(Wire::Number(x)), Numbers::F32) => Ok(Num::F32(*x as f32)),
+        (Some(Wire::Number(x)), _) => Ok(Num::F64(*x)),
         (Some(other), Numbers::Float316) => Err(err(format!(
             "{other}; a float316 adapter answers a triple [s,e,m]"
         ))),
-        (Some(other), n) => Err(err(format!("{other}; an {n:?} adapter answers a number").to_lowercase())),
+        (Some(other), n) => Err(err(format!("{other}; an {n} adapter answers a number"))),
     }
 }
 
 fn boolean(w: Option<&Wire>, field: &str, line: &str) -> Result<bool, LineError> {
     match w {
         Some(Wire::Bool(b)) => Ok(*b),
-        Some(other) => Err(LineError::new(Some(field), format!("{other}; expected true or false"), line)),
+        Some(other) => Err(LineError::new(
+            Some(field),
+            format!("{other}; expected true or false"),
+            line,
+        )),
         None => Err(LineError::new(Some(field), "missing", line)),
     }
 }
@@ -495,13 +524,18 @@ fn bitmap(w: Option<&Wire>, line: &str) -> Result<Bitmap, LineError> {
 fn record(r: &RawRecord, i: usize, line: &str) -> Result<TraceRecord, LineError> {
     let field = |f: &str| format!("trace[{i}].{f}");
     let err = |f: &str, m: String| LineError::new(Some(&field(f)), m, line);
-    let op: Op = r.op.parse().map_err(|e: common::op::UnknownOp| err("op", e.to_string()))?;
+    let op: Op =
+        r.op.parse()
+            .map_err(|e: common::op::UnknownOp| err("op", e.to_string()))?;
     let args = r
         .args
         .iter()
         .map(|a| match a {
             Wire::Triple(t) => Ok(*t),
-            other => Err(err("args", format!("{other}; an operand is a triple [s,e,m]"))),
+            other => Err(err(
+                "args",
+                format!("{other}; an operand is a triple [s,e,m]"),
+            )),
         })
         .collect::<Result<Vec<_>, _>>()?;
     if args.len() != op.arity() {
@@ -516,7 +550,17 @@ fn record(r: &RawRecord, i: usize, line: &str) -> Result<TraceRecord, LineError>
             (Some(Wire::Bool(b)), Op::Gt) => OpValue::Bool(*b),
             (Some(Wire::Triple(t)), op) if op != Op::Gt => OpValue::Num(*t),
             (Some(other), _) => {
-                return Err(err("result", format!("{other}; `{op}` gives {}", if op == Op::Gt { "a boolean" } else { "a triple [s,e,m]" })))
+                return Err(err(
+                    "result",
+                    format!(
+                        "{other}; `{op}` gives {}",
+                        if op == Op::Gt {
+                            "a boolean"
+                        } else {
+                            "a triple [s,e,m]"
+                        }
+                    ),
+                ))
             }
             (None, _) => return Err(err("result", "missing".into())),
         }),

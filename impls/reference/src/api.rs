@@ -355,7 +355,8 @@ impl Reference {
         let counters = pipeline::counter(&mut e, k, x)
             .and_then(|xc| Ok((xc, pipeline::counter(&mut e, k, y)?)));
         self.traced(None, |e, k| {
-            let coords = counters.and_then(|c| e.frame(|| format!("pixel({x},{y})"), |e| pipeline::coords(e, k, c)));
+            let coords = counters
+                .and_then(|c| e.frame(|| format!("pixel({x},{y})"), |e| pipeline::coords(e, k, c)));
             outcome(coords).map(|(u, v)| [Scalar::of::<F316Engine>(u), Scalar::of::<F316Engine>(v)])
         })
     }
