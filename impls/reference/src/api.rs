@@ -197,6 +197,13 @@ fn pixel_at<E: Engine>(e: &mut E, k: &Consts<E::N>, x: usize, y: usize) -> Outco
     outcome(r).map(pixel_value::<E>)
 }
 
+fn coords_at<E: Engine>(e: &mut E, k: &Consts<E::N>, x: usize, y: usize) -> Outcome<[Scalar; 2]> {
+    let r = pipeline::counter(e, k, x)
+        .and_then(|xc| Ok((xc, pipeline::counter(e, k, y)?)))
+        .and_then(|c| pipeline::coords(e, k, c));
+    outcome(r).map(|(u, v)| [Scalar::of::<E>(u), Scalar::of::<E>(v)])
+}
+
 fn image_of<E: Engine>(engine: impl Fn() -> E + Sync, k: &Consts<E::N>) -> RenderedImage {
     let pixels = pipeline::image(engine, k)
         .into_iter()
@@ -276,6 +283,16 @@ impl Reference {
         }
     }
 
+    /// The normalized coordinates `[u, v]` of pixel (x, y), the arguments
+    /// of the spec's `pixel(u, v)`, computed as [`Reference::pixel`] does.
+    pub fn pixel_coords(&self, x: usize, y: usize) -> Outcome<[Scalar; 2]> {
+        match &self.consts {
+            Prepared::F316(k) => coords_at(&mut F316Engine::new(self.settings.arith), k, x, y),
+            Prepared::F64(k) => coords_at(&mut FloatEngine::new(), k, x, y),
+            Prepared::F32(k) => coords_at(&mut FloatEngine::new(), k, x, y),
+        }
+    }
+
     /// The whole image, rows in parallel.
     pub fn render(&self) -> RenderedImage {
         match &self.consts {
@@ -323,6 +340,55 @@ impl Reference {
         self.traced(None, |e, k| {
             outcome(counters.and_then(|c| pipeline::pixel(e, k, (x, y), c)))
                 .map(pixel_value::<F316Engine>)
+        })
+    }
+
+    /// The Float316 operations of pixel (x, y)'s coordinates: the records
+    /// that open [`Reference::trace_pixel`]. `ref-f316` only.
+    pub fn trace_pixel_coords(
+        &self,
+        x: usize,
+        y: usize,
+    ) -> Result<Trace<[Scalar; 2]>, RequestError> {
+        let k = self.f316_consts()?;
+        let mut e = F316Engine::new(self.settings.arith);
+        let counters = pipeline::counter(&mut e, k, x)
+            .and_then(|xc| Ok((xc, pipeline::counter(&mut e, k, y)?)));
+        self.traced(None, |e, k| {
+            let coords = counters
+                .and_then(|c| e.frame(|| format!("pixel({x},{y})"), |e| pipeline::coords(e, k, c)));
+            outcome(coords).map(|(u, v)| [Scalar::of::<F316Engine>(u), Scalar::of::<F316Engine>(v)])
+        })
+    }
+
+    /// Pixel (x, y) of ref-f316 from its normalized coordinates `[u, v]`
+    /// (as [`Reference::pixel_coords`] gives them): what a port's pixel
+    /// function computes from its arguments. `ref-f316` only.
+    pub fn pixel_from_coords(
+        &self,
+        x: usize,
+        y: usize,
+        [u, v]: [F316; 2],
+    ) -> Result<Outcome<PixelValue>, RequestError> {
+        let k = self.f316_consts()?;
+        let mut e = F316Engine::new(self.settings.arith);
+        Ok(outcome(pipeline::shaded(&mut e, k, (x, y), (u, v))).map(pixel_value::<F316Engine>))
+    }
+
+    /// Every Float316 operation of [`Reference::pixel_from_coords`], under
+    /// the same path as in [`Reference::trace_pixel`]. `ref-f316` only.
+    pub fn trace_pixel_from_coords(
+        &self,
+        x: usize,
+        y: usize,
+        [u, v]: [F316; 2],
+    ) -> Result<Trace<PixelValue>, RequestError> {
+        self.traced(None, |e, k| {
+            let r = e.frame(
+                || format!("pixel({x},{y})"),
+                |e| pipeline::shaded(e, k, (x, y), (u, v)),
+            );
+            outcome(r).map(pixel_value::<F316Engine>)
         })
     }
 

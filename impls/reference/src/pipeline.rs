@@ -224,6 +224,17 @@ pub fn counter<E: Engine>(e: &mut E, k: &Consts<E::N>, n: usize) -> R<E::N> {
     Ok(c)
 }
 
+/// The normalized coordinates `(u, v)` of the pixel with counters `xc`,
+/// `yc`: the arguments of [`shade`].
+#[inline]
+pub fn coords<E: Engine>(e: &mut E, k: &Consts<E::N>, (xc, yc): (E::N, E::N)) -> R<(E::N, E::N)> {
+    let u = e.sub(xc, k.half_width)?;
+    let u = e.div(u, k.pixel_scale)?;
+    let v = e.sub(yc, k.half_height)?;
+    let v = E::negate(e.div(v, k.pixel_scale)?);
+    Ok((u, v))
+}
+
 /// A pixel's clamped shade and its dithered bit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shaded<N> {
@@ -242,30 +253,39 @@ pub fn pixel<E: Engine>(
     e.frame(
         || format!("pixel({x},{y})"),
         |e| {
-            let u = e.sub(xc, k.half_width)?;
-            let u = e.div(u, k.pixel_scale)?;
-            let v = e.sub(yc, k.half_height)?;
-            let v = E::negate(e.div(v, k.pixel_scale)?);
-            let value = shade(e, k, u, v)?;
-            let value = if e.gt(value, k.one)? {
-                k.one
-            } else if E::sign_bit(value) {
-                k.zero
-            } else {
-                value
-            };
-            let dithered = e.frame(
-                || "dither".into(),
-                |e| e.dither_value(k, value, (y % 8) * 8 + (x % 8)),
-            )?;
-            let white = if k.dither_threshold_fault {
-                !e.gt(k.half, dithered)?
-            } else {
-                e.gt(dithered, k.half)?
-            };
-            Ok(Shaded { value, white })
+            let uv = coords(e, k, (xc, yc))?;
+            shaded(e, k, (x, y), uv)
         },
     )
+}
+
+/// Pixel (x, y) from its normalized coordinates `(u, v)`: shade, clamp,
+/// dither (the part of [`pixel`] after [`coords`]).
+#[inline]
+pub fn shaded<E: Engine>(
+    e: &mut E,
+    k: &Consts<E::N>,
+    (x, y): (usize, usize),
+    (u, v): (E::N, E::N),
+) -> R<Shaded<E::N>> {
+    let value = shade(e, k, u, v)?;
+    let value = if e.gt(value, k.one)? {
+        k.one
+    } else if E::sign_bit(value) {
+        k.zero
+    } else {
+        value
+    };
+    let dithered = e.frame(
+        || "dither".into(),
+        |e| e.dither_value(k, value, (y % 8) * 8 + (x % 8)),
+    )?;
+    let white = if k.dither_threshold_fault {
+        !e.gt(k.half, dithered)?
+    } else {
+        e.gt(dithered, k.half)?
+    };
+    Ok(Shaded { value, white })
 }
 
 /// Every pixel of the image, row by row, rows in parallel. `engine` makes
