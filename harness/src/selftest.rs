@@ -60,8 +60,11 @@ fn ref_variant(v: Variant) -> Result<Pair, ImplError> {
     ))
 }
 
+/// The control of a reference fault: the clean ref-f316 against the Jack
+/// program, an independent implementation (ref-f316 against itself could
+/// never raise a false alarm, so it would control nothing).
 fn ref_clean() -> Result<Pair, ImplError> {
-    Ok((open(ImplName::RefF316)?, open(ImplName::RefF316)?))
+    Ok((open(ImplName::RefF316)?, open(ImplName::Jack)?))
 }
 
 /// The catalogue of faults.
@@ -81,7 +84,8 @@ pub fn catalogue() -> Vec<Fault> {
             faulty: || Ok((impls::jack::open_web_profile()?, open(ImplName::RefF316)?)),
             clean: || Ok((open(ImplName::Jack)?, open(ImplName::RefF316)?)),
             set: "ops-small",
-            expect: Expect::Op(&[Op::Sqrt, Op::InvSqrt]),
+            // The first divergent vector of ops-small is a sqrt.
+            expect: Expect::Op(&[Op::Sqrt]),
         },
         Fault {
             name: "add-align-off-by-one",

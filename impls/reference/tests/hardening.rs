@@ -51,3 +51,19 @@ fn a_float316_answer_reports_its_own_value() {
     };
     assert_eq!(px.value.value, px.value.triple.unwrap().to_f64());
 }
+
+/// `gt` of operands with different signs, one of them not 0 or 1, is
+/// Jack's `(s = 0) & (bs = 1)`: false unless exactly 0 against 1
+/// (mutation testing found `&&` -> `||` uncaught).
+#[test]
+fn gt_with_a_non_canonical_sign_follows_jack() {
+    let gt = |a: F316, b: F316| reference::op(common::Op::Gt, &[a, b], Default::default()).unwrap();
+    let yes = Outcome::Value(common::OpValue::Bool(true));
+    let no = Outcome::Value(common::OpValue::Bool(false));
+    let one = |s| F316::new(s, 128, 8192);
+    assert_eq!(gt(one(0), one(1)), yes);
+    assert_eq!(gt(one(1), one(0)), no);
+    assert_eq!(gt(one(0), one(2)), no);
+    assert_eq!(gt(one(2), one(1)), no);
+    assert_eq!(gt(one(-1), one(1)), no);
+}
