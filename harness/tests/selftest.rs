@@ -3,7 +3,7 @@
 
 #[test]
 fn every_fault_is_detected_and_localized() {
-    let results = harness::selftest::run_all();
+    let results = harness::selftest::run_all(&harness::cast::Cast::builtin());
     let names: Vec<&str> = results.iter().map(|r| r.fault.as_str()).collect();
     assert_eq!(
         names,
@@ -33,7 +33,7 @@ fn each_fault_is_localized_to_its_own_operation() {
         ("dither-threshold", Some(Op::Gt)),
         ("f32-oracle", None),
     ];
-    let results = harness::selftest::run_all();
+    let results = harness::selftest::run_all(&harness::cast::Cast::builtin());
     for (name, op) in expected {
         let r = results.iter().find(|r| r.fault == name).unwrap();
         assert_eq!(r.localized_to, op, "{r}");
@@ -47,7 +47,7 @@ fn a_faulty_control_fails_the_fault() {
     let mut fault = harness::selftest::catalogue().remove(0);
     assert_eq!(fault.name, "sqrt-floor-div");
     fault.clean = fault.faulty;
-    let r = harness::selftest::run_fault(&fault);
+    let r = harness::selftest::run_fault(&harness::cast::Cast::builtin(), &fault);
     assert!(r.detected, "{r}");
     assert!(r.clean_diverged, "{r}");
     assert!(!r.passed, "{r}");
