@@ -13,9 +13,12 @@ pub use differential::f316_vs_jack;
 pub use jack_source::{jack_source, vm_source};
 pub use sets::{scene, vector_set};
 
+/// A target's property: panics when the input breaks it.
+pub type Check = fn(&[u8]);
+
 /// The targets by name, as `fuzz/fuzz_targets/NAME.rs` and the corpus
 /// folders `fuzz/corpus/NAME` call them.
-pub const TARGETS: [(&str, fn(&[u8])); 5] = [
+pub const TARGETS: [(&str, Check); 5] = [
     ("jack_source", jack_source),
     ("vm_source", vm_source),
     ("vector_set", vector_set),
