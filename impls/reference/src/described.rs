@@ -7,7 +7,7 @@ use crate::api::{RefImpl, Scalar, SdfValue, Trace};
 use crate::engine::{outcome, Engine, R};
 use crate::float::FloatEngine;
 use crate::float316::F316Engine;
-use crate::interp::{self, Machine, PrepareError, Prepared};
+use crate::interp::{self, Hoisted, Machine, PrepareError, Prepared};
 use crate::settings::{Arith, Settings};
 use crate::tracer::Tracer;
 use common::{Outcome, F316};
@@ -75,6 +75,9 @@ pub struct Described {
     implementation: RefImpl,
     arith: Arith,
     program: Arc<Program>,
+    /// The program without frames and with its constants hoisted, for
+    /// runs that record nothing.
+    fast: Arc<(Program, Hoisted)>,
     encoded: Encoded,
 }
 
@@ -119,7 +122,11 @@ fn scene_pixel<E: Engine>(r: R<(E::N, u8)>) -> Outcome<ScenePixel> {
     })
 }
 
-fn image_of<E: Engine>(engine: impl Fn() -> E + Sync, p: &Program, k: &Prepared<E::N>) -> SceneImage
+fn image_of<E: Engine>(
+    engine: impl Fn() -> E + Sync,
+    (p, hoisted): &(Program, Hoisted),
+    k: &Prepared<E::N>,
+) -> SceneImage
 where
     E::N: Send + Sync,
 {
@@ -128,7 +135,7 @@ where
         .into_par_iter()
         .flat_map_iter(|y| {
             let mut e = engine();
-            let mut m = Machine::new(p, k.zero);
+            let mut m = Machine::preloaded(p, k, hoisted);
             (0..w)
                 .map(|x| scene_pixel::<E>(pixel_of(&mut e, p, k, &mut m, (x, y))))
                 .collect::<Vec<_>>()
@@ -196,6 +203,7 @@ impl Described {
         Ok(Described {
             implementation,
             arith: settings.arith,
+            fast: Arc::new(interp::untraced(&program)),
             program: Arc::new(program),
             encoded,
         })
@@ -213,7 +221,7 @@ impl Described {
 
     /// The whole image, rows in parallel.
     pub fn render(&self) -> SceneImage {
-        let p = &self.program;
+        let p = &*self.fast;
         match &self.encoded {
             Encoded::F316(k) if self.arith == Arith::SPEC => image_of(F316Engine::spec, p, k),
             Encoded::F316(k) => image_of(|| F316Engine::new(self.arith), p, k),
@@ -224,15 +232,15 @@ impl Described {
 
     /// Pixel (x, y), x from the left, y from the top.
     pub fn pixel(&self, x: u32, y: u32) -> Outcome<ScenePixel> {
-        let p = &self.program;
+        let (p, hoisted) = &*self.fast;
         match &self.encoded {
             Encoded::F316(k) => {
-                let mut m = Machine::new(p, k.zero);
+                let mut m = Machine::preloaded(p, k, hoisted);
                 let mut e = F316Engine::new(self.arith);
                 scene_pixel::<F316Engine>(pixel_of(&mut e, p, k, &mut m, (x, y)))
             }
             Encoded::F64(k) => {
-                let mut m = Machine::new(p, k.zero);
+                let mut m = Machine::preloaded(p, k, hoisted);
                 scene_pixel::<FloatEngine<f64>>(pixel_of(
                     &mut FloatEngine::new(),
                     p,
@@ -242,7 +250,7 @@ impl Described {
                 ))
             }
             Encoded::F32(k) => {
-                let mut m = Machine::new(p, k.zero);
+                let mut m = Machine::preloaded(p, k, hoisted);
                 scene_pixel::<FloatEngine<f32>>(pixel_of(
                     &mut FloatEngine::new(),
                     p,

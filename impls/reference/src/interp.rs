@@ -68,6 +68,97 @@ impl<N: Copy> Prepared<N> {
     }
 }
 
+/// `p` for runs that record nothing: frames spliced into their blocks
+/// (they only name trace paths), and every constant whose register nothing
+/// else writes hoisted out of the statements into [`Hoisted`] preloads.
+pub fn untraced(p: &Program) -> (Program, Hoisted) {
+    let mut q = p.clone();
+    let mut hoisted = Vec::new();
+    for (fi, f) in q.functions.iter_mut().enumerate() {
+        let mut writes = vec![0u32; usize::from(f.scalars)];
+        count_writes(&f.body, &mut writes);
+        f.body = flatten(std::mem::take(&mut f.body), &writes, fi, &mut hoisted);
+    }
+    (q, Hoisted(hoisted))
+}
+
+/// Constants loaded once into a [`Machine`]: (function, register, index).
+#[derive(Clone, Debug, Default)]
+pub struct Hoisted(Vec<(usize, u16, u16)>);
+
+fn count_writes(block: &[Stmt], writes: &mut [u32]) {
+    for s in block {
+        let mut one = |r: u16, width: u16| {
+            for i in 0..width {
+                writes[usize::from(r + i)] += 1;
+            }
+        };
+        match s {
+            Stmt::Const { dst, .. }
+            | Stmt::Uniform { dst, .. }
+            | Stmt::Table { dst, .. }
+            | Stmt::Copy { dst, .. }
+            | Stmt::Unary { dst, .. }
+            | Stmt::Binary { dst, .. }
+            | Stmt::Dot { dst, .. }
+            | Stmt::Length { dst, .. }
+            | Stmt::Select { dst, .. } => one(*dst, 1),
+            Stmt::Vector { dst, .. } => one(*dst, 3),
+            Stmt::Call { results, .. } => results.iter().for_each(|&r| one(r, 1)),
+            Stmt::If {
+                then, otherwise, ..
+            } => {
+                count_writes(then, writes);
+                count_writes(otherwise, writes);
+            }
+            Stmt::Switch { cases, .. } => cases.iter().for_each(|c| count_writes(c, writes)),
+            Stmt::Loop { body, .. } | Stmt::Frame { body, .. } => count_writes(body, writes),
+            _ => {}
+        }
+    }
+    // A function's parameters are written by its callers.
+}
+
+fn flatten(
+    block: Vec<Stmt>,
+    writes: &[u32],
+    fi: usize,
+    hoisted: &mut Vec<(usize, u16, u16)>,
+) -> Vec<Stmt> {
+    let mut out = Vec::with_capacity(block.len());
+    for s in block {
+        match s {
+            Stmt::Frame { body, .. } => out.extend(flatten(body, writes, fi, hoisted)),
+            Stmt::Const { dst, index } if writes[usize::from(dst)] == 1 => {
+                hoisted.push((fi, dst, index))
+            }
+            Stmt::If {
+                cond,
+                then,
+                otherwise,
+            } => out.push(Stmt::If {
+                cond,
+                then: flatten(then, writes, fi, hoisted),
+                otherwise: flatten(otherwise, writes, fi, hoisted),
+            }),
+            Stmt::Switch { tag, cases } => out.push(Stmt::Switch {
+                tag,
+                cases: cases
+                    .into_iter()
+                    .map(|c| flatten(c, writes, fi, hoisted))
+                    .collect(),
+            }),
+            Stmt::Loop { count, body, .. } => out.push(Stmt::Loop {
+                count,
+                name: None,
+                body: flatten(body, writes, fi, hoisted),
+            }),
+            other => out.push(other),
+        }
+    }
+    out
+}
+
 /// The registers of every function (calls never recurse, so one window per
 /// function). Made once per thread and reused for every pixel.
 #[derive(Clone, Debug)]
@@ -83,6 +174,16 @@ struct Window<N> {
 }
 
 impl<N: Copy> Machine<N> {
+    /// Registers for the untraced form of a program, its hoisted constants
+    /// loaded.
+    pub fn preloaded(p: &Program, k: &Prepared<N>, hoisted: &Hoisted) -> Self {
+        let mut m = Machine::new(p, k.zero);
+        for &(f, r, i) in &hoisted.0 {
+            m.windows[f].s[usize::from(r)] = k.consts[usize::from(i)];
+        }
+        m
+    }
+
     /// Registers for every function of `p`, filled with `zero`.
     pub fn new(p: &Program, zero: N) -> Self {
         Machine {
@@ -316,13 +417,10 @@ fn exec<E: Engine>(
             }
             Stmt::Loop { count, name, body } => {
                 for i in 0..*count {
-                    let flow = e.frame(
-                        || match name {
-                            Some(n) => format!("{n} {i}"),
-                            None => format!("{i}"),
-                        },
-                        |e| exec(e, cx, m, f, body),
-                    )?;
+                    let flow = match name {
+                        Some(n) => e.frame(|| format!("{n} {i}"), |e| exec(e, cx, m, f, body))?,
+                        None => exec(e, cx, m, f, body)?,
+                    };
                     if flow == Flow::Break {
                         break;
                     }
