@@ -7,5 +7,6 @@ pub mod jack;
 pub mod localize;
 pub mod nightly;
 pub mod render;
+pub mod render_scene;
 pub mod selftest;
 pub mod vectors;

@@ -19,7 +19,8 @@ pub struct RenderArgs {
     /// Implementation: ref-f316, ref-f64, ref-f32, jack, gpu-f316, gpu-f32.
     #[arg(long = "impl", value_name = "IMPL")]
     pub implementation: String,
-    /// Scene parameters (JSON); the seed scene when left out.
+    /// A scene description (docs/scenes.md, e.g. vectors/scenes/rtdemo.json),
+    /// or the seed scene's parameters (JSON); the seed scene when left out.
     #[arg(long, value_name = "FILE")]
     pub scene: Option<PathBuf>,
     /// A precision variant or injected fault (repeatable), e.g. newton-3,
@@ -134,7 +135,7 @@ fn render_gpu(name: &str, scene: &Scene, settings: Settings) -> Result<Rendered>
 /// `jack`: the Jack program on the emulator, every pixel through its entry
 /// point `Image.pixel` from one initialised snapshot, in parallel. The Jack
 /// sources hold the seed scene and the spec's settings, nothing else.
-fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
+pub(crate) fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
     require_seed_scene("jack", scene, settings)?;
     let jack = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
     let values: Vec<Outcome<PixelValue>> = crate::impls::jack::render_with_bar(&jack)?
@@ -194,14 +195,23 @@ pub fn write_png(path: &Path, white: &[bool]) -> Result<()> {
 
 /// Render an image.
 pub fn run(args: RenderArgs) -> Result<ExitCode> {
-    let scene = match &args.scene {
-        Some(path) => Scene::from_file(path)?,
-        None => Scene::default(),
-    };
     let settings = args
         .variants
         .iter()
         .fold(Settings::default(), |s, v| v.apply(s));
+    if let Some(path) = &args.scene {
+        if scene::is_description(&scene::read(path)?) {
+            let described = scene::load(path)?;
+            let name = &args.implementation;
+            let image = super::render_scene::render(name, &described, path, settings)?;
+            super::render_scene::write(name, &described, &image, &args.out, args.values.as_deref())?;
+            return Ok(ExitCode::SUCCESS);
+        }
+    }
+    let scene = match &args.scene {
+        Some(path) => Scene::from_file(path)?,
+        None => Scene::default(),
+    };
     let rendered = render_image(&args.implementation, &scene, settings)?;
     write_png(&args.out, &rendered.white)?;
     if let Some(path) = &args.values {

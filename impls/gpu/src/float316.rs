@@ -27,17 +27,17 @@ fn op_code(op: Op) -> u32 {
         .expect("Op::ALL lists every op") as u32
 }
 
-fn push(words: &mut Vec<u32>, v: F316) {
+pub(crate) fn push(words: &mut Vec<u32>, v: F316) {
     words.extend([v.s, v.e, v.m].map(|field| field as i32 as u32));
 }
 
 /// A triple from three output words (each a sign-extended Jack word).
-fn triple(words: &[u32]) -> F316 {
+pub(crate) fn triple(words: &[u32]) -> F316 {
     F316::new(words[0] as i16, words[1] as i16, words[2] as i16)
 }
 
 /// Decode a status word (`kind | code << 4`, see f316.wgsl) around `value`.
-fn outcome<T>(status: u32, value: impl FnOnce() -> T) -> Outcome<T> {
+pub(crate) fn outcome<T>(status: u32, value: impl FnOnce() -> T) -> Outcome<T> {
     let status = status as i32;
     match status & 15 {
         0 => Outcome::Value(value()),

@@ -9,6 +9,7 @@
 use crate::context::{lock, Gpu, Health};
 use crate::error::GpuError;
 use crate::image::bayer_wgsl;
+use std::borrow::Cow;
 use std::sync::{mpsc, Mutex};
 
 /// Invocations per workgroup; equals `WG` in shaders/io.wgsl.
@@ -25,8 +26,9 @@ const IO_WGSL: &str = include_str!("shaders/io.wgsl");
 pub(crate) struct KernelSpec {
     /// A name for errors and debuggers.
     pub label: &'static str,
-    /// The kernel's WGSL, without the prelude (prepended here).
-    pub source: &'static str,
+    /// The kernel's WGSL, without the prelude (prepended here): written by
+    /// hand, or generated from a scene.
+    pub source: Cow<'static, str>,
     /// The entry point.
     pub entry: &'static str,
     /// Input words per item.
@@ -47,7 +49,7 @@ impl KernelSpec {
     ) -> KernelSpec {
         KernelSpec {
             label,
-            source,
+            source: Cow::Borrowed(source),
             entry,
             in_words,
             out_words,
@@ -173,7 +175,7 @@ impl Kernel {
             label: spec.label,
             in_words: spec.in_words,
             out_words: spec.out_words,
-            pipeline: compile(device, health, layout, spec.label, spec.source, spec.entry)?,
+            pipeline: compile(device, health, layout, spec.label, &spec.source, spec.entry)?,
             buffers: Mutex::new(None),
         })
     }

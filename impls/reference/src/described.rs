@@ -155,9 +155,12 @@ fn sdf_of<E: Engine>(
     k: &Prepared<E::N>,
     q: [F316; 3],
 ) -> Outcome<SdfValue> {
-    let args = q.map(E::from_triple);
-    let mut m = Machine::new(p, k.zero);
-    outcome(interp::run(e, p, k, &mut m, p.sdf, &args, 0)).map(|r| SdfValue {
+    let run = |e: &mut E| {
+        let args = [E::from_triple(q[0])?, E::from_triple(q[1])?, E::from_triple(q[2])?];
+        let mut m = Machine::new(p, k.zero);
+        interp::run(e, p, k, &mut m, p.sdf, &args, 0)
+    };
+    outcome(run(e)).map(|r| SdfValue {
         sd: scalar::<E>(r.results.get(0)),
         col: scalar::<E>(r.results.get(1)),
     })

@@ -317,6 +317,21 @@ impl Program {
         Ok(())
     }
 
+    /// The program with no names: frames spliced into their blocks, loops
+    /// unnamed, constants without origins. Two scenes whose programs are
+    /// equal this way compute the same thing.
+    pub fn without_names(&self) -> Program {
+        let mut p = self.clone();
+        for c in &mut p.consts {
+            c.origin.clear();
+        }
+        for f in &mut p.functions {
+            f.name.clear();
+            f.body = unnamed(std::mem::take(&mut f.body));
+        }
+        p
+    }
+
     /// Every statement of every function, depth first.
     pub fn statements(&self) -> Vec<&Stmt> {
         let mut out = Vec::new();
@@ -325,6 +340,35 @@ impl Program {
         }
         out
     }
+}
+
+fn unnamed(block: Vec<Stmt>) -> Vec<Stmt> {
+    let mut out = Vec::with_capacity(block.len());
+    for s in block {
+        match s {
+            Stmt::Frame { body, .. } => out.extend(unnamed(body)),
+            Stmt::If {
+                cond,
+                then,
+                otherwise,
+            } => out.push(Stmt::If {
+                cond,
+                then: unnamed(then),
+                otherwise: unnamed(otherwise),
+            }),
+            Stmt::Switch { tag, cases } => out.push(Stmt::Switch {
+                tag,
+                cases: cases.into_iter().map(unnamed).collect(),
+            }),
+            Stmt::Loop { count, body, .. } => out.push(Stmt::Loop {
+                count,
+                name: None,
+                body: unnamed(body),
+            }),
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 fn walk<'a>(block: &'a [Stmt], out: &mut Vec<&'a Stmt>) {

@@ -17,7 +17,6 @@ pub use check::Checked;
 pub use ir::{Formulation, Program};
 pub use lower::lower;
 
-use std::io::Read;
 use std::path::Path;
 
 /// The largest scene file read, in bytes.
@@ -76,27 +75,31 @@ fn strip_position(message: &str) -> String {
 /// most [`MAX_FILE_BYTES`] (a FIFO or a device is refused, not read).
 pub fn load(path: &Path) -> Result<Checked, SceneError> {
     let file = path.display().to_string();
-    let read = |message: String| SceneError::Read {
-        file: file.clone(),
-        message,
-    };
-    let meta = std::fs::metadata(path).map_err(|e| read(e.to_string()))?;
-    if !meta.is_file() {
-        return Err(read("not a regular file".into()));
-    }
-    let mut text = String::new();
-    std::fs::File::open(path)
-        .map_err(|e| read(e.to_string()))?
-        .take(MAX_FILE_BYTES + 1)
-        .read_to_string(&mut text)
-        .map_err(|e| read(e.to_string()))?;
-    if text.len() as u64 > MAX_FILE_BYTES {
-        return Err(read(format!("larger than {MAX_FILE_BYTES} bytes")));
-    }
+    let text = read(path)?;
     parse(&text).map_err(|error| SceneError::File {
         file,
         error: Box::new(error),
     })
+}
+
+/// The text of a scene file (see [`load`]).
+pub fn read(path: &Path) -> Result<String, SceneError> {
+    common::input::read_text_limited(path, MAX_FILE_BYTES).map_err(|e| SceneError::Read {
+        file: path.display().to_string(),
+        message: e.to_string(),
+    })
+}
+
+/// The seed scene's description (`vectors/scenes/seed.json`).
+pub const SEED: &str = include_str!("../../../vectors/scenes/seed.json");
+
+/// Whether `scene` computes exactly what the seed scene computes (its
+/// Float316 program equals the seed's, names aside): the scene the
+/// hand-written implementations hold.
+pub fn is_seed(scene: &Checked) -> bool {
+    let seed = parse(SEED).expect("the shipped seed scene is valid");
+    let form = Formulation::Float316;
+    lower(scene, form).without_names() == lower(&seed, form).without_names()
 }
 
 /// Whether `text` is a scene description (it has a `version` field at the

@@ -1,0 +1,118 @@
+//! `harness render --scene FILE` for a scene description (docs/scenes.md):
+//! the reference implementations and the GPU kernels are made from the
+//! description; the hand-written Jack program answers the seed scene only.
+
+use super::render::{render_jack, write_atomically};
+use anyhow::{bail, Context, Result};
+use common::Outcome;
+use reference::{Described, RefImpl, Scalar, SceneImage, ScenePixel, Settings};
+use serde::Serialize;
+use std::path::Path;
+
+/// The `--values` file of a described scene.
+#[derive(Serialize)]
+struct ValuesFile<'a> {
+    implementation: &'a str,
+    scene: &'a str,
+    width: usize,
+    height: usize,
+    levels: u8,
+    /// Row by row.
+    pixels: &'a [Outcome<ScenePixel>],
+}
+
+/// Render `scene` (read from `file`) with the implementation `name`.
+pub fn render(name: &str, scene: &scene::Checked, file: &Path, settings: Settings) -> Result<SceneImage> {
+    if let Ok(imp) = name.parse::<RefImpl>() {
+        return Ok(Described::new(imp, scene, settings)?.render());
+    }
+    match name {
+        "gpu-f316" | "gpu-f32" => {
+            if settings != Settings::default() {
+                bail!("{name} has no variants (no --variant)");
+            }
+            let imp = if name == "gpu-f316" {
+                RefImpl::F316
+            } else {
+                RefImpl::F32
+            };
+            let program = Described::new(imp, scene, settings)?.program().clone();
+            let gpu = gpu::Gpu::new()?;
+            let kernel = gpu.scene_kernel(&program)?;
+            let pixels = kernel
+                .render(&gpu)?
+                .into_iter()
+                .map(|o| {
+                    o.map(|p| ScenePixel {
+                        value: Scalar {
+                            value: p.value.value,
+                            triple: p.value.triple,
+                        },
+                        level: p.level,
+                    })
+                })
+                .collect();
+            Ok(SceneImage {
+                width: program.pixels.width as usize,
+                height: program.pixels.height as usize,
+                levels: program.pixels.levels,
+                pixels,
+            })
+        }
+        "jack" => {
+            if !scene::is_seed(scene) {
+                bail!(
+                    "jack: the hand-written Jack program renders the seed scene only, and {} (`{}`) is another scene; a Jack program generated from a description does not exist yet",
+                    file.display(),
+                    scene.description.name
+                );
+            }
+            let rendered = render_jack(&reference::Scene::default(), settings)?;
+            Ok(SceneImage {
+                width: common::image_consts::WIDTH,
+                height: common::image_consts::HEIGHT,
+                levels: 2,
+                pixels: rendered
+                    .values
+                    .into_iter()
+                    .map(|o| {
+                        o.map(|p| ScenePixel {
+                            value: p.value,
+                            level: u8::from(p.white),
+                        })
+                    })
+                    .collect(),
+            })
+        }
+        _ => bail!(
+            "unknown implementation `{name}` (expected ref-f316, ref-f64, ref-f32, jack, gpu-f316 or gpu-f32)"
+        ),
+    }
+}
+
+/// Write the image as an 8-bit grey PNG, and its values when asked.
+pub fn write(name: &str, scene: &scene::Checked, image: &SceneImage, out: &Path, values: Option<&Path>) -> Result<()> {
+    let img = image::GrayImage::from_raw(image.width as u32, image.height as u32, image.gray8())
+        .context("the image has the wrong number of pixels")?;
+    write_atomically(out, |tmp| {
+        img.save_with_format(tmp, image::ImageFormat::Png)
+            .with_context(|| format!("cannot write {}", tmp.display()))
+    })?;
+    if let Some(path) = values {
+        let file = ValuesFile {
+            implementation: name,
+            scene: &scene.description.name,
+            width: image.width,
+            height: image.height,
+            levels: image.levels,
+            pixels: &image.pixels,
+        };
+        write_atomically(path, |tmp| {
+            let f = std::fs::File::create(tmp)
+                .with_context(|| format!("cannot create {}", tmp.display()))?;
+            serde_json::to_writer(std::io::BufWriter::new(f), &file)
+                .with_context(|| format!("cannot write {}", tmp.display()))
+        })?;
+    }
+    Ok(())
+}
