@@ -2,12 +2,33 @@
 //! the reference implementations and the GPU kernels are made from the
 //! description; the hand-written Jack program answers the seed scene only.
 
-use super::render::{render_jack, write_atomically};
+use super::render::{write_atomically, RenderArgs};
 use anyhow::{bail, Context, Result};
 use common::Outcome;
 use reference::{Described, RefImpl, Scalar, SceneImage, ScenePixel, Settings};
 use serde::Serialize;
 use std::path::Path;
+use std::process::ExitCode;
+
+/// Render the description `scene` (read from `file`) as `args` ask.
+pub fn run(args: &RenderArgs, scene: &scene::Checked, file: &Path) -> Result<ExitCode> {
+    let mut settings = Settings::default();
+    for v in &args.variants {
+        let variant: reference::Variant = v.parse()?;
+        settings = variant.apply(settings);
+    }
+    let (name, variants) = match args.implementation.split_once('+') {
+        Some((n, v)) => (n, Some(v)),
+        None => (args.implementation.as_str(), None),
+    };
+    for v in variants.into_iter().flat_map(|v| v.split('+')) {
+        let variant: reference::Variant = v.parse()?;
+        settings = variant.apply(settings);
+    }
+    let image = render(name, scene, file, settings)?;
+    write(&args.implementation, scene, &image, &args.out, args.values.as_deref())?;
+    Ok(ExitCode::SUCCESS)
+}
 
 /// The `--values` file of a described scene.
 #[derive(Serialize)]
@@ -59,31 +80,11 @@ pub fn render(name: &str, scene: &scene::Checked, file: &Path, settings: Setting
                 pixels,
             })
         }
-        "jack" => {
-            if !scene::is_seed(scene) {
-                bail!(
-                    "jack: the hand-written Jack program renders the seed scene only, and {} (`{}`) is another scene; a Jack program generated from a description does not exist yet",
-                    file.display(),
-                    scene.description.name
-                );
-            }
-            let rendered = render_jack(&reference::Scene::default(), settings)?;
-            Ok(SceneImage {
-                width: common::image_consts::WIDTH,
-                height: common::image_consts::HEIGHT,
-                levels: 2,
-                pixels: rendered
-                    .values
-                    .into_iter()
-                    .map(|o| {
-                        o.map(|p| ScenePixel {
-                            value: p.value,
-                            level: u8::from(p.white),
-                        })
-                    })
-                    .collect(),
-            })
-        }
+        "jack" => bail!(
+            "jack: the hand-written Jack program renders the seed scene only, and {} (`{}`) is another scene; a Jack program generated from a description does not exist yet",
+            file.display(),
+            scene.description.name
+        ),
         _ => bail!(
             "unknown implementation `{name}` (expected ref-f316, ref-f64, ref-f32, jack, gpu-f316 or gpu-f32)"
         ),
