@@ -112,7 +112,10 @@ pub fn run(args: RenderArgs, cast: &Cast) -> Result<ExitCode> {
                 return super::render_scene::run(&args, &described, path);
             }
             // The hand-written Jack program is the seed scene.
-            let args = RenderArgs { scene: None, ..args };
+            let args = RenderArgs {
+                scene: None,
+                ..args
+            };
             return run(args, cast);
         }
     }

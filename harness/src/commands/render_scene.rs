@@ -26,7 +26,13 @@ pub fn run(args: &RenderArgs, scene: &scene::Checked, file: &Path) -> Result<Exi
         settings = variant.apply(settings);
     }
     let image = render(name, scene, file, settings)?;
-    write(&args.implementation, scene, &image, &args.out, args.values.as_deref())?;
+    write(
+        &args.implementation,
+        scene,
+        &image,
+        &args.out,
+        args.values.as_deref(),
+    )?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -43,7 +49,12 @@ struct ValuesFile<'a> {
 }
 
 /// Render `scene` (read from `file`) with the implementation `name`.
-pub fn render(name: &str, scene: &scene::Checked, file: &Path, settings: Settings) -> Result<SceneImage> {
+pub fn render(
+    name: &str,
+    scene: &scene::Checked,
+    file: &Path,
+    settings: Settings,
+) -> Result<SceneImage> {
     if let Ok(imp) = name.parse::<RefImpl>() {
         return Ok(Described::new(imp, scene, settings)?.render());
     }
@@ -92,7 +103,13 @@ pub fn render(name: &str, scene: &scene::Checked, file: &Path, settings: Setting
 }
 
 /// Write the image as an 8-bit grey PNG, and its values when asked.
-pub fn write(name: &str, scene: &scene::Checked, image: &SceneImage, out: &Path, values: Option<&Path>) -> Result<()> {
+pub fn write(
+    name: &str,
+    scene: &scene::Checked,
+    image: &SceneImage,
+    out: &Path,
+    values: Option<&Path>,
+) -> Result<()> {
     let img = image::GrayImage::from_raw(image.width as u32, image.height as u32, image.gray8())
         .context("the image has the wrong number of pixels")?;
     write_atomically(out, |tmp| {

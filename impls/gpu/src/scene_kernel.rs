@@ -90,7 +90,11 @@ impl SceneKernel {
     }
 
     /// Pixels `(x, y)` of the scene's image.
-    pub fn pixels(&self, gpu: &Gpu, pixels: &[(u32, u32)]) -> Result<Vec<Outcome<GpuPixel>>, GpuError> {
+    pub fn pixels(
+        &self,
+        gpu: &Gpu,
+        pixels: &[(u32, u32)],
+    ) -> Result<Vec<Outcome<GpuPixel>>, GpuError> {
         let mut words = Vec::with_capacity(2 * pixels.len());
         for &(x, y) in pixels {
             if x >= self.width || y >= self.height {
@@ -137,7 +141,11 @@ impl SceneKernel {
 
     /// The scene's (sd, col) at Float316 points (f32 kernels take each
     /// triple's value rounded to f32).
-    pub fn sdf(&self, gpu: &Gpu, points: &[[F316; 3]]) -> Result<Vec<Outcome<(GpuNum, GpuNum)>>, GpuError> {
+    pub fn sdf(
+        &self,
+        gpu: &Gpu,
+        points: &[[F316; 3]],
+    ) -> Result<Vec<Outcome<(GpuNum, GpuNum)>>, GpuError> {
         let form = self.formulation;
         let mut words = Vec::new();
         for p in points {

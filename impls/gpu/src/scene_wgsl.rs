@@ -117,10 +117,18 @@ impl Target {
             (Binary::Sub, false) => format!("({a} - {b})"),
             (Binary::Mul, false) => format!("({a} * {b})"),
             (Binary::Div, false) => format!("({a} / {b})"),
-            (Binary::Max, _) => format!("select({b}, {a}, {})", gt(a, b)),
-            (Binary::Min, _) => format!("select({b}, {a}, {})", gt(b, a)),
+            (Binary::Max, _) => format!("{}({b}, {a}, {})", self.select(), gt(a, b)),
+            (Binary::Min, _) => format!("{}({b}, {a}, {})", self.select(), gt(b, a)),
             (Binary::Pow, false) => format!("pow({a}, {b})"),
             (Binary::Pow, true) => unreachable!("Float316 programs have no pow"),
+        }
+    }
+
+    /// WGSL's `select` for this number type.
+    fn select(self) -> &'static str {
+        match self.0 {
+            Formulation::Float316 => "select316",
+            Formulation::Ieee => "select",
         }
     }
 
@@ -195,9 +203,7 @@ impl Emitter<'_> {
             Stmt::Uniform { dst, index } => self.line(&format!("r{dst} = U[{index}];")),
             Stmt::Table { dst, table } => self.line(&format!("r{dst} = T{table}[PIX];")),
             Stmt::Copy { dst, src } => self.line(&format!("r{dst} = r{src};")),
-            Stmt::Unary { dst, op, a } => {
-                self.line(&format!("r{dst} = {};", t.unary(*op, &r(a))))
-            }
+            Stmt::Unary { dst, op, a } => self.line(&format!("r{dst} = {};", t.unary(*op, &r(a)))),
             Stmt::Binary { dst, op, a, b } => {
                 self.line(&format!("r{dst} = {};", t.binary(*op, &r(a), &r(b))))
             }
@@ -214,12 +220,11 @@ impl Emitter<'_> {
                     dst + 2
                 ));
             }
-            Stmt::Dot { dst, a, b } => {
-                self.line(&format!("r{dst} = {};", t.dot(&t.vector(*a), &t.vector(*b))))
-            }
-            Stmt::Length { dst, a } => {
-                self.line(&format!("r{dst} = {};", t.length(&t.vector(*a))))
-            }
+            Stmt::Dot { dst, a, b } => self.line(&format!(
+                "r{dst} = {};",
+                t.dot(&t.vector(*a), &t.vector(*b))
+            )),
+            Stmt::Length { dst, a } => self.line(&format!("r{dst} = {};", t.length(&t.vector(*a)))),
             Stmt::Gt { dst, a, b } => {
                 let e = match t.0 {
                     Formulation::Float316 => format!("gt(r{a}, r{b})"),
@@ -235,12 +240,10 @@ impl Emitter<'_> {
                 Logic::Not => format!("b{dst} = !b{a};"),
             }),
             Stmt::Select { dst, cond, a, b } => {
-                self.line(&format!("r{dst} = select(r{b}, r{a}, b{cond});"))
+                self.line(&format!("r{dst} = {}(r{b}, r{a}, b{cond});", t.select()))
             }
             Stmt::SetTag { dst, value } => self.line(&format!("t{dst} = {value}u;")),
-            Stmt::TagIs { dst, tag, value } => {
-                self.line(&format!("b{dst} = t{tag} == {value}u;"))
-            }
+            Stmt::TagIs { dst, tag, value } => self.line(&format!("b{dst} = t{tag} == {value}u;")),
             Stmt::SelectTag { dst, cond, a, b } => {
                 self.line(&format!("t{dst} = select(t{b}, t{a}, b{cond});"))
             }
@@ -315,7 +318,12 @@ fn function(out: &mut String, t: Target, p: &Program, i: usize, f: &Function) {
     }
     let _ = writeln!(out, "    pad: u32,\n}}\n");
     let params: Vec<String> = (0..f.params.len()).map(|k| format!("a{k}: {n}")).collect();
-    let _ = writeln!(out, "// {}\nfn s_f{i}({}) -> R{i} {{", f.name, params.join(", "));
+    let _ = writeln!(
+        out,
+        "// {}\nfn s_f{i}({}) -> R{i} {{",
+        f.name,
+        params.join(", ")
+    );
     for r in 0..f.scalars {
         let _ = writeln!(out, "    var r{r}: {n};");
     }
@@ -345,7 +353,13 @@ fn function(out: &mut String, t: Target, p: &Program, i: usize, f: &Function) {
 fn constants(out: &mut String, t: Target, p: &Program) {
     let n = t.num();
     for (i, c) in p.consts.iter().enumerate() {
-        let _ = writeln!(out, "const K{i}: {n} = {}; // {} = {}", t.literal(c.value), c.origin, c.value);
+        let _ = writeln!(
+            out,
+            "const K{i}: {n} = {}; // {} = {}",
+            t.literal(c.value),
+            c.origin,
+            c.value
+        );
     }
     for (i, table) in p.tables.iter().enumerate() {
         let items: Vec<String> = table.iter().map(|&v| t.literal(v)).collect();
@@ -582,7 +596,10 @@ mod tests {
     use super::*;
 
     fn program(name: &str, form: Formulation) -> Program {
-        let path = format!("{}/../../vectors/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/../../vectors/scenes/{name}.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
         let c = scene::load(std::path::Path::new(&path)).unwrap();
         scene::lower(&c, form)
     }
@@ -591,15 +608,33 @@ mod tests {
     #[test]
     fn only_what_the_scene_uses() {
         let seed = generate(&program("seed", Formulation::Float316));
-        for used in ["fn add(", "fn mul(", "fn inv_sqrt(", "fn floor316(", "fn mod2(", "fn quarter("] {
+        for used in [
+            "fn add(",
+            "fn mul(",
+            "fn inv_sqrt(",
+            "fn floor316(",
+            "fn mod2(",
+            "fn quarter(",
+        ] {
             assert!(seed.contains(used), "{used}");
         }
         // The hand-written seed scene and the op kernel are not carried.
-        for unused in ["fn scene(", "fn march(", "fn apply(", "fn torus", "SPHERE_CENTRE"] {
+        for unused in [
+            "fn scene(",
+            "fn march(",
+            "fn apply(",
+            "fn torus",
+            "SPHERE_CENTRE",
+        ] {
             assert!(!seed.contains(unused), "{unused}");
         }
         let rtdemo = generate(&program("rtdemo", Formulation::Float316));
-        for unused in ["fn inv_sqrt(", "fn vnormalize(", "fn quarter(", "fn double316("] {
+        for unused in [
+            "fn inv_sqrt(",
+            "fn vnormalize(",
+            "fn quarter(",
+            "fn double316(",
+        ] {
             assert!(!rtdemo.contains(unused), "{unused}");
         }
         let f32 = generate(&program("toon", Formulation::Ieee));

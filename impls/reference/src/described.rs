@@ -156,7 +156,11 @@ fn sdf_of<E: Engine>(
     q: [F316; 3],
 ) -> Outcome<SdfValue> {
     let run = |e: &mut E| {
-        let args = [E::from_triple(q[0])?, E::from_triple(q[1])?, E::from_triple(q[2])?];
+        let args = [
+            E::from_triple(q[0])?,
+            E::from_triple(q[1])?,
+            E::from_triple(q[2])?,
+        ];
         let mut m = Machine::new(p, k.zero);
         interp::run(e, p, k, &mut m, p.sdf, &args, 0)
     };

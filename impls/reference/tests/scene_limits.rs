@@ -5,7 +5,8 @@
 use reference::{RefImpl, Reference, Scene, Settings};
 
 fn load(name: &str, text: &str) -> Result<Scene, String> {
-    let path = std::env::temp_dir().join(format!("scene-limits-{}-{name}.json", std::process::id()));
+    let path =
+        std::env::temp_dir().join(format!("scene-limits-{}-{name}.json", std::process::id()));
     std::fs::write(&path, text).unwrap();
     let r = Scene::from_file(&path).map_err(|e| e.to_string());
     std::fs::remove_file(&path).unwrap();
@@ -15,7 +16,10 @@ fn load(name: &str, text: &str) -> Result<Scene, String> {
 #[test]
 fn unbounded_marches_are_refused() {
     let e = load("a", r#"{"march":{"precision":0.0,"view_steps":100000}}"#).unwrap_err();
-    assert!(e.contains("march.view_steps") && e.contains("1..=1024"), "{e}");
+    assert!(
+        e.contains("march.view_steps") && e.contains("1..=1024"),
+        "{e}"
+    );
     let e = load("b", r#"{"march":{"view_steps":4294967295}}"#).unwrap_err();
     assert!(e.contains("march.view_steps"), "{e}");
     let e = load("c", r#"{"march":{"shadow_steps":0}}"#).unwrap_err();

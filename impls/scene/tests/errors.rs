@@ -5,7 +5,10 @@
 use serde_json::{json, Value};
 
 fn seed() -> Value {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../vectors/scenes/seed.json");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../vectors/scenes/seed.json"
+    );
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
@@ -38,7 +41,8 @@ fn the_seed_scene_is_accepted() {
 
 #[test]
 fn unknown_shape() {
-    let e = error(|v| v["nodes"]["sphere"] = json!({"spere": {"radius": 1.0, "material": "matte"}}));
+    let e =
+        error(|v| v["nodes"]["sphere"] = json!({"spere": {"radius": 1.0, "material": "matte"}}));
     expect(&e, &["nodes.sphere", "unknown variant `spere`", "line "]);
 }
 
@@ -57,19 +61,31 @@ fn unknown_parameter() {
 #[test]
 fn negative_radius() {
     let e = error(|v| v["nodes"]["sphere"]["sphere"]["radius"] = json!(-1.0));
-    expect(&e, &["nodes.sphere.sphere.radius", "must be positive, is -1"]);
+    expect(
+        &e,
+        &["nodes.sphere.sphere.radius", "must be positive, is -1"],
+    );
 }
 
 #[test]
 fn cycle() {
     let e = error(|v| v["nodes"]["objects"]["union"]["children"] = json!(["sphere", "scene"]));
-    expect(&e, &["nodes.objects.union.children[1]", "a cycle: scene -> objects -> scene"]);
+    expect(
+        &e,
+        &[
+            "nodes.objects.union.children[1]",
+            "a cycle: scene -> objects -> scene",
+        ],
+    );
 }
 
 #[test]
 fn combination_without_children() {
     let e = error(|v| v["nodes"]["objects"]["union"]["children"] = json!([]));
-    expect(&e, &["nodes.objects.union.children", "at least 1 children, has 0"]);
+    expect(
+        &e,
+        &["nodes.objects.union.children", "at least 1 children, has 0"],
+    );
     let e = error(|v| v["nodes"]["objects"] = json!({"subtraction": {"children": ["sphere"]}}));
     expect(&e, &["nodes.objects.subtraction.children", "exactly 2"]);
 }
@@ -77,7 +93,10 @@ fn combination_without_children() {
 #[test]
 fn missing_node_and_material() {
     let e = error(|v| v["nodes"]["objects"]["union"]["children"][0] = json!("ball"));
-    expect(&e, &["nodes.objects.union.children[0]", "no node named `ball`"]);
+    expect(
+        &e,
+        &["nodes.objects.union.children[0]", "no node named `ball`"],
+    );
     let e = error(|v| v["nodes"]["torus"]["torus"]["material"] = json!("gold"));
     expect(&e, &["nodes.torus.material", "no material named `gold`"]);
     let e = error(|v| v["root"] = json!("world"));
@@ -99,7 +118,10 @@ fn every_run_is_bounded() {
     let e = error(|v| v["method"]["sphere_trace"]["steps"] = json!(4294967295u32));
     expect(&e, &["method.sphere_trace.steps"]);
     let e = error(|v| v["method"]["sphere_trace"]["hit_distance"] = json!(0.0));
-    expect(&e, &["method.sphere_trace.hit_distance", "must be positive"]);
+    expect(
+        &e,
+        &["method.sphere_trace.hit_distance", "must be positive"],
+    );
     let e = error(|v| v["shadow"]["steps"] = json!(0));
     expect(&e, &["shadow.steps"]);
     let e = error(|v| v["image"]["size"] = json!([100000, 2]));

@@ -12,3 +12,11 @@ fn clamp01_316(d: F) -> F {
     }
     return d;
 }
+
+// `c ? t : f` for triples (WGSL's select takes scalars and vectors only).
+fn select316(f: F, t: F, c: bool) -> F {
+    if (c) {
+        return t;
+    }
+    return f;
+}

@@ -28,9 +28,8 @@ fn points() -> Vec<[F316; 3]> {
     let mut rng = Rng::new(17);
     (0..512)
         .map(|_| {
-            [(); 3].map(|_| {
-                F316::from_f64_truncating(rng.unit() * 8.0 - 4.0).expect("a small value")
-            })
+            [(); 3]
+                .map(|_| F316::from_f64_truncating(rng.unit() * 8.0 - 4.0).expect("a small value"))
         })
         .collect()
 }
@@ -41,7 +40,9 @@ fn check(path: &str) -> usize {
     let Some(gpu) = gpu() else { return 0 };
     let c = load(path);
     let f316 = Described::new(RefImpl::F316, &c, Settings::default()).unwrap();
-    let kernel = gpu.scene_kernel(f316.program()).expect("the generated kernel compiles");
+    let kernel = gpu
+        .scene_kernel(f316.program())
+        .expect("the generated kernel compiles");
     let theirs = kernel.render(gpu).unwrap();
     let ours = f316.render();
     let bad: Vec<usize> = (0..ours.pixels.len())
