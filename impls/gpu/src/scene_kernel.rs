@@ -4,8 +4,8 @@
 
 use crate::context::Gpu;
 use crate::error::GpuError;
-use crate::float316::{outcome, push, triple};
-use crate::kernel::{Kernel, KernelSpec};
+use crate::float316::{outcome, push_triple, triple};
+use crate::kernel::{compile, Kernel};
 use crate::scene_wgsl::{generate, strides};
 use common::{Outcome, F316};
 use scene::{Formulation, Program};
@@ -61,20 +61,23 @@ impl Gpu {
             Formulation::Float316 => "scene f316",
             Formulation::Ieee => "scene f32",
         };
-        let spec = |entry, i, o| KernelSpec {
-            label,
-            source: source.clone().into(),
-            entry,
-            in_words: i,
-            out_words: o,
+        let dev = &self.dev;
+        let kernel = |entry, in_words, out_words| -> Result<Kernel, GpuError> {
+            let pipeline = compile(&dev.device, &dev.health, &dev.layout, label, &source, entry)?;
+            Ok(Kernel::from_pipeline(
+                label.to_string(),
+                pipeline,
+                in_words,
+                out_words,
+                None,
+            ))
         };
-        let compile = |s: &KernelSpec| Kernel::new(&self.device, &self.health, &self.layout, s);
         let kernel = SceneKernel {
             formulation: program.formulation,
             width: program.pixels.width,
             height: program.pixels.height,
-            pixels: compile(&spec("pixels_main", pin, pout))?,
-            sdf: compile(&spec("sdf_main", sin, sout))?,
+            pixels: kernel("pixels_main", pin, pout)?,
+            sdf: kernel("sdf_main", sin, sout)?,
             source,
         };
         // Lavapipe compiles machine code at the first dispatch: set-up.
@@ -107,7 +110,7 @@ impl SceneKernel {
             }
             words.extend([x, y]);
         }
-        let out = self.pixels.run(gpu, &words)?;
+        let out = self.pixels.run(&gpu.dev, &words)?;
         let form = self.formulation;
         Ok(match form {
             Formulation::Float316 => out
@@ -151,12 +154,12 @@ impl SceneKernel {
         for p in points {
             for &c in p {
                 match form {
-                    Formulation::Float316 => push(&mut words, c),
+                    Formulation::Float316 => push_triple(&mut words, c),
                     Formulation::Ieee => words.push((c.to_f64() as f32).to_bits()),
                 }
             }
         }
-        let out = self.sdf.run(gpu, &words)?;
+        let out = self.sdf.run(&gpu.dev, &words)?;
         Ok(match form {
             Formulation::Float316 => out
                 .chunks(7)

@@ -4,7 +4,7 @@
 
 use crate::progress;
 use anyhow::Context;
-use hack_vm::{Config, Exit, KeyScript, Machine, Profile, Program, Ram};
+use hack_vm::{Config, Engine, Exit, KeyScript, Machine, Profile, Program, Ram};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -35,6 +35,11 @@ pub struct RunArgs {
     /// Run under both profiles and report whether screens and ends differ.
     #[arg(long)]
     pub compare_profiles: bool,
+    /// The emulator's engine: `interp` (the interpreter) or `native` (VM
+    /// functions compiled with Cranelift; the interpreter where the host is
+    /// not supported). Both give the same run.
+    #[arg(long, default_value = "interp")]
+    pub engine: Engine,
 }
 
 /// Run `harness jack run`. Exit 0 when the program halted (or, with
@@ -45,6 +50,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         profile,
         keys: keys.clone(),
         profile_functions: args.profile_functions,
+        engine: args.engine,
     };
     if let Some(path) = &args.screen {
         for p in screen_paths(path, args.compare_profiles) {

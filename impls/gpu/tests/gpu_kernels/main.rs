@@ -9,3 +9,4 @@ mod f316_vs_reference;
 mod f32_errors;
 mod scenes;
 mod support;
+mod user_shader;

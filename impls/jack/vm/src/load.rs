@@ -386,6 +386,7 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
         messages,
         entry,
         statics,
+        native: Default::default(),
     })
 }
 

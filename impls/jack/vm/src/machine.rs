@@ -4,6 +4,7 @@
 
 use crate::exec::Flow;
 use crate::exit::{CallStack, Exit};
+use crate::native::{Engine, Fault, Native};
 use crate::program::{FnId, Program};
 use jack_os::{Builtin, Completion, KeyScript, Os, Profile, Ram, KBD};
 use std::sync::Arc;
@@ -35,7 +36,9 @@ pub(crate) const ARGS_FIT: u8 = 16;
 pub(crate) const HOST: u32 = u32::MAX;
 
 /// A frame of the internal call stack: what to restore in the caller.
+/// `repr(C)`: compiled code reads and writes frames by field offset.
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub(crate) struct Frame {
     pub caller: FnId,
     pub ret_pc: u32,
@@ -60,6 +63,9 @@ pub struct Config {
     pub keys: KeyScript,
     /// Count instructions per function (see [`Machine::function_profile`]).
     pub profile_functions: bool,
+    /// Interpreter or compiled code (default: `HACK_VM_ENGINE`, else the
+    /// interpreter).
+    pub engine: Engine,
 }
 
 /// Observer of calls to chosen functions (see [`Machine::run_watched`]).
@@ -94,6 +100,8 @@ pub struct Machine {
     /// (0: not yet). Between changes the word keeps whatever the program
     /// stored there, however the run is split into calls.
     pub(crate) next_key_sync: u64,
+    /// The program's compiled code, when the compiling engine runs.
+    pub(crate) native: Option<Arc<Native>>,
 }
 
 impl Machine {
@@ -107,6 +115,15 @@ impl Machine {
         let profile = config
             .profile_functions
             .then(|| vec![0; program.functions.len()]);
+        let native = match config.engine {
+            Engine::Interp => None,
+            Engine::Native => program.native(config.profile).ok(),
+            Engine::NativeBrokenSub => {
+                Native::compile(&program, config.profile, Some(Fault::SubSwapped))
+                    .ok()
+                    .map(Arc::new)
+            }
+        };
         Machine {
             pc: program.functions[entry as usize].start,
             program,
@@ -122,6 +139,16 @@ impl Machine {
             profile_mark: 0,
             scratch: Vec::new(),
             next_key_sync: 0,
+            native,
+        }
+    }
+
+    /// The engine that runs this machine: [`Engine::Interp`] if that was
+    /// asked for or the program could not be compiled for this host.
+    pub fn engine(&self) -> Engine {
+        match &self.native {
+            None => Engine::Interp,
+            Some(_) => Engine::Native,
         }
     }
 
@@ -364,11 +391,14 @@ impl Machine {
         let budget_end = budget.map_or(u64::MAX, |b| self.steps.saturating_add(b));
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
+        let native = self.native.clone();
         let exit = loop {
             let key_change = self.next_key_sync;
             let limit = budget_end.min(key_change);
             let soft = limit.saturating_sub(crate::fuse::MAX_FUSED_STEPS);
-            let flow = if self.steps < soft {
+            let flow = if let Some(native) = &native {
+                self.exec_native::<W>(&program, native, limit, &mut watch)
+            } else if self.steps < soft {
                 self.exec::<W>(&program, &program.fused, soft, &mut watch)
             } else if self.steps < limit {
                 self.exec::<W>(&program, &program.plain, limit, &mut watch)
