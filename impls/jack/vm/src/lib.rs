@@ -25,6 +25,8 @@ mod load;
 mod machine;
 mod parse;
 mod program;
+mod script;
+mod timing;
 mod trace_diff;
 
 pub use error::LoadError;
@@ -33,4 +35,6 @@ pub use jack_os::{KeyScript, Profile, Ram};
 pub use load::IMPLICIT;
 pub use machine::{Config, Machine, Register, UnknownFunction, Watcher, MAX_DEPTH};
 pub use program::{FnId, Function, Program};
+pub use script::{run_script, Mismatch, ScriptError, ScriptReport};
+pub use timing::Timing;
 pub use trace_diff::{compare_call_traces, CallEvent, TraceComparison, TraceDivergence};

@@ -4,7 +4,7 @@
 
 use crate::error::LoadError;
 use crate::parse::{self, Arith, Command, Line, Segment};
-use crate::program::{FnId, Function, Op, Program};
+use crate::program::{Code, FnId, Function, Op, Program};
 use jack_os::Builtin;
 use std::collections::HashMap;
 use std::path::Path;
@@ -83,13 +83,15 @@ impl Program {
     ) -> Result<Arc<Program>, LoadError> {
         let multi = sources.len() > 1;
         let mut raw: Vec<RawFunction> = Vec::new();
+        let mut command_lines = 0;
         for (file, text) in sources {
             let file = file.as_ref();
             let lines = parse::parse(file, text.as_ref())?;
+            command_lines += lines.len();
             split_functions(file, lines, multi, &mut raw)?;
         }
         let raw = dedupe(raw)?;
-        build(raw).map(Arc::new)
+        build(raw, command_lines).map(Arc::new)
     }
 }
 
@@ -210,10 +212,12 @@ enum Target {
     Os(Builtin),
 }
 
-fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
+fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, LoadError> {
     // Entry errors are reported after the checks of the functions' code.
+    let before = raw.len();
     let chosen = choose_entry(&mut raw);
     let entry = *chosen.as_ref().unwrap_or(&FnId::MAX);
+    let synthetic_entry = raw.len() > before;
     if raw.len() > u16::MAX as usize {
         return Err(LoadError::Program(format!(
             "too many functions ({})",
@@ -230,18 +234,27 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
     let mut messages: Vec<String> = Vec::new();
     let mut plain: Vec<Op> = Vec::new();
     let mut functions = Vec::with_capacity(raw.len());
+    // Desktop jump targets that differ from the web ones: (instruction, target).
+    let mut desktop_jumps: Vec<(usize, u32)> = Vec::new();
 
     for (id, f) in raw.iter().enumerate() {
         let id = id as FnId;
         let class = f.name.split('.').next().unwrap_or(&f.name).to_string();
+        plain.push(Op::Function {
+            n_vars: f.n_vars,
+            method: false,
+        });
         let start = plain.len() as u32;
 
         // Pass 1: instruction positions of labels and of each command index.
         let first_index = usize::from(f.has_header);
         let mut labels: HashMap<&str, u32> = HashMap::new();
+        // Labels directly followed by a label: a desktop jump there wastes
+        // a step (crate::timing), taken by a `Goto` placed after the function.
+        let mut paired: Vec<&str> = Vec::new();
         let mut resume = vec![u32::MAX; first_index];
         let mut pc = start;
-        for l in &f.body {
+        for (k, l) in f.body.iter().enumerate() {
             resume.push(pc);
             match &l.command {
                 Command::Label(name) => {
@@ -252,11 +265,21 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
                             format!("Cannot redeclare label {name}"),
                         ));
                     }
+                    if matches!(f.body.get(k + 1), Some(Line { command: Command::Label(_), .. })) {
+                        paired.push(name);
+                    }
                 }
                 _ => pc += 1,
             }
         }
         resume.push(pc); // one past the last command: the trailing Halt
+        // The wasted-step jumps follow the Halt at `pc`.
+        let wasted_jump = |name: &str| {
+            paired
+                .iter()
+                .position(|p| *p == name)
+                .map(|j| pc + 1 + j as u32)
+        };
 
         // Pass 2: decode.
         for (k, l) in f.body.iter().enumerate() {
@@ -272,6 +295,9 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
                     let target = *labels
                         .get(name.as_str())
                         .ok_or_else(|| err(format!("Undeclared label {name}")))?;
+                    if let Some(t) = wasted_jump(name) {
+                        desktop_jumps.push((plain.len(), t));
+                    }
                     if matches!(l.command, Command::Goto(_)) {
                         Op::Goto(target)
                     } else {
@@ -361,11 +387,19 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
             })
             .max()
             .unwrap_or(0);
-        plain.push(Op::Halt);
+        plain.push(if synthetic_entry && id == entry {
+            Op::Finish
+        } else {
+            Op::Halt
+        });
+        for name in &paired {
+            plain.push(Op::Goto(labels[name]));
+        }
         functions.push(Function {
             name: f.name.clone(),
             file: f.file.clone(),
             n_vars: f.n_vars,
+            headed: f.has_header,
             arg_reach,
             start,
             resume,
@@ -380,14 +414,28 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
     chosen?;
     let statics = statics.len().min(STATIC_SLOTS);
     let starts: Vec<u32> = functions.iter().map(|f| f.start).collect();
-    let fused = crate::fuse::fuse(&plain, &starts);
+    let mut desktop = plain.clone();
+    for (at, target) in desktop_jumps {
+        desktop[at] = match desktop[at] {
+            Op::Goto(_) => Op::Goto(target),
+            Op::IfGoto(_) => Op::IfGoto(target),
+            other => unreachable!("only jumps are retargeted, not {other:?}"),
+        };
+    }
+    let code = |plain: Vec<Op>| Code {
+        fused: crate::fuse::fuse(&plain, &starts),
+        plain,
+    };
+    // In the order of crate::timing::index.
+    let code = [code(desktop), code(plain)];
     Ok(Program {
         functions,
         by_name,
-        plain,
-        fused,
+        code,
         messages,
         entry,
+        synthetic_entry,
+        command_lines,
         statics,
     })
 }
@@ -420,8 +468,8 @@ fn relax_this_that(code: &mut [Op], start: usize) {
     let end = start
         + code[start..]
             .iter()
-            .position(|op| *op == Op::Halt)
-            .expect("every function ends in Halt");
+            .position(|op| matches!(op, Op::Halt | Op::Finish))
+            .expect("every function ends in Halt or Finish");
     let n = end - start + 1;
     // Must-analysis: bit 0 = this initialised, bit 1 = that. 0b100 = unvisited (top).
     const TOP: u8 = 0b111;
@@ -443,7 +491,7 @@ fn relax_this_that(code: &mut [Op], start: usize) {
                 succ[0] = t as usize - start;
                 succ[1] = i + 1;
             }
-            Op::Return | Op::Halt | Op::Fail(_) => {}
+            Op::Return | Op::Halt | Op::Finish | Op::Fail(_) => {}
             _ => succ[0] = i + 1,
         }
         for j in succ.into_iter().filter(|&j| j < n) {

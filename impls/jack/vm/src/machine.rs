@@ -5,6 +5,7 @@
 use crate::exec::Flow;
 use crate::exit::{CallStack, Exit};
 use crate::program::{FnId, Program};
+use crate::timing::{self, Timing};
 use jack_os::{KeyScript, Os, Profile, Ram, KBD};
 use std::sync::Arc;
 
@@ -98,17 +99,23 @@ pub struct Machine {
 
 impl Machine {
     /// A machine after reset (spec §1), positioned at the entry function
-    /// with no frame (§2.6): SP=256, LCL=ARG=THIS=THAT=0.
+    /// with no frame (§2.6): SP=256, LCL=ARG=THIS=THAT=0. Under the desktop
+    /// profile it stands at the entry's `function` line, or, with the
+    /// synthetic `Sys.init`, after the desktop's start-up step, at
+    /// `function Main.main` (see [`crate::timing`]).
     pub fn new(program: Arc<Program>, config: Config) -> Machine {
         let mut ram = Ram::new();
+        let timing = Timing::of(config.profile);
         let mut os = Os::new(config.profile, config.keys);
         os.reset(&mut ram);
         let entry = program.entry;
         let profile = config
             .profile_functions
             .then(|| vec![0; program.functions.len()]);
-        Machine {
-            pc: program.functions[entry as usize].start,
+        let f = &program.functions[entry as usize];
+        let at_head = timing.function_step && f.headed;
+        let mut machine = Machine {
+            pc: f.start - u32::from(at_head),
             program,
             ram,
             os,
@@ -122,7 +129,44 @@ impl Machine {
             profile_mark: 0,
             scratch: Vec::new(),
             next_key_sync: 0,
+        };
+        if timing.hidden_sys_init && machine.program.synthetic_entry {
+            machine.desktop_startup();
         }
+        machine
+    }
+
+    /// The desktop's first step, a hidden `call Sys.init` of its built-in,
+    /// which calls the OS inits and then `Main.main` through frames.
+    fn desktop_startup(&mut self) {
+        let p = Arc::clone(&self.program);
+        let size = i16::try_from(p.command_lines + 5).unwrap_or(i16::MAX);
+        let (words, regs) = timing::desktop_startup(size);
+        for (a, v) in (i32::from(timing::STACK_BASE)..).zip(words) {
+            self.ram.write(a, v);
+        }
+        for (a, v) in (0..).zip(regs) {
+            self.ram.write(a, v);
+        }
+        let sys_init = &p.functions[p.entry as usize];
+        let main = p.function_id("Main.main").expect("a synthetic Sys.init calls Main.main");
+        self.frames.push(Frame {
+            caller: p.entry,
+            ret_pc: *sys_init.resume.last().expect("the end of Sys.init"),
+            ret: -1,
+            nargs: 0,
+            flags: 0,
+            watched: false,
+        });
+        self.steps = 1;
+        if let Some(counts) = &mut self.profile {
+            counts[p.entry as usize] += 1;
+            self.profile_mark = 1;
+        }
+        self.cur = main;
+        self.nargs = 0;
+        self.flags = p.functions[main as usize].entry_flags(0);
+        self.pc = p.functions[main as usize].start - 1;
     }
 
     /// The program this machine runs.
@@ -164,17 +208,28 @@ impl Machine {
         self.flags |= flag;
     }
 
-    /// The Jack call stack, outermost first, innermost (running) last.
+    /// The Jack call stack, outermost first, innermost (running) last,
+    /// with a recursion's frames collapsed (see [`CallStack`]).
     pub fn call_stack(&self) -> CallStack {
         let p = &self.program;
-        let mut names: Vec<String> = self
-            .frames
-            .iter()
-            .filter(|f| f.ret_pc != HOST)
-            .map(|f| p.function_name(f.caller).to_string())
-            .collect();
-        names.push(p.function_name(self.cur).to_string());
-        CallStack(names)
+        let mut stack = CallStack::default();
+        let callers = self.frames.iter().filter(|f| f.ret_pc != HOST).map(|f| f.caller);
+        let mut run: Option<(FnId, u64)> = None;
+        for id in callers.chain([self.cur]) {
+            match &mut run {
+                Some((last, n)) if *last == id => *n += 1,
+                _ => {
+                    if let Some((last, n)) = run {
+                        stack.push_run(p.function_name(last), n);
+                    }
+                    run = Some((id, 1));
+                }
+            }
+        }
+        if let Some((last, n)) = run {
+            stack.push_run(p.function_name(last), n);
+        }
+        stack
     }
 
     /// How the run ended, if it has.
@@ -309,8 +364,14 @@ impl Machine {
         });
         let function = &self.program.functions[callee as usize];
         let (start, n_vars) = (function.start, function.n_vars);
-        self.enter(callee, nargs, 0, n_vars);
-        self.pc = start;
+        if Timing::of(self.os.profile()).function_step {
+            // The callee's `function` line zeroes its locals, as a step.
+            self.enter(callee, nargs, 0, 0);
+            self.pc = start - 1;
+        } else {
+            self.enter(callee, nargs, 0, n_vars);
+            self.pc = start;
+        }
         let exit = self.drive::<W>(budget, watch);
         if let Exit::Returned(_) = exit {
             debug_assert_eq!(self.frames.len(), base_depth);
@@ -357,14 +418,15 @@ impl Machine {
         let budget_end = budget.map_or(u64::MAX, |b| self.steps.saturating_add(b));
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
+        let code = &program.code[timing::index(self.os.profile())];
         let exit = loop {
             let key_change = self.next_key_sync;
             let limit = budget_end.min(key_change);
             let soft = limit.saturating_sub(crate::fuse::MAX_FUSED_STEPS);
             let flow = if self.steps < soft {
-                self.exec::<W>(&program, &program.fused, soft, &mut watch)
+                self.exec::<W>(&program, code, true, soft, &mut watch)
             } else if self.steps < limit {
-                self.exec::<W>(&program, &program.plain, limit, &mut watch)
+                self.exec::<W>(&program, code, false, limit, &mut watch)
             } else {
                 Flow::Limit
             };
@@ -372,7 +434,7 @@ impl Machine {
                 // A fused instruction declined: run its commands one by one.
                 Flow::Deopt => {
                     let stop = limit.min(self.steps + crate::fuse::MAX_FUSED_STEPS);
-                    self.exec::<W>(&program, &program.plain, stop, &mut watch)
+                    self.exec::<W>(&program, code, false, stop, &mut watch)
                 }
                 other => other,
             };

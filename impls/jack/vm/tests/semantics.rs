@@ -218,8 +218,8 @@ fn budget_stops_exactly_and_reports_the_call_stack() {
     let Exit::Budget { stack } = e else {
         panic!("{e}")
     };
-    assert_eq!(stack.0.first().map(String::as_str), Some("Sys.init"));
-    assert_eq!(stack.0.last().map(String::as_str), Some("Main.fib"));
+    assert_eq!(stack.names().next(), Some("Sys.init"));
+    assert_eq!(stack.innermost(), Some("Main.fib"));
     // Continue to the end.
     assert_eq!(m.run(None), Exit::Halted);
     assert_eq!(m.ram().read(263), 55);
@@ -264,7 +264,7 @@ fn an_observed_run_ends_like_a_plain_one_and_reports_every_slice() {
         let Exit::Budget { stack } = e else {
             panic!("every {every}: {e}")
         };
-        assert_eq!(stack.0.last().map(String::as_str), Some("Main.fib"));
+        assert_eq!(stack.innermost(), Some("Main.fib"));
     }
 }
 
