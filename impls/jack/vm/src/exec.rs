@@ -704,10 +704,7 @@ impl Machine {
                         pc += 2;
                     }
                 }
-                Op::Halt if timing.end_is_error => {
-                    break Some(Halt::Error(ran_past_end(program, cur)));
-                }
-                Op::Halt | Op::Finish => {
+                Op::Halt => {
                     steps -= 1;
                     break Some(Halt::Exit(Exit::Halted));
                 }
@@ -932,22 +929,6 @@ impl Machine {
                 stack: self.call_stack(),
             },
         })
-    }
-}
-
-/// The desktop VM emulator's error for running past the last command of
-/// function `f`: it falls into the next function's `function` line, or off
-/// the end of the program.
-#[cold]
-fn ran_past_end(program: &Program, f: u32) -> String {
-    let next_is_vm_code = program
-        .functions
-        .get(f as usize + 1)
-        .is_some_and(|n| !(program.synthetic_entry && n.file.is_empty()));
-    if next_is_vm_code {
-        format!("Missing return in {}", program.function_name(f))
-    } else {
-        "No more instructions to execute".to_string()
     }
 }
 

@@ -387,11 +387,7 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
             })
             .max()
             .unwrap_or(0);
-        plain.push(if synthetic_entry && id == entry {
-            Op::Finish
-        } else {
-            Op::Halt
-        });
+        plain.push(Op::Halt);
         for name in &paired {
             plain.push(Op::Goto(labels[name]));
         }
@@ -468,8 +464,8 @@ fn relax_this_that(code: &mut [Op], start: usize) {
     let end = start
         + code[start..]
             .iter()
-            .position(|op| matches!(op, Op::Halt | Op::Finish))
-            .expect("every function ends in Halt or Finish");
+            .position(|op| *op == Op::Halt)
+            .expect("every function ends in Halt");
     let n = end - start + 1;
     // Must-analysis: bit 0 = this initialised, bit 1 = that. 0b100 = unvisited (top).
     const TOP: u8 = 0b111;
@@ -491,7 +487,7 @@ fn relax_this_that(code: &mut [Op], start: usize) {
                 succ[0] = t as usize - start;
                 succ[1] = i + 1;
             }
-            Op::Return | Op::Halt | Op::Finish | Op::Fail(_) => {}
+            Op::Return | Op::Halt | Op::Fail(_) => {}
             _ => succ[0] = i + 1,
         }
         for j in succ.into_iter().filter(|&j| j < n) {

@@ -95,14 +95,17 @@ pub struct Machine {
     /// (0: not yet). Between changes the word keeps whatever the program
     /// stored there, however the run is split into calls.
     pub(crate) next_key_sync: u64,
+    /// The desktop's start-up step is still to be taken (by a run from the entry).
+    pub(crate) startup_pending: bool,
 }
 
 impl Machine {
     /// A machine after reset (spec §1), positioned at the entry function
     /// with no frame (§2.6): SP=256, LCL=ARG=THIS=THAT=0. Under the desktop
     /// profile it stands at the entry's `function` line, or, with the
-    /// synthetic `Sys.init`, after the desktop's start-up step, at
-    /// `function Main.main` (see [`crate::timing`]).
+    /// synthetic `Sys.init`, before the desktop's start-up step, which the
+    /// first run from the entry takes (see [`crate::timing`]; host calls
+    /// do not take it).
     pub fn new(program: Arc<Program>, config: Config) -> Machine {
         let mut ram = Ram::new();
         let timing = Timing::of(config.profile);
@@ -129,16 +132,16 @@ impl Machine {
             profile_mark: 0,
             scratch: Vec::new(),
             next_key_sync: 0,
+            startup_pending: false,
         };
-        if timing.hidden_sys_init && machine.program.synthetic_entry {
-            machine.desktop_startup();
-        }
+        machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
         machine
     }
 
     /// The desktop's first step, a hidden `call Sys.init` of its built-in,
-    /// which calls the OS inits and then `Main.main` through frames.
-    fn desktop_startup(&mut self) {
+    /// which calls the OS inits and then `Main.main` through frames (a call
+    /// that `watch` sees like any other).
+    fn desktop_startup(&mut self, watch: &mut Option<(&[bool], &mut dyn Watcher)>) {
         let p = Arc::clone(&self.program);
         let size = i16::try_from(p.command_lines + 5).unwrap_or(i16::MAX);
         let (words, regs) = timing::desktop_startup(size);
@@ -150,19 +153,23 @@ impl Machine {
         }
         let sys_init = &p.functions[p.entry as usize];
         let main = p.function_id("Main.main").expect("a synthetic Sys.init calls Main.main");
+        let mut watched = false;
+        if let Some((set, watcher)) = watch {
+            if set.get(main as usize).copied().unwrap_or(false) {
+                watcher.on_call(&p, main, &[], &self.ram);
+                watched = true;
+            }
+        }
         self.frames.push(Frame {
             caller: p.entry,
             ret_pc: *sys_init.resume.last().expect("the end of Sys.init"),
             ret: -1,
             nargs: 0,
             flags: 0,
-            watched: false,
+            watched,
         });
-        self.steps = 1;
-        if let Some(counts) = &mut self.profile {
-            counts[p.entry as usize] += 1;
-            self.profile_mark = 1;
-        }
+        self.steps += 1;
+        self.charge_profile();
         self.cur = main;
         self.nargs = 0;
         self.flags = p.functions[main as usize].entry_flags(0);
@@ -416,6 +423,10 @@ impl Machine {
             return e.clone();
         }
         let budget_end = budget.map_or(u64::MAX, |b| self.steps.saturating_add(b));
+        if self.startup_pending && self.frames.is_empty() && budget_end > self.steps {
+            self.startup_pending = false;
+            self.desktop_startup(&mut watch);
+        }
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
         let code = &program.code[timing::index(self.os.profile())];

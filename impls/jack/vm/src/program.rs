@@ -84,12 +84,9 @@ pub(crate) enum Op {
         n_vars: u16,
         method: bool,
     },
-    /// Ran past the last command of a function: the web IDE halts, the
-    /// desktop VM emulator stops with an error.
+    /// Ran past the last command of a function: the VM halts (both
+    /// profiles; see [`crate::timing`]).
     Halt,
-    /// The end of the synthetic `Sys.init`: Main.main has returned and the
-    /// VM halts (both profiles).
-    Finish,
 
     // Fused forms (module `fuse`); the comment gives the commands.
     /// push a; push b
@@ -222,7 +219,7 @@ impl Op {
     /// VM commands (steps) this instruction stands for.
     pub(crate) const fn steps(self) -> u64 {
         match self {
-            Op::Halt | Op::Finish => 0,
+            Op::Halt => 0,
             Op::Function { method: true, .. } => 3,
             Op::Push2(..)
             | Op::Move(..)
@@ -280,7 +277,7 @@ impl Function {
 #[derive(Debug)]
 pub(crate) struct Code {
     /// Per function: its `Function` line, one instruction per other
-    /// non-label command, a `Halt` (or `Finish`), then the wasted-step
+    /// non-label command, a `Halt`, then the wasted-step
     /// jumps of [`crate::timing`] (desktop only; unused in web code).
     pub plain: Vec<Op>,
     /// Same indexing as `plain`; at some indices a fused instruction.

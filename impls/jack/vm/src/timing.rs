@@ -13,7 +13,7 @@
 //! | blocking built-in (`Sys.wait`, `Keyboard.read*`) | 2: the call, and the step that hands its result back | 1 |
 //! | start of a program with `Main.main` and no `Sys.init` | 8: seven OS init calls and the call of Main.main, then Main.main's body | 1: a hidden `call Sys.init` (the built-in, which calls Main.main), then `function Main.main` (1) |
 //! | start at a VM `Sys.init` (or a single file's first function) | its body at once | its `function` line first (1) |
-//! | running past a function's last command | halt, 0 | runtime error, 1 |
+//! | running past a function's last command | halt, 0 | halt, 0 (the desktop tool itself runs on into the next function's `function` line, "Missing return", or stops with "No more instructions to execute"; the harness halts in both) |
 //! | `Sys.halt`, `Sys.error` | the call (1), then the run ends | the call (1), then the run ends |
 //! | a command that fails (runtime error) | 1 | 1 |
 //! | stack: SP outside 256..=2047 | no check (the stack runs on through the heap and the screen) | "Stack overflow" at the push, pop or `function` line that leaves it |
@@ -52,8 +52,6 @@ pub struct Timing {
     pub hidden_sys_init: bool,
     /// SP must stay in the stack segment ("Stack overflow"), desktop.
     pub stack_check: bool,
-    /// Running past a function's last command is an error (desktop), not a halt.
-    pub end_is_error: bool,
 }
 
 impl Timing {
@@ -66,7 +64,6 @@ impl Timing {
             label_pair_step: desktop,
             hidden_sys_init: desktop,
             stack_check: desktop,
-            end_is_error: desktop,
         }
     }
 }
