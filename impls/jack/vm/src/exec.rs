@@ -231,7 +231,8 @@ impl Machine {
                 ($v:expr) => {{
                     let v: i16 = $v;
                     let at = usize::from(sp);
-                    if at.wrapping_sub(usize::from(STACK_BASE)) < usize::from(STACK_LAST - STACK_BASE)
+                    if at.wrapping_sub(usize::from(STACK_BASE))
+                        < usize::from(STACK_LAST - STACK_BASE)
                     {
                         w[at] = v;
                         sp += 1;
@@ -317,7 +318,8 @@ impl Machine {
                     let mut clock = steps;
                     let c = os.call(b, &args[..n], ram, &mut clock);
                     // The web IDE's hand-over step of a blocking built-in.
-                    steps = clock + u64::from(timing.handover_step && b.blocks() && c.stop.is_none());
+                    steps =
+                        clock + u64::from(timing.handover_step && b.blocks() && c.stop.is_none());
                     w = words(ram);
                     Regs { sp, base: seg } = Regs::load(w);
                     push!(c.value);

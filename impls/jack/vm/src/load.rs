@@ -235,7 +235,9 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
     let mut plain: Vec<Op> = Vec::new();
     let mut functions = Vec::with_capacity(raw.len());
     // Desktop jump targets that differ from the web ones: (instruction, target).
-    let mut desktop_jumps: Vec<(usize, u32)> = Vec::new();
+    // and the desktop's static addresses: (instruction, desktop instruction).
+    let mut desktop_ops: Vec<(usize, Op)> = Vec::new();
+    let static_base = desktop_static_bases(&raw);
 
     for (id, f) in raw.iter().enumerate() {
         let id = id as FnId;
@@ -265,7 +267,13 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
                             format!("Cannot redeclare label {name}"),
                         ));
                     }
-                    if matches!(f.body.get(k + 1), Some(Line { command: Command::Label(_), .. })) {
+                    if matches!(
+                        f.body.get(k + 1),
+                        Some(Line {
+                            command: Command::Label(_),
+                            ..
+                        })
+                    ) {
                         paired.push(name);
                     }
                 }
@@ -273,7 +281,7 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
             }
         }
         resume.push(pc); // one past the last command: the trailing Halt
-        // The wasted-step jumps follow the Halt at `pc`.
+                         // The wasted-step jumps follow the Halt at `pc`.
         let wasted_jump = |name: &str| {
             paired
                 .iter()
@@ -296,7 +304,14 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
                         .get(name.as_str())
                         .ok_or_else(|| err(format!("Undeclared label {name}")))?;
                     if let Some(t) = wasted_jump(name) {
-                        desktop_jumps.push((plain.len(), t));
+                        desktop_ops.push((
+                            plain.len(),
+                            if matches!(l.command, Command::Goto(_)) {
+                                Op::Goto(t)
+                            } else {
+                                Op::IfGoto(t)
+                            },
+                        ));
                     }
                     if matches!(l.command, Command::Goto(_)) {
                         Op::Goto(target)
@@ -361,6 +376,19 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
                         Segment::Temp if push => Op::PushAbs(5 + i),
                         Segment::Temp => Op::PopAbs(5 + i),
                         Segment::Static => {
+                            let address =
+                                16 + u32::from(static_base[f.file.as_str()]) + u32::from(i);
+                            let desktop = if address > 255 {
+                                fail(
+                                    &mut messages,
+                                    format!("Out of segment space: {}'s static {i} would be RAM[{address}]", f.file),
+                                )
+                            } else if push {
+                                Op::PushAbs(address as u16)
+                            } else {
+                                Op::PopAbs(address as u16)
+                            };
+                            desktop_ops.push((plain.len(), desktop));
                             let next = statics.len();
                             let slot = *statics.entry((class.clone(), i)).or_insert(next);
                             if slot >= STATIC_SLOTS {
@@ -411,12 +439,8 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
     let statics = statics.len().min(STATIC_SLOTS);
     let starts: Vec<u32> = functions.iter().map(|f| f.start).collect();
     let mut desktop = plain.clone();
-    for (at, target) in desktop_jumps {
-        desktop[at] = match desktop[at] {
-            Op::Goto(_) => Op::Goto(target),
-            Op::IfGoto(_) => Op::IfGoto(target),
-            other => unreachable!("only jumps are retargeted, not {other:?}"),
-        };
+    for (at, op) in desktop_ops {
+        desktop[at] = op;
     }
     let code = |plain: Vec<Op>| Code {
         fused: crate::fuse::fuse(&plain, &starts),
@@ -434,6 +458,37 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
         command_lines,
         statics,
     })
+}
+
+/// The desktop VM emulator's static segments: one per file, in load
+/// order, each as long as the file's largest static index + 1; `static i`
+/// of a file is RAM[16 + its base + i] (the web IDE numbers statics by
+/// first appearance instead, spec §2.4 and §6).
+fn desktop_static_bases(raw: &[RawFunction]) -> HashMap<&str, u16> {
+    let mut largest: Vec<(&str, Option<u16>)> = Vec::new();
+    for f in raw {
+        let at = match largest.iter().position(|(file, _)| *file == f.file) {
+            Some(at) => at,
+            None => {
+                largest.push((&f.file, None));
+                largest.len() - 1
+            }
+        };
+        for l in &f.body {
+            if let Command::Push(Segment::Static, i) | Command::Pop(Segment::Static, i) = l.command
+            {
+                let top = &mut largest[at].1;
+                *top = Some(top.map_or(i, |t| t.max(i)));
+            }
+        }
+    }
+    let mut base = 0u16;
+    let mut bases = HashMap::new();
+    for (file, top) in largest {
+        bases.insert(file, base);
+        base = base.saturating_add(top.map_or(0, |t| t.saturating_add(1)));
+    }
+    bases
 }
 
 fn resolve(by_name: &HashMap<String, FnId>, name: &str, n: u16) -> Result<Target, String> {

@@ -152,7 +152,9 @@ impl Machine {
             self.ram.write(a, v);
         }
         let sys_init = &p.functions[p.entry as usize];
-        let main = p.function_id("Main.main").expect("a synthetic Sys.init calls Main.main");
+        let main = p
+            .function_id("Main.main")
+            .expect("a synthetic Sys.init calls Main.main");
         let mut watched = false;
         if let Some((set, watcher)) = watch {
             if set.get(main as usize).copied().unwrap_or(false) {
@@ -220,7 +222,11 @@ impl Machine {
     pub fn call_stack(&self) -> CallStack {
         let p = &self.program;
         let mut stack = CallStack::default();
-        let callers = self.frames.iter().filter(|f| f.ret_pc != HOST).map(|f| f.caller);
+        let callers = self
+            .frames
+            .iter()
+            .filter(|f| f.ret_pc != HOST)
+            .map(|f| f.caller);
         let mut run: Option<(FnId, u64)> = None;
         for id in callers.chain([self.cur]) {
             match &mut run {

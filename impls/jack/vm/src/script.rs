@@ -93,7 +93,8 @@ pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptE
     if let Some(out) = &run.output {
         let mut text = run.written.join("\n");
         text.push('\n');
-        std::fs::write(out, text).map_err(|e| run.err_at(0, 0, format!("cannot write {}: {e}", out.display())))?;
+        std::fs::write(out, text)
+            .map_err(|e| run.err_at(0, 0, format!("cannot write {}: {e}", out.display())))?;
     }
     Ok(ScriptReport {
         output_file: run.output,
@@ -284,12 +285,20 @@ fn parse_block(
                     ("while", true) => {
                         *pos += 1;
                         let cond: [String; 3] = words[1..].to_vec().try_into().map_err(|_| {
-                            err(line, col, "while needs a condition like RAM[0] <> 262".into())
+                            err(
+                                line,
+                                col,
+                                "while needs a condition like RAM[0] <> 262".into(),
+                            )
                         })?;
                         Kind::While(cond, parse_block(file, toks, pos, true)?)
                     }
                     (_, true) => {
-                        return Err(err(line, col, format!("{} does not take a {{ block", words[0])))
+                        return Err(err(
+                            line,
+                            col,
+                            format!("{} does not take a {{ block", words[0]),
+                        ))
                     }
                     _ => Kind::Words(words),
                 };
@@ -369,7 +378,10 @@ enum Var {
     Ram(i32),
     Register(Register),
     /// segment base register (1..=4) or 0 for temp (base 5), plus index
-    Segment { base: i32, index: i32 },
+    Segment {
+        base: i32,
+        index: i32,
+    },
 }
 
 fn var(name: &str) -> Result<Var, String> {
@@ -406,6 +418,15 @@ fn var(name: &str) -> Result<Var, String> {
         _ => return Err(format!("unknown variable {name:?}")),
     })
 }
+
+/// The registers RAM[0..=4].
+const REGISTERS: [Register; 5] = [
+    Register::Sp,
+    Register::Local,
+    Register::Argument,
+    Register::This,
+    Register::That,
+];
 
 struct Run {
     file: String,
@@ -594,7 +615,12 @@ impl Run {
     }
 
     fn set(&mut self, name: &str, value: i16) -> Result<(), String> {
-        let v = var(name)?;
+        let v = match var(name)? {
+            // RAM[0..=4] are the registers: set them as such (this also
+            // marks the segment initialised for the entry).
+            Var::Ram(a) if a <= 4 => Var::Register(REGISTERS[a as usize]),
+            other => other,
+        };
         if let Var::Register(r) = v {
             self.machine()?.set_register(r, value);
             return Ok(());

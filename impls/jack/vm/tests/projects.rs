@@ -140,12 +140,18 @@ fn pointer_test() {
 fn static_test() {
     let src = "push constant 111\npush constant 333\npush constant 888\npop static 8\npop static 3\npop static 1\n\
                push static 3\npush static 1\nsub\npush static 8\nadd\n";
+    let mut m = machine_under(&[("StaticTest.vm", src)], Profile::Web);
+    m.set_register(Register::Sp, 256);
+    steps(&mut m, 11);
+    assert_eq!(ram(&m, 256), 1110);
+    // Web: slots in order of first appearance: static 8, 3, 1 -> RAM 16, 17, 18.
+    assert_eq!((ram(&m, 16), ram(&m, 17), ram(&m, 18)), (888, 333, 111));
+    // Desktop: the file's segment from 16, static i at 16 + i.
     let mut m = machine(&[("StaticTest.vm", src)]);
     m.set_register(Register::Sp, 256);
     steps(&mut m, 11);
     assert_eq!(ram(&m, 256), 1110);
-    // Slots in order of first appearance: static 8, 3, 1 -> RAM 16, 17, 18.
-    assert_eq!((ram(&m, 16), ram(&m, 17), ram(&m, 18)), (888, 333, 111));
+    assert_eq!((ram(&m, 24), ram(&m, 19), ram(&m, 17)), (888, 333, 111));
 }
 
 #[test]
@@ -375,7 +381,12 @@ fn bootstrap_stack_at_main_main_entry() {
 fn desktop_bootstrap_is_one_hidden_call_of_sys_init() {
     let main = "function Main.main 2\npush constant 42\nreturn\n";
     let mut m = machine(&[("Main.vm", main)]);
-    assert_eq!(steps(&mut m, 1), Exit::Budget { stack: ["Sys.init", "Main.main"].into_iter().collect() });
+    assert_eq!(
+        steps(&mut m, 1),
+        Exit::Budget {
+            stack: ["Sys.init", "Main.main"].into_iter().collect()
+        }
+    );
     // The hidden `call Sys.init` has run: the built-in's frame at 256, the
     // five OS inits' zeros at 261..265, Main.main's frame (RET -1) at 266.
     assert_eq!(m.steps(), 1);

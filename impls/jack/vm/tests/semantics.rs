@@ -113,7 +113,10 @@ fn if_goto_pops_and_jumps_on_nonzero() {
 fn pop_below_256_is_a_runtime_error() {
     let src = [("T.vm", "push constant 1\npop temp 0\npop temp 0\n")];
     for (profile, message) in [
-        (Profile::Web, "Cannot pop the stack below 256 in strict mode"),
+        (
+            Profile::Web,
+            "Cannot pop the stack below 256 in strict mode",
+        ),
         (Profile::Desktop, "Stack overflow"),
     ] {
         let mut m = load_under(&src, profile);

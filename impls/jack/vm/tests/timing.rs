@@ -36,8 +36,8 @@ fn run(program: Arc<Program>, profile: Profile, keys: KeyScript) -> Machine {
 /// Run `main` (Jack) under both profiles: (web, desktop).
 fn both(main: &str, keys: &str, hold: u64) -> (Machine, Machine) {
     let keys = KeyScript::parse(keys, hold).unwrap();
-    let [web, desktop] = [Profile::Web, Profile::Desktop]
-        .map(|p| run(compile(main, p), p, keys.clone()));
+    let [web, desktop] =
+        [Profile::Web, Profile::Desktop].map(|p| run(compile(main, p), p, keys.clone()));
     (web, desktop)
 }
 
