@@ -14,6 +14,7 @@ pub mod exhaustive;
 pub mod implementation;
 pub mod impls;
 pub mod localize;
+pub mod output;
 pub mod progress;
 pub mod report;
 pub mod runner;

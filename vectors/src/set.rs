@@ -230,6 +230,9 @@ pub enum SetError {
         #[source]
         source: std::io::Error,
     },
+    /// The file is not a readable regular UTF-8 file of bounded size.
+    #[error(transparent)]
+    Input(#[from] common::input::InputError),
     /// The file is not JSON.
     #[error("{file}: not valid JSON: {source}")]
     Json {
@@ -280,12 +283,8 @@ impl VectorSet {
 
     /// Load and validate a set file.
     pub fn load(path: &Path) -> Result<Self, SetError> {
-        let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| SetError::Io {
-            file: file.clone(),
-            source,
-        })?;
-        Self::parse(&file, &text)
+        let text = common::input::read_text(path)?;
+        Self::parse(&path.display().to_string(), &text)
     }
 
     /// Parse and validate the text of a set; `file` names it in errors.

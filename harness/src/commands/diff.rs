@@ -7,6 +7,7 @@
 //! an implementation is unavailable: nothing was compared).
 
 use crate::impls;
+use crate::report::atomic::{write_file, StagingDir};
 use crate::runner::{diff_set, LevelReport, RunOptions};
 use crate::text;
 use anyhow::{bail, Context};
@@ -88,30 +89,35 @@ pub fn sets_for(level: Option<LevelArg>, file: Option<&Path>) -> anyhow::Result<
 }
 
 /// Write `report.json` and a one-line repro file per kept divergence,
-/// recording the repro paths in the report.
+/// recording the repro paths in the report. `repro/` is replaced whole
+/// (files of an earlier run must not linger beside this report), and
+/// `report.json` atomically.
 pub fn write_report(dir: &Path, reports: &mut [LevelReport]) -> anyhow::Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let repro_dir = dir.join("repro");
-    std::fs::create_dir_all(&repro_dir)
-        .with_context(|| format!("creating {}", repro_dir.display()))?;
+    let stage = StagingDir::new(&repro_dir)?;
     for report in reports.iter_mut() {
         for c in &mut report.comparisons {
             for d in &mut c.divergences {
                 if matches!(d.input, Vector::Image(_)) {
                     continue;
                 }
-                let file = repro_dir.join(format!("{}.json", d.input.slug()));
-                VectorSet::repro(d.input.clone()).save(&file)?;
-                d.repro = Some(file.display().to_string());
+                let name = format!("{}.json", d.input.slug());
+                VectorSet::repro(d.input.clone()).save(&stage.path().join(&name))?;
+                d.repro = Some(repro_dir.join(name).display().to_string());
             }
         }
     }
     let json = serde_json::to_string_pretty(reports).context("serialising the report")?;
-    let path = dir.join("report.json");
-    std::fs::write(&path, json).with_context(|| format!("writing {}", path.display()))
+    stage.commit()?;
+    write_file(&dir.join("report.json"), json.as_bytes())
 }
 
 /// Run `harness diff`.
 pub fn run(args: DiffArgs) -> anyhow::Result<ExitCode> {
+    if let Some(dir) = &args.report {
+        crate::output::check_dir(dir, "--report")?;
+    }
     let sets = sets_for(args.level, args.vectors.as_deref())?;
     let labels: Vec<String> = [args.a, args.b].into_iter().chain(args.more).collect();
     let opened = labels

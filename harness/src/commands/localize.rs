@@ -43,15 +43,19 @@ pub struct LocalizeArgs {
 }
 
 fn ints<T: std::str::FromStr>(s: &str, n: usize, what: &str) -> anyhow::Result<Vec<T>> {
-    let parts: Vec<T> = s
-        .split(',')
-        .map(|p| p.trim().parse::<T>())
-        .collect::<Result<_, _>>()
-        .map_err(|_| anyhow::anyhow!("{what}: `{s}` is not {n} comma-separated numbers"))?;
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     if parts.len() != n {
         bail!("{what}: `{s}` is not {n} comma-separated numbers");
     }
-    Ok(parts)
+    parts
+        .iter()
+        .map(|p| {
+            p.parse::<T>().map_err(|_| match p.parse::<f64>() {
+                Ok(_) => anyhow::anyhow!("{what}: `{p}` is out of range"),
+                Err(_) => anyhow::anyhow!("{what}: `{p}` in `{s}` is not a number"),
+            })
+        })
+        .collect()
 }
 
 fn triple(s: &str, what: &str) -> anyhow::Result<F316> {
@@ -62,9 +66,9 @@ fn triple(s: &str, what: &str) -> anyhow::Result<F316> {
 /// The input the arguments name.
 pub fn input_of(args: &LocalizeArgs) -> anyhow::Result<Vector> {
     if let Some(p) = &args.pixel {
-        let xy: Vec<u16> = ints(p, 2, "--pixel")?;
-        if usize::from(xy[0]) >= common::image_consts::WIDTH
-            || usize::from(xy[1]) >= common::image_consts::HEIGHT
+        let xy: Vec<u64> = ints(p, 2, "--pixel")?;
+        if xy[0] >= common::image_consts::WIDTH as u64
+            || xy[1] >= common::image_consts::HEIGHT as u64
         {
             bail!(
                 "--pixel: ({},{}) is outside the 512x256 image",
@@ -74,8 +78,8 @@ pub fn input_of(args: &LocalizeArgs) -> anyhow::Result<Vector> {
         }
         return Ok(Vector::Pixel(PixelVector {
             category: "localize".into(),
-            x: xy[0],
-            y: xy[1],
+            x: xy[0] as u16,
+            y: xy[1] as u16,
         }));
     }
     if let Some(p) = &args.point {

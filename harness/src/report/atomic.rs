@@ -32,14 +32,58 @@ fn sibling(target: &Path, suffix: &str) -> Result<PathBuf> {
     )))
 }
 
+/// Whether process `pid` is still running (a staging directory of a live
+/// run, a concurrent nightly, must be left alone).
+fn process_alive(pid: u32) -> bool {
+    if cfg!(target_os = "linux") {
+        Path::new("/proc").join(pid.to_string()).exists()
+    } else {
+        // No cheap check: keep everything that might be in use.
+        true
+    }
+}
+
+/// Remove `.name.suffix-PID` siblings of `target` whose process is gone
+/// (a run killed before its commit or its drop could clean up).
+fn remove_stale_siblings(target: &Path, suffix: &str) -> Result<()> {
+    let own = sibling(target, suffix)?;
+    let (Some(dir), Some(name)) = (own.parent(), target.file_name()) else {
+        return Ok(());
+    };
+    let prefix = format!(".{}.{suffix}-", name.to_string_lossy());
+    let Ok(entries) = fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for entry in entries.filter_map(std::result::Result::ok) {
+        let name = entry.file_name();
+        let pid = name
+            .to_string_lossy()
+            .strip_prefix(&prefix)
+            .and_then(|p| p.parse::<u32>().ok());
+        if pid.is_some_and(|pid| pid != std::process::id() && !process_alive(pid)) {
+            let path = entry.path();
+            fs::remove_dir_all(&path)
+                .with_context(|| format!("removing stale {}", path.display()))?;
+        }
+    }
+    Ok(())
+}
+
 impl StagingDir {
     /// Create an empty staging directory beside `target` (creating
     /// `target`'s parent if needed).
+    /// Refuses at once a `target` that exists and is not a directory (the
+    /// commit could not replace it), and removes the staging directories
+    /// that killed runs left beside `target`.
     pub fn new(target: &Path) -> Result<Self> {
+        if target.exists() && !target.is_dir() {
+            bail!("{} exists and is not a directory", target.display());
+        }
         let staging = sibling(target, "staging")?;
         if let Some(parent) = staging.parent() {
             fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
         }
+        remove_stale_siblings(target, "staging")?;
         if staging.exists() {
             fs::remove_dir_all(&staging)
                 .with_context(|| format!("removing stale {}", staging.display()))?;
@@ -134,6 +178,36 @@ pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     result
 }
 
+/// Write several files so that either all are replaced or none is: each is
+/// written to a temporary sibling first, and only when every one is
+/// written are they renamed into place (a failure removes the temporaries).
+pub fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<()> {
+    let mut written: Vec<PathBuf> = Vec::new();
+    let result = (|| {
+        for (path, bytes) in files {
+            let tmp = sibling(path, "tmp")?;
+            written.push(tmp.clone());
+            fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
+        }
+        for (path, _) in files {
+            if fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+                bail!("{} exists and is not a file", path.display());
+            }
+        }
+        for ((path, _), tmp) in files.iter().zip(&written) {
+            fs::rename(tmp, path)
+                .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))?;
+        }
+        Ok(())
+    })();
+    if result.is_err() {
+        for tmp in &written {
+            let _ = fs::remove_file(tmp);
+        }
+    }
+    result
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -191,13 +265,60 @@ mod tests {
     }
 
     #[test]
-    fn commit_refuses_a_file_in_the_way() {
+    fn a_file_in_the_way_is_refused_before_any_work() {
         let root = tempfile::tempdir().unwrap();
         let target = root.path().join("nightly");
         fs::write(&target, "not a dir").unwrap();
-        let stage = StagingDir::new(&target).unwrap();
-        assert!(stage.commit().is_err());
+        let err = StagingDir::new(&target).unwrap_err();
+        assert!(err.to_string().contains("is not a directory"), "{err}");
         assert_eq!(fs::read_to_string(&target).unwrap(), "not a dir");
+        assert_eq!(entries(root.path()), vec!["nightly"]);
+    }
+
+    #[test]
+    fn staging_directories_of_killed_runs_are_removed() {
+        let root = tempfile::tempdir().unwrap();
+        let target = root.path().join("nightly");
+        // A PID above Linux's maximum (2^22) is never running.
+        let dead = root.path().join(".nightly.staging-99999999");
+        fs::create_dir(&dead).unwrap();
+        fs::write(dead.join("report.json"), "{}").unwrap();
+        // A live process's (this one's parent) run is left alone.
+        let live = root.path().join(format!(
+            ".nightly.staging-{}",
+            std::os::unix::process::parent_id()
+        ));
+        fs::create_dir(&live).unwrap();
+        let other = root.path().join(".other.staging-99999999");
+        fs::create_dir(&other).unwrap();
+        let stage = StagingDir::new(&target).unwrap();
+        stage.commit().unwrap();
+        assert_eq!(
+            entries(root.path()),
+            vec![
+                live.file_name().unwrap().to_string_lossy().into_owned(),
+                ".other.staging-99999999".to_string(),
+                "nightly".to_string()
+            ]
+        );
+    }
+
+    #[test]
+    fn write_files_writes_all_or_none() {
+        let root = tempfile::tempdir().unwrap();
+        let a = root.path().join("A.vm");
+        let b = root.path().join("B.vm");
+        fs::write(&a, "old").unwrap();
+        // B.vm is a directory: nothing may change, A.vm included.
+        fs::create_dir(&b).unwrap();
+        let files = vec![(a.clone(), b"new".to_vec()), (b.clone(), b"new".to_vec())];
+        assert!(write_files(&files).is_err());
+        assert_eq!(fs::read_to_string(&a).unwrap(), "old");
+        assert_eq!(entries(root.path()), vec!["A.vm", "B.vm"]);
+        fs::remove_dir(&b).unwrap();
+        write_files(&files).unwrap();
+        assert_eq!(fs::read_to_string(&b).unwrap(), "new");
+        assert_eq!(entries(root.path()), vec!["A.vm", "B.vm"]);
     }
 
     #[test]

@@ -7,6 +7,7 @@
 
 pub mod f316;
 pub mod image_consts;
+pub mod input;
 pub mod jack_int;
 pub mod op;
 pub mod outcome;

@@ -170,12 +170,14 @@ pub struct Reference {
 }
 
 fn sdf_at<E: Engine>(e: &mut E, k: &Consts<E::N>, p: [F316; 3]) -> Outcome<SdfValue> {
-    let p = V3::new(
-        E::from_triple(p[0]),
-        E::from_triple(p[1]),
-        E::from_triple(p[2]),
-    );
-    outcome(pipeline::sdf(e, k, p)).map(|s| SdfValue {
+    let point = || {
+        Ok(V3::new(
+            E::from_triple(p[0])?,
+            E::from_triple(p[1])?,
+            E::from_triple(p[2])?,
+        ))
+    };
+    outcome(point().and_then(|p| pipeline::sdf(e, k, p))).map(|s| SdfValue {
         sd: Scalar::of::<E>(s.sd),
         col: Scalar::of::<E>(s.col),
     })

@@ -47,8 +47,10 @@ pub trait Engine {
     fn to_f64(v: Self::N) -> f64;
     /// The Float316 triple, for the Float316 engine only.
     fn triple(v: Self::N) -> Option<F316>;
-    /// The number from a Float316 triple (its f64 value for floats).
-    fn from_triple(t: F316) -> Self::N;
+    /// The number from a Float316 triple (its f64 value for floats): out
+    /// of domain when that value is not finite in the number type (a legal
+    /// triple can exceed f32's and f64's range).
+    fn from_triple(t: F316) -> R<Self::N>;
 
     /// `a > b`.
     fn gt(&mut self, a: Self::N, b: Self::N) -> R<bool>;

@@ -2,7 +2,7 @@
 //! native operations, correctly rounded `sqrt`, libm `floor` and `pow`.
 
 use crate::consts::Consts;
-use crate::engine::{Engine, R};
+use crate::engine::{Engine, Trap, R};
 use crate::vec3::{self, V3};
 use common::F316;
 use std::fmt::Debug;
@@ -94,8 +94,8 @@ impl<T: IeeeFloat> Engine for FloatEngine<T> {
         None
     }
 
-    fn from_triple(t: F316) -> T {
-        lit(t.to_f64())
+    fn from_triple(t: F316) -> R<T> {
+        T::from_f64(t.to_f64()).ok_or(Trap::OutOfDomain)
     }
 
     fn gt(&mut self, a: T, b: T) -> R<bool> {

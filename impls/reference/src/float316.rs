@@ -478,8 +478,8 @@ impl<Rec: Recorder, A: ArithSource> Engine for F316Engine<Rec, A> {
         Some(v)
     }
 
-    fn from_triple(t: F316) -> F316 {
-        t
+    fn from_triple(t: F316) -> R<F316> {
+        Ok(t)
     }
 
     #[inline(always)]

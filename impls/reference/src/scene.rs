@@ -8,12 +8,9 @@ use std::path::Path;
 /// A scene file could not be used.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    /// The file could not be read.
-    #[error("cannot read scene file {path}: {source}")]
-    Read {
-        path: String,
-        source: std::io::Error,
-    },
+    /// The file is not a readable regular UTF-8 file of bounded size.
+    #[error("scene file: {0}")]
+    Input(#[from] common::input::InputError),
     /// The JSON is malformed or a field has the wrong type or name (serde's
     /// message names the field and the line).
     #[error("malformed scene file {path}: {source}")]
@@ -189,10 +186,7 @@ impl Scene {
     /// values.
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
         let shown = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-            path: shown.clone(),
-            source,
-        })?;
+        let text = common::input::read_text(path)?;
         serde_json::from_str(&text).map_err(|source| SceneError::Parse {
             path: shown,
             source,

@@ -36,11 +36,16 @@ pub fn run(args: CompileArgs) -> anyhow::Result<ExitCode> {
     };
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
-    for class in &classes {
-        let path = args.out.join(class.file_name());
-        std::fs::write(&path, &class.code)
-            .with_context(|| format!("cannot write {}", path.display()))?;
+    // All classes or none: a path in the way must not leave a partial
+    // program behind.
+    let files: Vec<(PathBuf, Vec<u8>)> = classes
+        .iter()
+        .map(|c| (args.out.join(c.file_name()), c.code.clone().into_bytes()))
+        .collect();
+    for (path, _) in &files {
+        crate::output::check_file(path, "--out")?;
     }
+    crate::report::atomic::write_files(&files)?;
     println!(
         "compiled {} class(es) to {}",
         classes.len(),

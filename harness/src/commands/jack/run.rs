@@ -119,6 +119,11 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         keys: keys.clone(),
         profile_functions: args.profile_functions,
     };
+    if let Some(path) = &args.screen {
+        for p in screen_paths(path, args.compare_profiles) {
+            crate::output::check_png(&p, "--screen")?;
+        }
+    }
     if args.compare_profiles {
         return compare_profiles(&args, config);
     }
@@ -199,12 +204,7 @@ fn compare_profiles(
         }
     }
     if let Some(path) = &args.screen {
-        for (p, m) in [(pa, &a), (pb, &b)] {
-            let out = path.with_file_name(format!(
-                "{}-{p}.{}",
-                path.file_stem().unwrap_or_default().to_string_lossy(),
-                path.extension().unwrap_or_default().to_string_lossy()
-            ));
+        for (out, m) in screen_paths(path, true).into_iter().zip([&a, &b]) {
             write_screen(m.ram(), &out)?;
         }
     }
@@ -215,6 +215,24 @@ fn compare_profiles(
             ExitCode::from(1)
         },
     )
+}
+
+/// Where `--screen PATH` writes: PATH, or with both profiles compared
+/// `STEM-PROFILE.EXT` beside it, one per profile.
+fn screen_paths(path: &Path, per_profile: bool) -> Vec<PathBuf> {
+    if !per_profile {
+        return vec![path.to_path_buf()];
+    }
+    Profile::ALL
+        .iter()
+        .map(|p| {
+            path.with_file_name(format!(
+                "{}-{p}.{}",
+                path.file_stem().unwrap_or_default().to_string_lossy(),
+                path.extension().unwrap_or_default().to_string_lossy()
+            ))
+        })
+        .collect()
 }
 
 /// The program of `dir`: its .jack files compiled under `profile` if it has
@@ -231,11 +249,28 @@ fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
     let classes = jack_compiler::compile_dir(dir, compiler_profile)
         .with_context(|| format!("compiling {}", dir.display()))?;
     let sources: Vec<(String, String)> = classes
-        .into_iter()
-        .map(jack_compiler::VmClass::into_file)
+        .iter()
+        .map(|c| (c.file_name(), c.code.clone()))
         .collect();
-    Program::from_sources(&sources)
-        .with_context(|| format!("loading the VM code compiled from {}", dir.display()))
+    Program::from_sources(&sources).map_err(|e| {
+        let context = format!("loading the VM code compiled from {}", dir.display());
+        match jack_position(&classes, &e) {
+            Some(at) => anyhow::anyhow!("{at}: {e}").context(context),
+            None => anyhow::Error::new(e).context(context),
+        }
+    })
+}
+
+/// The Jack source position (`File.jack:line:col`) a load error of
+/// compiled code points at (a literal above 32767, a call into a class
+/// that is not there), when the error has a line.
+fn jack_position(classes: &[jack_compiler::VmClass], e: &hack_vm::LoadError) -> Option<String> {
+    let hack_vm::LoadError::Syntax { file, line, .. } = e else {
+        return None;
+    };
+    let class = classes.iter().find(|c| &c.file_name() == file)?;
+    let pos = class.jack_pos(*line)?;
+    Some(format!("{}.jack:{pos}", class.class_name))
 }
 
 /// Instructions between two updates of the progress counter.
@@ -268,7 +303,8 @@ fn screen_diff(a: &Ram, b: &Ram) -> Option<(usize, (usize, usize))> {
     first.map(|f| (count, f))
 }
 
-/// The screen as a greyscale PNG: white 255, black (a 1 bit) 0.
+/// The screen as a greyscale PNG (white 255, black, a 1 bit, 0), written
+/// atomically: a failure leaves an existing file as it was.
 fn write_screen(ram: &Ram, path: &Path) -> anyhow::Result<()> {
     let img = image::GrayImage::from_fn(512, 256, |x, y| {
         image::Luma([if ram.pixel(x as usize, y as usize) {
@@ -277,6 +313,8 @@ fn write_screen(ram: &Ram, path: &Path) -> anyhow::Result<()> {
             255
         }])
     });
-    img.save(path)
-        .with_context(|| format!("writing {}", path.display()))
+    let mut png = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut png, image::ImageFormat::Png)
+        .context("encoding the screen as PNG")?;
+    crate::report::atomic::write_file(path, png.get_ref())
 }

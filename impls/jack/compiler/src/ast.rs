@@ -221,8 +221,9 @@ pub struct Expr {
 /// A term of an expression.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Term {
-    /// A decimal integer literal (leading zeros removed, possibly > 32767).
-    Int(String),
+    /// A decimal integer literal (leading zeros removed, possibly > 32767)
+    /// and where it starts.
+    Int(String, Pos),
     /// A string literal.
     Str(String),
     /// A keyword constant.

@@ -14,18 +14,22 @@ use jack_os::Profile;
 
 const PRIMITIVES: [&str; 3] = ["int", "char", "boolean"];
 
-/// Compiles one class to VM text, or returns every error found in it.
+/// A class's VM text and the Jack position of each of its lines.
+pub type ClassCode = (String, Vec<Pos>);
+
+/// Compiles one class to VM text with the Jack position of each of its
+/// lines, or returns every error found in it.
 pub fn compile_class<'a>(
     class: &'a Class,
     program: &'a Program<'a>,
-) -> Result<String, Vec<(Pos, ErrorKind)>> {
+) -> Result<ClassCode, Vec<(Pos, ErrorKind)>> {
     let mut g = Gen::new(class, program);
     g.class_checks();
     for sub in &class.subroutines {
         g.subroutine(sub);
     }
     if g.errors.is_empty() {
-        Ok(g.out)
+        Ok((g.out, g.lines))
     } else {
         Err(g.errors)
     }
@@ -47,6 +51,10 @@ struct Gen<'a> {
     n_fields: usize,
     next_label: usize,
     out: String,
+    /// The Jack construct being compiled: the source of the next line.
+    at: Pos,
+    /// The Jack position of each line of `out`.
+    lines: Vec<Pos>,
     errors: Vec<(Pos, ErrorKind)>,
 }
 
@@ -85,6 +93,8 @@ impl<'a> Gen<'a> {
             n_fields: n_field,
             next_label: 0,
             out: String::new(),
+            at: class.name.pos,
+            lines: Vec::new(),
             errors: Vec::new(),
         }
     }
@@ -98,6 +108,7 @@ impl<'a> Gen<'a> {
         self.out.push_str("    ");
         self.out.push_str(cmd);
         self.out.push('\n');
+        self.lines.push(self.at);
     }
 
     fn label(&mut self) -> String {
@@ -108,6 +119,7 @@ impl<'a> Gen<'a> {
 
     fn emit_label(&mut self, l: &str) {
         let _ = writeln!(self.out, "label {l}");
+        self.lines.push(self.at);
     }
 
     /// Duplicate subroutines, OS interface overrides, class variable types.
@@ -183,11 +195,13 @@ impl<'a> Gen<'a> {
                 self.locals.insert(name.text.as_str(), var);
             }
         }
+        self.at = sub.name.pos;
         let _ = writeln!(
             self.out,
             "function {}.{} {}",
             self.class.name.text, sub.name.text, n_locals
         );
+        self.lines.push(self.at);
         match sub.kind {
             SubroutineKind::Method => {
                 self.emit("push argument 0");
@@ -223,6 +237,7 @@ impl<'a> Gen<'a> {
     }
 
     fn push_var(&mut self, id: &Ident) {
+        self.at = id.pos;
         if let Some(v) = self.var(id) {
             self.emit(&format!("push {v}"));
         }
@@ -255,6 +270,7 @@ impl<'a> Gen<'a> {
                 value,
             } => {
                 self.expr(value);
+                self.at = target.pos;
                 if let Some(v) = self.var(target) {
                     self.emit(&format!("pop {v}"));
                 }
@@ -286,7 +302,8 @@ impl<'a> Gen<'a> {
                 self.call(call);
                 self.emit("pop temp 0");
             }
-            Statement::Return { value, .. } => {
+            Statement::Return { value, pos } => {
+                self.at = *pos;
                 match value {
                     Some(e) => self.expr(e),
                     None => self.emit("push constant 0"),
@@ -316,7 +333,10 @@ impl<'a> Gen<'a> {
 
     fn term(&mut self, t: &Term) {
         match t {
-            Term::Int(digits) => self.emit(&format!("push constant {digits}")),
+            Term::Int(digits, pos) => {
+                self.at = *pos;
+                self.emit(&format!("push constant {digits}"));
+            }
             Term::Str(s) => {
                 let codes: Vec<u16> = s.encode_utf16().collect();
                 self.emit(&format!("push constant {}", codes.len()));
@@ -353,6 +373,7 @@ impl<'a> Gen<'a> {
     }
 
     fn call(&mut self, call: &Call) {
+        self.at = call.pos();
         // (class, receiver to push): unqualified calls are methods on this.
         let (class_name, receiver) = match &call.receiver {
             None => (self.class.name.text.clone(), Some("pointer 0".to_string())),
@@ -385,6 +406,7 @@ impl<'a> Gen<'a> {
             self.expr(a);
         }
         let n = call.args.len() + usize::from(is_method);
+        self.at = call.pos();
         self.emit(&format!("call {}.{} {}", class_name, call.name.text, n));
     }
 

@@ -125,6 +125,10 @@ pub enum CompileDirError {
         path: PathBuf,
         source: std::io::Error,
     },
+    /// A source is not a readable regular UTF-8 file of bounded size (a
+    /// bad byte is located by line and column).
+    #[error(transparent)]
+    Input(#[from] common::input::InputError),
     /// The directory holds no `.jack` file.
     #[error("no .jack files in {0}")]
     NoSources(PathBuf),

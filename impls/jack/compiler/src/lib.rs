@@ -42,12 +42,21 @@ pub struct VmClass {
     pub class_name: String,
     /// The VM commands, one per line, ending with a newline.
     pub code: String,
+    /// The position in the Jack source of each line of `code` (of the
+    /// statement, term or call it was compiled from), to map a VM load
+    /// error back to the Jack source.
+    pub lines: Vec<Pos>,
 }
 
 impl VmClass {
     /// The name of the class's .vm file: `<class_name>.vm`.
     pub fn file_name(&self) -> String {
         format!("{}.vm", self.class_name)
+    }
+
+    /// Where in the Jack source VM line `line` (1-based) comes from.
+    pub fn jack_pos(&self, line: usize) -> Option<Pos> {
+        line.checked_sub(1).and_then(|i| self.lines.get(i)).copied()
     }
 
     /// The class as a (file name, VM code) pair, the form the Hack VM
@@ -126,9 +135,10 @@ pub fn compile_sources<N: AsRef<str>, S: AsRef<str>>(
             );
         }
         match codegen::compile_class(class, &program) {
-            Ok(code) => out.push(VmClass {
+            Ok((code, lines)) => out.push(VmClass {
                 class_name: class.name.text.clone(),
                 code,
+                lines,
             }),
             Err(errs) => {
                 for (pos, kind) in errs {
@@ -165,7 +175,7 @@ pub fn compile_dir(dir: &Path, profile: Profile) -> Result<Vec<VmClass>, Compile
     files.sort();
     let mut sources = Vec::new();
     for path in &files {
-        let text = std::fs::read_to_string(path).map_err(|e| io_err(path, e))?;
+        let text = common::input::read_text(path)?;
         let name = path
             .file_name()
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned());

@@ -388,6 +388,7 @@ impl Parser {
                 let trimmed = digits.trim_start_matches('0');
                 Ok(Term::Int(
                     if trimmed.is_empty() { "0" } else { trimmed }.to_string(),
+                    t.pos,
                 ))
             }
             Tok::Str(s) => {

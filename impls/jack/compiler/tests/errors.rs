@@ -231,11 +231,20 @@ fn compile_dir_reads_sorted_files_and_reports_io_problems() {
     let out = compile_dir(&dir, Profile::Web).unwrap();
     let names: Vec<&str> = out.iter().map(|c| c.class_name.as_str()).collect();
     assert_eq!(names, ["B", "Main"]);
-    std::fs::write(dir.join("Bad.jack"), [0xff, 0xfe, 0x00]).unwrap();
-    assert!(matches!(
-        compile_dir(&dir, Profile::Web),
-        Err(CompileDirError::Io { .. })
-    ));
+    std::fs::write(dir.join("Bad.jack"), [b'c', b'\n', b'x', 0xff, 0xfe, 0x00]).unwrap();
+    // Not UTF-8: the error locates the first bad byte.
+    let err = compile_dir(&dir, Profile::Web).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            CompileDirError::Input(common::input::InputError::NotUtf8 {
+                line: 2,
+                column: 2,
+                ..
+            })
+        ),
+        "{err:?}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(matches!(
         compile_dir(&dir, Profile::Web),

@@ -19,6 +19,9 @@ pub enum LoadError {
     /// A check on the whole program failed (no line to point at).
     #[error("{0}")]
     Program(String),
+    /// A file is not a readable regular UTF-8 file of bounded size.
+    #[error(transparent)]
+    Input(#[from] common::input::InputError),
     /// A file or directory could not be read.
     #[error("cannot read {path}: {source}")]
     Io {

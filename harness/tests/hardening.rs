@@ -1,0 +1,287 @@
+//! Reproducers of hostile runs (issue 20): each once panicked, hung, left a
+//! partial file or gave a misleading message.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+/// Run the harness with `args`; a run that takes longer than `limit` is
+/// killed and fails the test (a FIFO must not block it).
+fn harness_within(args: &[&str], limit: Duration) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_harness"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > limit {
+            child.kill().unwrap();
+            panic!("harness {args:?} still running after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+fn harness(args: &[&str]) -> Output {
+    harness_within(args, Duration::from_secs(300))
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// A directory holding `files` (name, contents).
+fn dir_with(files: &[(&str, &[u8])]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, bytes) in files {
+        std::fs::write(dir.path().join(name), bytes).unwrap();
+    }
+    dir
+}
+
+fn entries(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+const HALTS: &[u8] = b"class Main {\n  function void main() {\n    return;\n  }\n}\n";
+
+#[test]
+fn a_legal_sdf_point_beyond_the_float_range_is_no_panic() {
+    let dir = dir_with(&[(
+        "huge.json",
+        br#"{"format_version":1,"level":"sdf","name":"x","vectors":[{"category":"c","p":[[0,255,8192],[0,0,0],[0,0,0]]}]}"#,
+    )]);
+    let set = dir.path().join("huge.json");
+    for other in ["ref-f32", "ref-f64"] {
+        let o = harness(&["diff", "ref-f316", other, "--vectors", s(&set)]);
+        assert!(
+            matches!(o.status.code(), Some(0 | 1)),
+            "{other}: {}",
+            text(&o)
+        );
+        assert!(!text(&o).contains("panicked"), "{}", text(&o));
+    }
+}
+
+#[test]
+fn jack_run_refuses_a_screen_it_cannot_write_before_running() {
+    let src = dir_with(&[("Main.jack", HALTS)]);
+    let prev = src.path().join("prev.jpg");
+    std::fs::write(&prev, b"an earlier screen").unwrap();
+    let o = harness(&["jack", "run", s(src.path()), "--screen", s(&prev)]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("does not end in .png"), "{}", text(&o));
+    assert!(!text(&o).contains("instructions:"), "it ran: {}", text(&o));
+    assert_eq!(std::fs::read(&prev).unwrap(), b"an earlier screen");
+    let png = src.path().join("screen.png");
+    let o = harness(&["jack", "run", s(src.path()), "--screen", s(&png)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert_eq!(image::open(&png).unwrap().width(), 512);
+    assert!(!entries(src.path()).iter().any(|e| e.contains(".tmp")));
+}
+
+#[test]
+fn jack_compile_writes_every_class_or_none() {
+    let class = |n: &str| format!("class {n} {{ function void f() {{ return; }} }}\n");
+    let (a, z) = (class("A"), class("Z"));
+    let src = dir_with(&[
+        ("A.jack", a.as_bytes()),
+        ("Main.jack", HALTS),
+        ("Z.jack", z.as_bytes()),
+    ]);
+    let out = tempfile::tempdir().unwrap();
+    std::fs::create_dir(out.path().join("Main.vm")).unwrap();
+    let o = harness(&["jack", "compile", s(src.path()), "--out", s(out.path())]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("Main.vm exists and is not a file"),
+        "{}",
+        text(&o)
+    );
+    assert_eq!(entries(out.path()), vec!["Main.vm"], "no partial output");
+    std::fs::remove_dir(out.path().join("Main.vm")).unwrap();
+    let o = harness(&["jack", "compile", s(src.path()), "--out", s(out.path())]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert_eq!(entries(out.path()), vec!["A.vm", "Main.vm", "Z.vm"]);
+}
+
+#[test]
+fn diff_report_leaves_no_stale_repro_files() {
+    let report = tempfile::tempdir().unwrap();
+    let dir = report.path().join("r");
+    let bad = harness(&[
+        "diff",
+        "ref-f316",
+        "ref-f316+sqrt-floor-div",
+        "--level",
+        "ops",
+        "--report",
+        s(&dir),
+    ]);
+    assert_eq!(bad.status.code(), Some(1), "{}", text(&bad));
+    assert!(!entries(&dir.join("repro")).is_empty());
+    let good = harness(&[
+        "diff",
+        "ref-f316",
+        "ref-f316",
+        "--level",
+        "ops",
+        "--report",
+        s(&dir),
+    ]);
+    assert_eq!(good.status.code(), Some(0), "{}", text(&good));
+    assert_eq!(entries(&dir), vec!["report.json", "repro"]);
+    assert!(entries(&dir.join("repro")).is_empty(), "stale repro files");
+    let file = report.path().join("file");
+    std::fs::write(&file, "x").unwrap();
+    let o = harness(&["diff", "ref-f316", "ref-f316", "--report", s(&file)]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("is not a directory"), "{}", text(&o));
+}
+
+#[test]
+fn nightly_refuses_an_existing_file_as_out_before_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("report");
+    std::fs::write(&file, "x").unwrap();
+    let o = harness_within(&["nightly", "--out", s(&file)], Duration::from_secs(30));
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("exists and is not a directory"),
+        "{}",
+        text(&o)
+    );
+    assert!(!text(&o).contains("nightly: "), "a step ran: {}", text(&o));
+}
+
+#[test]
+fn non_utf8_jack_source_is_located() {
+    let src = dir_with(&[(
+        "Main.jack",
+        b"class Main {\n  // caf\xe9\n  function void main() { return; }\n}\n",
+    )]);
+    let out = tempfile::tempdir().unwrap();
+    let o = harness(&["jack", "compile", s(src.path()), "--out", s(out.path())]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("Main.jack:2:9: not valid UTF-8 text"),
+        "{}",
+        text(&o)
+    );
+}
+
+#[test]
+fn an_error_source_is_printed_once() {
+    let dir = dir_with(&[("bad.json", b"{\"format_version\": 1,")]);
+    let o = harness(&[
+        "diff",
+        "ref-f316",
+        "ref-f316",
+        "--vectors",
+        s(&dir.path().join("bad.json")),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let t = text(&o);
+    let cause = "EOF while parsing";
+    assert_eq!(t.matches(cause).count(), 1, "{t}");
+}
+
+#[test]
+fn an_out_of_range_pixel_is_named() {
+    let o = harness(&["localize", "ref-f316", "ref-f316", "--pixel", "99999,99999"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("--pixel: (99999,99999) is outside the 512x256 image"),
+        "{}",
+        text(&o)
+    );
+    let o = harness(&["localize", "ref-f316", "ref-f316", "--pixel", "1,x"]);
+    assert!(
+        text(&o).contains("`x` in `1,x` is not a number"),
+        "{}",
+        text(&o)
+    );
+    let o = harness(&[
+        "localize",
+        "ref-f316",
+        "ref-f316",
+        "--op",
+        "sqrt",
+        "--a",
+        "0,99999,1",
+    ]);
+    assert!(
+        text(&o).contains("--a: `99999` is out of range"),
+        "{}",
+        text(&o)
+    );
+}
+
+/// Jack that the official compiler accepts but the VM refuses to load: the
+/// error names the Jack position.
+#[test]
+fn load_errors_of_compiled_jack_point_at_the_jack_source() {
+    let cases: [(&[u8], &str); 2] = [
+        (
+            b"class Main {\n  function void main() {\n    var int x;\n    let x = 65536;\n    return;\n  }\n}\n",
+            "Main.jack:4:13: Main.vm:",
+        ),
+        (
+            b"class Main {\n  function void main() {\n    do Missing.f(1);\n    return;\n  }\n}\n",
+            "Main.jack:3:8: Main.vm:",
+        ),
+    ];
+    for (source, expected) in cases {
+        let src = dir_with(&[("Main.jack", source)]);
+        let o = harness(&["jack", "run", s(src.path())]);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains(expected), "{expected}: {}", text(&o));
+    }
+}
+
+/// A FIFO or a device given as an input file neither blocks nor reads
+/// without end.
+#[test]
+fn fifos_and_devices_are_refused_as_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo: PathBuf = dir.path().join("set.json");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let limit = Duration::from_secs(30);
+    for path in [s(&fifo), "/dev/zero"] {
+        let o = harness_within(&["diff", "ref-f316", "ref-f316", "--vectors", path], limit);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
+        let png = dir.path().join("x.png");
+        let o = harness_within(
+            &[
+                "render",
+                "--impl",
+                "ref-f64",
+                "--scene",
+                path,
+                "--out",
+                s(&png),
+            ],
+            limit,
+        );
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
+    }
+}
