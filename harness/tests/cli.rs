@@ -333,7 +333,8 @@ fn compare_profiles_names_the_first_call_whose_result_differs() {
     assert!(o.status.success(), "{}", text(&o));
     let t = text(&o);
     assert!(
-        t.contains("call traces: same") && t.contains("screens: same"),
+        t.contains("call traces: same")
+            && t.contains("screens: same, the desktop's one pixel row lower"),
         "{t}"
     );
 }

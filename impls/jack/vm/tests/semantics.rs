@@ -171,7 +171,9 @@ fn temp_pointer_and_statics() {
         "push constant 3\npop temp 7\npush temp 7\npush constant 9\npop static 5\npush static 5\n",
     );
     assert_eq!(m.ram().read(12), 3);
-    assert_eq!(m.ram().read(16), 9);
+    // Desktop: the file's static segment from 16, static 5 at 21 (the web
+    // IDE's first slot would be 16).
+    assert_eq!(m.ram().read(21), 9);
     assert_eq!(top(&m), 9);
 }
 
@@ -199,11 +201,36 @@ fn more_than_240_statics_fail_when_accessed() {
         src.push_str("push constant 0\nreturn\n");
     }
     src.push_str("function Main.main 0\npush constant 0\nreturn\n");
-    let p = Program::from_sources(&[("T.vm", src.as_str())]).unwrap();
-    let mut m = Machine::new(p, Config::default());
+    // Web: 242 slots by class; C1's last two do not fit.
+    let mut m = load_under(&[("T.vm", src.as_str())], Profile::Web);
     assert_eq!(m.call("C0.f", &[], None).unwrap(), Exit::Returned(0));
     let (msg, stack) = runtime_error(m.call("C1.f", &[], None).unwrap());
     assert!(msg.contains("Too many static variables"), "{msg}");
+    assert_eq!(stack, "C1.f");
+    // Desktop: one segment per file, 121 words for T.vm: both fit. Two files
+    // of 121 do not: the second's static 119 would be RAM[256].
+    let mut m = load(&[("T.vm", src.as_str())]);
+    assert_eq!(m.call("C1.f", &[], None).unwrap(), Exit::Returned(0));
+    let one = |c: &str| {
+        let mut f = format!("function {c}.f 0\n");
+        for i in 0..121 {
+            f.push_str(&format!("push static {i}\npop temp 0\n"));
+        }
+        f + "push constant 0\nreturn\n"
+    };
+    let (c0, c1) = (one("C0"), one("C1"));
+    let main = "function Main.main 0\npush constant 0\nreturn\n";
+    let mut m = load(&[
+        ("C0.vm", c0.as_str()),
+        ("C1.vm", c1.as_str()),
+        ("Main.vm", main),
+    ]);
+    assert_eq!(m.call("C0.f", &[], None).unwrap(), Exit::Returned(0));
+    let (msg, stack) = runtime_error(m.call("C1.f", &[], None).unwrap());
+    assert!(
+        msg.contains("Out of segment space: C1.vm's static 119 would be RAM[256]"),
+        "{msg}"
+    );
     assert_eq!(stack, "C1.f");
 }
 
