@@ -1,6 +1,7 @@
 //! Command-line definition (stable: scripts and reports rely on it) and
 //! dispatch to one module per subcommand under `commands/`.
 
+use crate::cast::Cast;
 use crate::commands;
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -9,6 +10,10 @@ use std::process::ExitCode;
 #[derive(Debug, Parser)]
 #[command(name = "harness", version, about)]
 pub struct Cli {
+    /// The project file declaring more implementations (default:
+    /// harness.toml in the current directory, when there is one).
+    #[arg(long, global = true, value_name = "FILE")]
+    pub cast: Option<std::path::PathBuf>,
     #[command(subcommand)]
     pub command: Command,
 }
@@ -16,6 +21,8 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// List every implementation of the cast: kind, numbers, levels, availability.
+    Cast(commands::cast::CastArgs),
     /// Render the 512x256 dithered image with one implementation.
     Render(commands::render::RenderArgs),
     /// Jack toolchain: compile Jack to VM code, run a VM program.
@@ -41,15 +48,17 @@ pub enum Command {
 /// Run a parsed command line; the exit code follows the design's contract
 /// (errors of usage or input are reported by the caller as exit 2).
 pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    let cast = || Cast::load(cli.cast.as_deref());
     match cli.command {
-        Command::Render(args) => commands::render::run(args),
+        Command::Cast(args) => commands::cast::run(args, &cast()?),
+        Command::Render(args) => commands::render::run(args, &cast()?),
         Command::Jack(cmd) => commands::jack::run(cmd),
-        Command::Diff(args) => commands::diff::run(args),
-        Command::Localize(args) => commands::localize::run(args),
-        Command::Selftest(args) => commands::selftest::run(args),
+        Command::Diff(args) => commands::diff::run(args, &cast()?),
+        Command::Localize(args) => commands::localize::run(args, &cast()?),
+        Command::Selftest(args) => commands::selftest::run(args, &cast()?),
         Command::Vectors(cmd) => commands::vectors::run(cmd),
-        Command::Check(args) => commands::check::run(args),
-        Command::Bench(args) => commands::bench::run(args),
-        Command::Nightly(args) => commands::nightly::run(args),
+        Command::Check(args) => commands::check::run(args, cast()),
+        Command::Bench(args) => commands::bench::run(args, &cast()?),
+        Command::Nightly(args) => commands::nightly::run(args, &cast()?),
     }
 }

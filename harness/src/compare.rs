@@ -35,10 +35,16 @@ impl Thresholds {
     /// The thresholds for a subject computing with `numbers` against f64.
     pub fn for_subject(numbers: Numbers) -> Self {
         match numbers {
-            Numbers::F32 | Numbers::F64 => Thresholds {
+            Numbers::F32 | Numbers::F64 | Numbers::Ieee { bits: 32.. } => Thresholds {
                 max_abs: 1e-4,
                 max_rel: 1e-4,
                 max_flip_fraction: 0.01,
+            },
+            // binary16 holds about 3 decimal digits.
+            Numbers::Ieee { .. } => Thresholds {
+                max_abs: 1e-2,
+                max_rel: 1e-2,
+                max_flip_fraction: 0.02,
             },
             Numbers::Float316 => Thresholds {
                 max_abs: 1e-3,

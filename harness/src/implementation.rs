@@ -12,77 +12,6 @@ use std::fmt;
 use std::str::FromStr;
 use vectors::{Level, Vector};
 
-/// The six implementations of the design, as named on the command line.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-pub enum ImplName {
-    #[serde(rename = "ref-f64")]
-    RefF64,
-    #[serde(rename = "ref-f32")]
-    RefF32,
-    #[serde(rename = "ref-f316")]
-    RefF316,
-    #[serde(rename = "jack")]
-    Jack,
-    #[serde(rename = "gpu-f32")]
-    GpuF32,
-    #[serde(rename = "gpu-f316")]
-    GpuF316,
-}
-
-impl ImplName {
-    /// Every implementation, in the design's order.
-    pub const ALL: [ImplName; 6] = [
-        ImplName::RefF64,
-        ImplName::RefF32,
-        ImplName::RefF316,
-        ImplName::Jack,
-        ImplName::GpuF32,
-        ImplName::GpuF316,
-    ];
-
-    /// The command-line name.
-    pub const fn as_str(self) -> &'static str {
-        match self {
-            ImplName::RefF64 => "ref-f64",
-            ImplName::RefF32 => "ref-f32",
-            ImplName::RefF316 => "ref-f316",
-            ImplName::Jack => "jack",
-            ImplName::GpuF32 => "gpu-f32",
-            ImplName::GpuF316 => "gpu-f316",
-        }
-    }
-
-    /// The kind of numbers it computes with.
-    pub const fn numbers(self) -> Numbers {
-        match self {
-            ImplName::RefF64 => Numbers::F64,
-            ImplName::RefF32 | ImplName::GpuF32 => Numbers::F32,
-            ImplName::RefF316 | ImplName::Jack | ImplName::GpuF316 => Numbers::Float316,
-        }
-    }
-}
-
-impl fmt::Display for ImplName {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
-/// An implementation name that is not one of the six.
-#[derive(Debug, thiserror::Error)]
-#[error("unknown implementation `{0}` (expected one of ref-f64, ref-f32, ref-f316, jack, gpu-f32, gpu-f316)")]
-pub struct UnknownImpl(pub String);
-
-impl FromStr for ImplName {
-    type Err = UnknownImpl;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        ImplName::ALL
-            .into_iter()
-            .find(|n| n.as_str() == s)
-            .ok_or_else(|| UnknownImpl(s.to_string()))
-    }
-}
-
 /// The number format an implementation computes with; it decides the
 /// comparison policy.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -94,6 +23,47 @@ pub enum Numbers {
     F64,
     /// IEEE f32.
     F32,
+    /// Another IEEE binary width (binary16, binary128, ...): its answers
+    /// travel as f64 values and are compared by error figures.
+    Ieee { bits: u16 },
+}
+
+impl Numbers {
+    /// The name used in project files and listings: `float316`, `f64`,
+    /// `f32`, `f16`, ...
+    pub fn name(self) -> String {
+        match self {
+            Numbers::Float316 => "float316".into(),
+            Numbers::F64 => "f64".into(),
+            Numbers::F32 => "f32".into(),
+            Numbers::Ieee { bits } => format!("f{bits}"),
+        }
+    }
+}
+
+impl fmt::Display for Numbers {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.name())
+    }
+}
+
+/// A number type name that is neither `float316` nor an IEEE binary width.
+#[derive(Debug, thiserror::Error)]
+#[error("unknown number type `{0}` (expected float316, f64, f32 or another IEEE width: f16, f128)")]
+pub struct UnknownNumbers(pub String);
+
+impl FromStr for Numbers {
+    type Err = UnknownNumbers;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "float316" => Ok(Numbers::Float316),
+            "f64" => Ok(Numbers::F64),
+            "f32" => Ok(Numbers::F32),
+            "f16" => Ok(Numbers::Ieee { bits: 16 }),
+            "f128" => Ok(Numbers::Ieee { bits: 128 }),
+            _ => Err(UnknownNumbers(s.to_string())),
+        }
+    }
 }
 
 /// A number as an implementation produced it.
@@ -202,17 +172,13 @@ pub enum ImplError {
 
 /// One implementation, as the runner and the localizer see it.
 pub trait Implementation: Send + Sync {
-    /// The name printed in reports: the command-line name, with
-    /// `+FAULT` when a fault is injected (`ref-f316+sqrt-floor-div`).
+    /// The name printed in reports: the label it was opened under, its
+    /// cast name with `+VARIANT` for each variant or fault applied
+    /// (`ref-f316+sqrt-floor-div`).
     fn label(&self) -> String;
 
-    /// Which of the six it is.
-    fn name(&self) -> ImplName;
-
     /// The numbers it computes with (decides the comparison policy).
-    fn numbers(&self) -> Numbers {
-        self.name().numbers()
-    }
+    fn numbers(&self) -> Numbers;
 
     /// Whether it answers vectors of `level`.
     fn supports(&self, level: Level) -> bool;

@@ -3,10 +3,12 @@
 //! kernels, compares them under the right policy and says where they
 //! diverge. See ARCHITECTURE.md for the map.
 //!
-//! Library entry points: [`implementation::Implementation`] (the trait),
+//! Library entry points: [`cast::Cast`] (the registry of implementations,
+//! with the project file), [`implementation::Implementation`] (the trait),
 //! [`runner::diff_set`] (run and compare a set), [`compare`] (policies and
 //! the result types).
 
+pub mod cast;
 pub mod cli;
 pub mod commands;
 pub mod compare;
@@ -14,6 +16,7 @@ pub mod exhaustive;
 pub mod implementation;
 pub mod impls;
 pub mod localize;
+pub mod measure;
 pub mod output;
 pub mod progress;
 pub mod report;

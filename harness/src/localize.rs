@@ -10,6 +10,16 @@
 //! after checking against `ref-f316` which side differs, every operation of
 //! ref-f316's trace is run through it alone, and the first one whose result
 //! differs from the trace is the divergent operation.
+//!
+//! A side whose call nesting and operation order differ from the
+//! reference's (a user's Jack program) is localized without assuming our
+//! structure: when the record-by-record diff finds no operation at fault,
+//! every record of that side's own trace is replayed through the tracer
+//! ([`Replayed`]: the first operation whose result differs from ref-f316's
+//! on the same operands, with its call path), and its operands are looked
+//! up in the tracer's trace of the same input ([`StrayInputs`]: the first
+//! operation whose inputs ref-f316 never sees, when the inputs already
+//! differ).
 
 use crate::implementation::{Answer, ImplError, Implementation, Numbers};
 use common::{Op, OpValue, Outcome, TraceRecord};
@@ -65,6 +75,47 @@ pub struct Localization {
     /// When the answers differ but the traces agree throughout: the last
     /// operation, after which the logic that uses its result differs.
     pub after_last: Option<TraceRecord>,
+    /// When the diff finds no operation at fault: the first operation of a
+    /// side's own trace whose result differs from the tracer's on the same
+    /// operands.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replayed: Option<Replayed>,
+    /// The first operation of a side's own trace whose operands the
+    /// tracer's trace of the input never has (the inputs already differ),
+    /// when it comes before any operation at fault.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inputs_differ: Option<StrayInputs>,
+}
+
+/// An operation of one side's own trace that the tracer computes
+/// differently from the same operands: the operation at fault, whatever the
+/// side's call nesting and operation order.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Replayed {
+    /// The side (its label).
+    pub side: String,
+    /// The tracer (its label).
+    pub tracer: String,
+    /// Index of the record in the side's trace.
+    pub index: usize,
+    /// The record: operands, the side's result and its call path.
+    pub record: TraceRecord,
+    /// The tracer's result on the same operands.
+    pub expected: Outcome<OpValue>,
+}
+
+/// An operation of one side whose operands appear in no operation of the
+/// tracer's trace of the same input: the inputs already differ there.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StrayInputs {
+    /// The side (its label).
+    pub side: String,
+    /// The tracer (its label).
+    pub tracer: String,
+    /// Index of the record in the side's trace.
+    pub index: usize,
+    /// The record.
+    pub record: TraceRecord,
 }
 
 impl Localization {
@@ -77,6 +128,12 @@ impl Localization {
     /// operands, both results and call path; else the first divergent
     /// record of each side; else where the answers part after the traces.
     pub fn one_line(&self) -> String {
+        if let (None, Some(r)) = (&self.origin, &self.replayed) {
+            return format!(
+                "{} = {} ({}) vs {} ({}), record {} of {}'s own trace",
+                r.record, r.record.result, r.side, r.expected, r.tracer, r.index, r.side
+            );
+        }
         if let Some(o) = &self.origin {
             let args: Vec<String> = o.args.iter().map(ToString::to_string).collect();
             return format!(
@@ -114,7 +171,8 @@ impl Localization {
     /// The operation the divergence is blamed on: the origin, else the
     /// first divergent record's operation.
     pub fn blamed_op(&self) -> Option<Op> {
-        self.origin.as_ref().map(|o| o.op).or_else(|| {
+        let replayed = self.replayed.as_ref().map(|r| r.record.op);
+        self.origin.as_ref().map(|o| o.op).or(replayed).or_else(|| {
             self.first
                 .as_ref()
                 .and_then(|f| f.a.as_ref().or(f.b.as_ref()).map(|r| r.op))
@@ -189,6 +247,66 @@ pub fn diff_traces(
     (Some(first), origin)
 }
 
+/// The key of an operation for looking up its operands: `add` and `mul`
+/// take theirs in either order.
+fn operands_key(r: &TraceRecord) -> (Op, Vec<common::F316>) {
+    let mut args = r.args.clone();
+    if matches!(r.op, Op::Add | Op::Mul) {
+        args.sort_by_key(|v| (v.s, v.e, v.m));
+    }
+    (r.op, args)
+}
+
+/// Replay `own` (a side's trace) through `tracer`: the first record whose
+/// result differs, descending into the operations it calls while one of
+/// them differs too (the innermost operation at fault).
+fn replay_search(
+    side: &dyn Implementation,
+    tracer: &dyn Implementation,
+    own: &[TraceRecord],
+) -> Result<Option<Replayed>, LocalizeError> {
+    let expected = replay(tracer, own)?;
+    let differs = |i: usize| own[i].result != expected[i].result;
+    let Some(mut at) = (0..own.len()).find(|&i| differs(i)) else {
+        return Ok(None);
+    };
+    loop {
+        let deeper = (at + 1..own.len())
+            .take_while(|&j| nested(&own[at], &own[j]))
+            .find(|&j| differs(j));
+        match deeper {
+            Some(j) => at = j,
+            None => break,
+        }
+    }
+    Ok(Some(Replayed {
+        side: side.label(),
+        tracer: tracer.label(),
+        index: at,
+        record: own[at].clone(),
+        expected: expected[at].result,
+    }))
+}
+
+/// The first record of `own` whose operands no record of `reference` has.
+fn stray_inputs(
+    side: &dyn Implementation,
+    tracer: &dyn Implementation,
+    own: &[TraceRecord],
+    reference: &[TraceRecord],
+) -> Option<StrayInputs> {
+    let known: std::collections::HashSet<(Op, Vec<common::F316>)> =
+        reference.iter().map(operands_key).collect();
+    own.iter()
+        .position(|r| !known.contains(&operands_key(r)))
+        .map(|index| StrayInputs {
+            side: side.label(),
+            tracer: tracer.label(),
+            index,
+            record: own[index].clone(),
+        })
+}
+
 fn eval_one(imp: &dyn Implementation, input: &Vector) -> Result<Outcome<Answer>, LocalizeError> {
     imp.eval(std::slice::from_ref(input))
         .map_err(|e| LocalizeError::Impl(imp.label(), e))?
@@ -257,8 +375,7 @@ pub fn localizable(a: &dyn Implementation, b: &dyn Implementation) -> Result<(),
     for imp in [a, b] {
         let numbers = match imp.numbers() {
             Numbers::Float316 => continue,
-            Numbers::F64 => "f64",
-            Numbers::F32 => "f32",
+            other => other.name(),
         };
         return Err(LocalizeError::Unsupported(format!(
             "{} computes with {numbers}: it has no Float316 operations to compare op by op \
@@ -287,6 +404,7 @@ pub fn localize(
         Err(e) => Err(LocalizeError::Impl(imp.label(), e)),
     };
     let (ta, tb) = (trace_of(a)?, trace_of(b)?);
+    let own = [(a, ta.clone()), (b, tb.clone())];
     let (method, ta, tb) = match (ta, tb) {
         (Some(ta), Some(tb)) => ("op traces of both".to_string(), ta, tb),
         (ta, tb) => {
@@ -321,6 +439,31 @@ pub fn localize(
         (None, true) => ta.last().cloned(),
         _ => None,
     };
+    let (mut replayed, mut inputs_differ) = (None, None);
+    if origin.is_none() && a_answer != b_answer {
+        let tracer_label = tracer.label();
+        let mut reference_trace = None;
+        for (side, trace) in own {
+            let Some(trace) = trace.filter(|_| side.label() != tracer_label) else {
+                continue;
+            };
+            if replayed.is_none() {
+                replayed = replay_search(side, tracer, &trace)?;
+            }
+            if inputs_differ.is_none() {
+                if reference_trace.is_none() {
+                    reference_trace = Some(
+                        tracer
+                            .trace(input)
+                            .map_err(|e| LocalizeError::Impl(tracer_label.clone(), e))?,
+                    );
+                }
+                let reference = reference_trace.as_deref().unwrap_or_default();
+                inputs_differ = stray_inputs(side, tracer, &trace, reference)
+                    .filter(|s| replayed.as_ref().is_none_or(|r| s.index < r.index));
+            }
+        }
+    }
     Ok(Localization {
         input: input.clone(),
         a: a.label(),
@@ -332,6 +475,8 @@ pub fn localize(
         first,
         origin,
         after_last,
+        replayed,
+        inputs_differ,
     })
 }
 
@@ -369,6 +514,32 @@ impl fmt::Display for Localization {
                 Some(r) => writeln!(f, "  {label:w$}  {r}")?,
                 None => writeln!(f, "  {label:w$}  (trace ended)")?,
             }
+        }
+        if let (None, Some(r)) = (&self.origin, &self.replayed) {
+            writeln!(
+                f,
+                "origin (replayed through {}): {}({}) at record {} of {}'s own trace [{}]",
+                r.tracer,
+                r.record.op,
+                r.record
+                    .args
+                    .iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                r.index,
+                r.side,
+                r.record.path.join(" > ")
+            )?;
+            writeln!(f, "  {:w$}  = {}", r.side, r.record.result)?;
+            return writeln!(f, "  {:w$}  = {}", r.tracer, r.expected);
+        }
+        if let Some(s) = &self.inputs_differ {
+            writeln!(
+                f,
+                "the inputs already differ: {}'s record {}, {}, has operands no {} operation has",
+                s.side, s.index, s.record, s.tracer
+            )?;
         }
         match &self.origin {
             Some(o) => {

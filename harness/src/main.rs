@@ -8,7 +8,7 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         // `check` runs under `git bisect run`: bad input there means
         // "cannot decide" (125), not a usage error.
-        Err(err) if err.use_stderr() && std::env::args().nth(1).as_deref() == Some("check") => {
+        Err(err) if err.use_stderr() && subcommand().as_deref() == Some("check") => {
             eprintln!("{err}");
             println!("skip: bad arguments to check");
             return ExitCode::from(harness::commands::check::UNDECIDABLE);
@@ -22,6 +22,22 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// The subcommand named on the command line: the first argument that is
+/// not a global option (`--cast FILE`).
+fn subcommand() -> Option<String> {
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--cast" => {
+                args.next();
+            }
+            a if a.starts_with("--cast=") => {}
+            _ => return Some(arg),
+        }
+    }
+    None
 }
 
 /// The error and its causes, joined by `: `; a cause whose text the error

@@ -4,21 +4,13 @@
 //! divergence to the operation the fault lives in, and the clean pair shows
 //! no divergence on the same set (no false alarm).
 
-use crate::implementation::{ImplError, ImplName, Implementation};
-use crate::impls;
-use crate::impls::reference::RefAdapter;
+use crate::cast::Cast;
 use crate::localize::localize;
 use crate::runner::{diff_set, RunOptions};
 use common::Op;
-use reference::Variant;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use vectors::VectorSet;
-
-/// A subject and the oracle it is compared with.
-pub type Pair = (Box<dyn Implementation>, Box<dyn Implementation>);
-
-type OpenPair = fn() -> Result<Pair, ImplError>;
 
 /// What a detected fault must look like.
 #[derive(Clone, Copy, Debug)]
@@ -38,30 +30,14 @@ pub struct Fault {
     pub name: &'static str,
     /// What it changes.
     pub description: &'static str,
-    /// The pair with the fault (in the subject or in the oracle).
-    pub faulty: OpenPair,
+    /// The labels of the subject and the oracle, one with the fault.
+    pub faulty: [&'static str; 2],
     /// The same pair without the fault: the control, which must agree.
-    pub clean: OpenPair,
+    pub clean: [&'static str; 2],
     /// The committed set it runs on.
     pub set: &'static str,
     /// What detection must show.
     pub expect: Expect,
-}
-
-fn open(name: ImplName) -> Result<Box<dyn Implementation>, ImplError> {
-    impls::open(name)
-}
-
-/// ref-f316 with a fault of the reference, against the clean ref-f316.
-fn ref_variant(v: Variant) -> Result<Pair, ImplError> {
-    Ok((
-        Box::new(RefAdapter::with_variant(ImplName::RefF316, v)?),
-        open(ImplName::RefF316)?,
-    ))
-}
-
-fn ref_clean() -> Result<Pair, ImplError> {
-    Ok((open(ImplName::RefF316)?, open(ImplName::RefF316)?))
 }
 
 /// The catalogue of faults.
@@ -70,53 +46,48 @@ pub fn catalogue() -> Vec<Fault> {
         Fault {
             name: "sqrt-floor-div",
             description: "reference: sqrt's start exponent as (e-127)/2+127 with a floor division",
-            faulty: || ref_variant(Variant::SqrtFloorDiv),
-            clean: ref_clean,
+            faulty: ["ref-f316+sqrt-floor-div", "ref-f316"],
+            clean: ["ref-f316", "ref-f316"],
             set: "ops-small",
             expect: Expect::Op(&[Op::Sqrt]),
         },
         Fault {
             name: "jack-web-divide",
             description: "emulator: the web IDE's Math.divide, which floors instead of truncating",
-            faulty: || Ok((impls::jack::open_web_profile()?, open(ImplName::RefF316)?)),
-            clean: || Ok((open(ImplName::Jack)?, open(ImplName::RefF316)?)),
+            faulty: ["jack+web-divide", "ref-f316"],
+            clean: ["jack", "ref-f316"],
             set: "ops-small",
             expect: Expect::Op(&[Op::Sqrt, Op::InvSqrt]),
         },
         Fault {
             name: "add-align-off-by-one",
             description: "reference: add shifts the smaller mantissa once too often",
-            faulty: || ref_variant(Variant::AddAlignOffByOne),
-            clean: ref_clean,
+            faulty: ["ref-f316+add-align-off-by-one", "ref-f316"],
+            clean: ["ref-f316", "ref-f316"],
             set: "ops-small",
             expect: Expect::Op(&[Op::Add]),
         },
         Fault {
             name: "mul-keep-low",
             description: "reference: mul keeps the low*low partial product",
-            faulty: || ref_variant(Variant::MulKeepLow),
-            clean: ref_clean,
+            faulty: ["ref-f316+mul-keep-low", "ref-f316"],
+            clean: ["ref-f316", "ref-f316"],
             set: "ops-small",
             expect: Expect::Op(&[Op::Mul]),
         },
         Fault {
             name: "dither-threshold",
             description: "reference: a pixel is white when its dithered value is not below 0.5",
-            faulty: || ref_variant(Variant::DitherThreshold),
-            clean: ref_clean,
+            faulty: ["ref-f316+dither-threshold", "ref-f316"],
+            clean: ["ref-f316", "ref-f316"],
             set: "pixels-small",
             expect: Expect::After(Op::Gt),
         },
         Fault {
             name: "f32-oracle",
             description: "the error policy's oracle computes in f32 while it is taken for ref-f64",
-            faulty: || {
-                Ok((
-                    open(ImplName::RefF32)?,
-                    Box::new(RefAdapter::f32_posing_as_f64()?),
-                ))
-            },
-            clean: || Ok((open(ImplName::RefF32)?, open(ImplName::RefF64)?)),
+            faulty: ["ref-f32", "ref-f64+f32-oracle"],
+            clean: ["ref-f32", "ref-f64"],
             set: "sdf-small",
             expect: Expect::Finding("is not f64"),
         },
@@ -187,12 +158,14 @@ fn failed(fault: &Fault, error: String) -> FaultResult {
 }
 
 /// Run one fault: detect, localize, and check the clean control.
-pub fn run_fault(fault: &Fault) -> FaultResult {
+pub fn run_fault(cast: &Cast, fault: &Fault) -> FaultResult {
     let opened = (|| {
+        let open = |label: &str| cast.open(label).map_err(|e| format!("{label}: {e}"));
+        let pair = |[a, b]: [&str; 2]| Ok::<_, String>((open(a)?, open(b)?));
         let set: VectorSet = vectors::load_named(fault.set).map_err(|e| e.to_string())?;
-        let faulty = (fault.faulty)().map_err(|e| e.to_string())?;
-        let clean = (fault.clean)().map_err(|e| e.to_string())?;
-        let tracer = impls::open(ImplName::RefF316).map_err(|e| e.to_string())?;
+        let faulty = pair(fault.faulty)?;
+        let clean = pair(fault.clean)?;
+        let tracer = open(&cast.tracer().name)?;
         Ok::<_, String>((set, faulty, clean, tracer))
     })();
     let (set, (subject, oracle), (clean_subject, clean_oracle), tracer) = match opened {
@@ -255,6 +228,6 @@ pub fn run_fault(fault: &Fault) -> FaultResult {
 }
 
 /// Run every fault of the catalogue.
-pub fn run_all() -> Vec<FaultResult> {
-    catalogue().iter().map(run_fault).collect()
+pub fn run_all(cast: &Cast) -> Vec<FaultResult> {
+    catalogue().iter().map(|f| run_fault(cast, f)).collect()
 }

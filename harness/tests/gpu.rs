@@ -6,17 +6,18 @@
 mod support;
 
 use common::{Op, F316};
-use harness::implementation::{ImplError, ImplName, Implementation};
-use harness::impls::{self, reference::RefAdapter};
+use harness::cast::{Cast, OpenError};
+use harness::implementation::{ImplError, Implementation};
 use harness::localize::{localize, replay};
 use harness::runner::RunOptions;
-use reference::Variant;
 use vectors::{OpVector, Vector};
 
 fn gpu_f316() -> Option<Box<dyn Implementation>> {
-    match impls::open(ImplName::GpuF316) {
+    match Cast::builtin().open("gpu-f316") {
         Ok(g) => Some(g),
-        Err(ImplError::Unavailable(why)) if std::env::var_os(gpu::SKIP_ENV).is_some() => {
+        Err(OpenError::Impl(ImplError::Unavailable(why)))
+            if std::env::var_os(gpu::SKIP_ENV).is_some() =>
+        {
             eprintln!("GPU leg skipped: {why}");
             None
         }
@@ -33,15 +34,15 @@ fn gpu_f316_agrees_with_ref_f316_on_the_small_sets() {
 #[test]
 fn a_divergence_with_gpu_f316_is_localized_against_ref_f316s_trace() {
     let Some(gpu) = gpu_f316() else { return };
-    let clean = impls::open(ImplName::RefF316).unwrap();
-    let faulty = RefAdapter::with_variant(ImplName::RefF316, Variant::SqrtFloorDiv).unwrap();
+    let clean = Cast::builtin().open("ref-f316").unwrap();
+    let faulty = Cast::builtin().open("ref-f316+sqrt-floor-div").unwrap();
     let input = Vector::Op(OpVector {
         category: "t".into(),
         op: Op::Sqrt,
         a: F316::new(0, 120, 15576),
         b: None,
     });
-    let l = localize(&faulty, gpu.as_ref(), clean.as_ref(), &input).unwrap();
+    let l = localize(faulty.as_ref(), gpu.as_ref(), clean.as_ref(), &input).unwrap();
     assert!(l.differs());
     assert!(
         l.method.contains("gpu-f316: agrees with ref-f316"),
@@ -54,7 +55,7 @@ fn a_divergence_with_gpu_f316_is_localized_against_ref_f316s_trace() {
 #[test]
 fn replaying_a_pixel_trace_through_gpu_f316_reproduces_every_operation() {
     let Some(gpu) = gpu_f316() else { return };
-    let clean = impls::open(ImplName::RefF316).unwrap();
+    let clean = Cast::builtin().open("ref-f316").unwrap();
     let pixel = Vector::Pixel(vectors::PixelVector {
         category: "t".into(),
         x: 312,
@@ -68,7 +69,7 @@ fn replaying_a_pixel_trace_through_gpu_f316_reproduces_every_operation() {
 #[test]
 fn a_slice_of_the_exhaustive_unary_check_agrees() {
     let Some(gpu) = gpu_f316() else { return };
-    let reference = impls::open(ImplName::RefF316).unwrap();
+    let reference = Cast::builtin().open("ref-f316").unwrap();
     // Every 997th input: about 4,200 per operation, both signs, all exponents.
     for report in harness::exhaustive::unary(
         &[reference.as_ref(), gpu.as_ref()],

@@ -4,22 +4,21 @@
 
 mod support;
 
-use harness::implementation::ImplName;
-use harness::impls;
+use harness::cast::Cast;
 use harness::localize::localize;
 use harness::runner::{diff_set, RunOptions};
 use vectors::{Level, PixelVector, Vector};
 
 #[test]
 fn jack_agrees_with_ref_f316_on_the_small_sets() {
-    let jack = impls::open(ImplName::Jack).unwrap();
+    let jack = Cast::builtin().open("jack").unwrap();
     support::assert_agrees_with_ref_f316_on_the_small_sets(jack.as_ref());
 }
 
 #[test]
 fn web_divide_profile_is_a_divergence_of_the_jack_program() {
-    let reference = impls::open(ImplName::RefF316).unwrap();
-    let web = impls::open_label("jack+web-divide").unwrap();
+    let reference = Cast::builtin().open("ref-f316").unwrap();
+    let web = Cast::builtin().open("jack+web-divide").unwrap();
     let set = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();
     let report = diff_set(
         &[reference.as_ref(), web.as_ref()],
@@ -35,8 +34,8 @@ fn web_divide_profile_is_a_divergence_of_the_jack_program() {
 
 #[test]
 fn pixel_traces_of_jack_and_ref_f316_line_up() {
-    let reference = impls::open(ImplName::RefF316).unwrap();
-    let jack = impls::open(ImplName::Jack).unwrap();
+    let reference = Cast::builtin().open("ref-f316").unwrap();
+    let jack = Cast::builtin().open("jack").unwrap();
     let input = Vector::Pixel(PixelVector {
         category: "t".into(),
         x: 312,

@@ -5,20 +5,21 @@
 //! and every image decoded. Chromium comes from Debian (`scripts/setup.sh`
 //! installs it); without it the test fails and says so.
 
-use harness::implementation::{ImplName, Implementation};
-use harness::impls;
+use harness::cast::Cast;
+use harness::implementation::Implementation;
+use harness::measure;
 use harness::report::model::{Render, RunMeta};
-use harness::report::{measure, stability, PixelLocalizer, ReportBuilder};
+use harness::report::{stability, PixelLocalizer, ReportBuilder};
 use harness::runner::{self, RunOptions};
 use std::process::Command;
 
 const CHROMIUM: &str = "/usr/bin/chromium";
 
 fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
-    let set = measure::full_image_set();
+    let cast = Cast::builtin();
     let mut builder = ReportBuilder::new(&dir.join("report"), RunMeta::collect()).unwrap();
     for label in ["ref-f316", "ref-f64"] {
-        let full = measure::render(label, &set, false).unwrap();
+        let full = measure::render(&cast, label, false).unwrap();
         builder
             .add_render(
                 Render {
@@ -46,11 +47,10 @@ fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
         builder.report_mut().speed_error.points.push(point);
     }
     let set = vectors::load_named("ops-small").unwrap();
-    let opened: Vec<Box<dyn Implementation>> =
-        [ImplName::RefF316, ImplName::RefF64, ImplName::RefF32]
-            .into_iter()
-            .map(|n| impls::open(n).unwrap())
-            .collect();
+    let opened: Vec<Box<dyn Implementation>> = ["ref-f316", "ref-f64", "ref-f32"]
+        .into_iter()
+        .map(|n| Cast::builtin().open(n).unwrap())
+        .collect();
     let refs: Vec<&dyn Implementation> = opened.iter().map(|b| b.as_ref()).collect();
     let runs = runner::run(&refs, &set, RunOptions::default());
     let rows = stability::rows(&set, &runs, &[], |imp, v| {

@@ -2,12 +2,10 @@
 //! stable ordering, no timings), and the localizer on a known fault.
 
 use common::Op;
-use harness::implementation::{ImplName, Implementation};
-use harness::impls::{self, reference::RefAdapter};
+use harness::cast::Cast;
 use harness::localize::localize;
 use harness::runner::{diff_set, RunOptions};
 use harness::text;
-use reference::Variant;
 use vectors::{Level, Vector, VectorSet};
 
 fn ops_of(set: &VectorSet, ops: &[Op]) -> VectorSet {
@@ -33,9 +31,13 @@ fn ops_small() -> VectorSet {
 #[test]
 fn a_faulty_sqrt_is_reported_grouped_and_with_localize_commands() {
     let set = ops_of(&ops_small(), &[Op::Sqrt, Op::InvSqrt]);
-    let faulty = RefAdapter::with_variant(ImplName::RefF316, Variant::SqrtFloorDiv).unwrap();
-    let clean = impls::open(ImplName::RefF316).unwrap();
-    let report = diff_set(&[&faulty, clean.as_ref()], &set, RunOptions::default());
+    let faulty = Cast::builtin().open("ref-f316+sqrt-floor-div").unwrap();
+    let clean = Cast::builtin().open("ref-f316").unwrap();
+    let report = diff_set(
+        &[faulty.as_ref(), clean.as_ref()],
+        &set,
+        RunOptions::default(),
+    );
     assert!(report.diverged());
     insta::assert_snapshot!(text::level_report(&report));
 }
@@ -43,13 +45,13 @@ fn a_faulty_sqrt_is_reported_grouped_and_with_localize_commands() {
 #[test]
 fn three_implementations_name_the_odd_one_out() {
     let set = ops_of(&ops_small(), &[Op::Mul]);
-    let faulty = RefAdapter::with_variant(ImplName::RefF316, Variant::MulKeepLow).unwrap();
+    let faulty = Cast::builtin().open("ref-f316+mul-keep-low").unwrap();
     let (x, y) = (
-        impls::open(ImplName::RefF316).unwrap(),
-        impls::open(ImplName::RefF316).unwrap(),
+        Cast::builtin().open("ref-f316").unwrap(),
+        Cast::builtin().open("ref-f316").unwrap(),
     );
     let report = diff_set(
-        &[x.as_ref(), &faulty, y.as_ref()],
+        &[x.as_ref(), faulty.as_ref(), y.as_ref()],
         &set,
         RunOptions::default(),
     );
@@ -67,8 +69,8 @@ fn three_implementations_name_the_odd_one_out() {
 fn float_policy_figures_on_sdf_small() {
     let set = vectors::load_named("sdf-small").unwrap();
     let (f32, f64) = (
-        impls::open(ImplName::RefF32).unwrap(),
-        impls::open(ImplName::RefF64).unwrap(),
+        Cast::builtin().open("ref-f32").unwrap(),
+        Cast::builtin().open("ref-f64").unwrap(),
     );
     let report = diff_set(&[f32.as_ref(), f64.as_ref()], &set, RunOptions::default());
     assert!(!report.diverged(), "{}", text::level_report(&report));
@@ -80,8 +82,8 @@ fn float_policy_figures_on_sdf_small() {
 
 #[test]
 fn localize_names_the_sqrt_with_its_operands() {
-    let faulty = RefAdapter::with_variant(ImplName::RefF316, Variant::SqrtFloorDiv).unwrap();
-    let clean = impls::open(ImplName::RefF316).unwrap();
+    let faulty = Cast::builtin().open("ref-f316+sqrt-floor-div").unwrap();
+    let clean = Cast::builtin().open("ref-f316").unwrap();
     // sqrt with an even exponent below 127: the start exponents differ.
     let input = Vector::Op(vectors::OpVector {
         category: "t".into(),
@@ -89,7 +91,7 @@ fn localize_names_the_sqrt_with_its_operands() {
         a: common::F316::new(0, 120, 15576),
         b: None,
     });
-    let l = localize(&faulty, clean.as_ref(), clean.as_ref(), &input).unwrap();
+    let l = localize(faulty.as_ref(), clean.as_ref(), clean.as_ref(), &input).unwrap();
     assert_eq!(l.blamed_op(), Some(Op::Sqrt));
     insta::assert_snapshot!(l.to_string());
 }
@@ -97,15 +99,17 @@ fn localize_names_the_sqrt_with_its_operands() {
 #[test]
 fn localize_descends_to_the_operation_at_fault() {
     // sub calls add; with add's alignment fault the origin is the add.
-    let faulty = RefAdapter::with_variant(ImplName::RefF316, Variant::AddAlignOffByOne).unwrap();
-    let clean = impls::open(ImplName::RefF316).unwrap();
+    let faulty = Cast::builtin()
+        .open("ref-f316+add-align-off-by-one")
+        .unwrap();
+    let clean = Cast::builtin().open("ref-f316").unwrap();
     let input = Vector::Op(vectors::OpVector {
         category: "t".into(),
         op: Op::Sub,
         a: common::F316::new(0, 128, 12345),
         b: Some(common::F316::new(0, 126, 9999)),
     });
-    let l = localize(&faulty, clean.as_ref(), clean.as_ref(), &input).unwrap();
+    let l = localize(faulty.as_ref(), clean.as_ref(), clean.as_ref(), &input).unwrap();
     assert_eq!(l.first.as_ref().unwrap().a.as_ref().unwrap().op, Op::Sub);
     assert_eq!(l.blamed_op(), Some(Op::Add));
     // Every implementation given here answers every level.

@@ -3,7 +3,7 @@
 
 #[test]
 fn every_fault_is_detected_and_localized() {
-    let results = harness::selftest::run_all();
+    let results = harness::selftest::run_all(&harness::cast::Cast::builtin());
     assert!(results.len() >= 5);
     for r in &results {
         assert!(r.passed, "{r}");

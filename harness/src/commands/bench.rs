@@ -1,12 +1,13 @@
 //! `harness bench`: the speed and error table. Every implementation
-//! available here (or the ones named) renders the whole image; each row has
-//! its set-up time, image time, time per pixel, pixels per second and its
-//! error against `ref-f64` (mean and max shade error, dithered flips).
+//! of the cast available here (or the ones named) renders the whole image;
+//! each row has its set-up time, image time, time per pixel, pixels per
+//! second and its error against the oracle, `ref-f64` (mean and max shade
+//! error, dithered flips).
 //! Printed as a table, and as JSON with `--json FILE`.
 
-use crate::implementation::ImplName;
+use crate::cast::Cast;
+use crate::measure;
 use crate::report::model::BenchRow;
-use crate::report::{measure, ORACLE};
 use anyhow::{Context, Result};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -14,8 +15,8 @@ use std::process::ExitCode;
 /// Arguments of `harness bench`.
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
-    /// Implementations (labels, faults allowed); default: all six, the
-    /// unavailable ones reported and skipped.
+    /// Implementations (labels, faults allowed); default: every one of the
+    /// cast, the unavailable ones reported and skipped.
     pub implementations: Vec<String>,
     /// Also write the rows as JSON.
     #[arg(long, value_name = "FILE.json")]
@@ -23,24 +24,22 @@ pub struct BenchArgs {
 }
 
 /// Run the benchmark table.
-pub fn run(args: BenchArgs) -> Result<ExitCode> {
+pub fn run(args: BenchArgs, cast: &Cast) -> Result<ExitCode> {
     let labels: Vec<String> = if args.implementations.is_empty() {
-        ImplName::ALL
-            .iter()
-            .map(|n| n.as_str().to_string())
-            .collect()
+        cast.names().into_iter().map(String::from).collect()
     } else {
         args.implementations.clone()
     };
     let progress = crate::progress::wanted();
-    let set = measure::full_image_set();
-    let oracle = measure::render(ORACLE, &set, progress).context("the ref-f64 oracle")?;
+    let oracle_name = &cast.oracle().name;
+    let oracle = measure::render(cast, oracle_name, progress)
+        .with_context(|| format!("the oracle {oracle_name}"))?;
     let mut rows = Vec::new();
     for label in &labels {
-        let full = if label == ORACLE {
+        let full = if label == oracle_name {
             oracle.clone()
         } else {
-            match measure::render(label, &set, progress) {
+            match measure::render(cast, label, progress) {
                 Ok(full) => full,
                 Err(e) => {
                     eprintln!("{label}: skipped: {e:#}");

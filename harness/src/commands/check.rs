@@ -7,14 +7,14 @@
 //! - `--no-divergence A B [--level L]`: the runner's policy finds no
 //!   divergence between A and B on the level's small set (default: all).
 //! - `--max-error IMPL THRESHOLD [--metric max|mean|flips]`: IMPL's whole
-//!   image against `ref-f64` stays within THRESHOLD.
+//!   image against the cast's oracle (`ref-f64`) stays within THRESHOLD.
 //! - `--min-speed IMPL PIXELS_PER_SEC`: IMPL renders the whole image at
 //!   least that fast (wall clock, this machine).
 
+use crate::cast::{Cast, CastError};
 use crate::commands::diff::{sets_for, LevelArg};
 use crate::implementation::ImplError;
-use crate::impls;
-use crate::report::{measure, ORACLE};
+use crate::measure;
 use crate::runner::{diff_set, RunOptions};
 use anyhow::{Context, Result};
 use std::process::ExitCode;
@@ -96,23 +96,27 @@ fn parse_number(what: &str, text: &str) -> Result<f64> {
 }
 
 /// Decide the question; every failure to decide is [`Verdict::Undecidable`].
-pub fn decide(args: &CheckArgs) -> Verdict {
+pub fn decide(args: &CheckArgs, cast: &Cast) -> Verdict {
     let result = if let Some(ab) = &args.no_divergence {
-        no_divergence(&ab[0], &ab[1], args.level)
+        no_divergence(cast, &ab[0], &ab[1], args.level)
     } else if let Some(v) = &args.max_error {
-        parse_number("threshold", &v[1]).and_then(|t| max_error(&v[0], t, args.metric))
+        parse_number("threshold", &v[1]).and_then(|t| max_error(cast, &v[0], t, args.metric))
     } else if let Some(v) = &args.min_speed {
-        parse_number("pixels per second", &v[1]).and_then(|t| min_speed(&v[0], t))
+        parse_number("pixels per second", &v[1]).and_then(|t| min_speed(cast, &v[0], t))
     } else {
         Err(anyhow::anyhow!("no question given"))
     };
     result.unwrap_or_else(|e| Verdict::Undecidable(format!("{e:#}")))
 }
 
-fn no_divergence(a: &str, b: &str, level: Option<LevelArg>) -> Result<Verdict> {
+fn no_divergence(cast: &Cast, a: &str, b: &str, level: Option<LevelArg>) -> Result<Verdict> {
     let sets = sets_for(level, None)?;
-    let ia = impls::open_label(a).with_context(|| format!("implementation `{a}`"))?;
-    let ib = impls::open_label(b).with_context(|| format!("implementation `{b}`"))?;
+    let ia = cast
+        .open(a)
+        .with_context(|| format!("implementation `{a}`"))?;
+    let ib = cast
+        .open(b)
+        .with_context(|| format!("implementation `{b}`"))?;
     let mut compared = 0;
     for set in &sets {
         let report = diff_set(
@@ -150,10 +154,10 @@ fn no_divergence(a: &str, b: &str, level: Option<LevelArg>) -> Result<Verdict> {
     )))
 }
 
-fn max_error(imp: &str, threshold: f64, metric: Metric) -> Result<Verdict> {
-    let set = measure::full_image_set();
-    let subject = measure::render(imp, &set, false)?;
-    let oracle = measure::render(ORACLE, &set, false)?;
+fn max_error(cast: &Cast, imp: &str, threshold: f64, metric: Metric) -> Result<Verdict> {
+    let oracle_name = &cast.oracle().name;
+    let subject = measure::render(cast, imp, false)?;
+    let oracle = measure::render(cast, oracle_name, false)?;
     let (errors, flips) = measure::error_against(&subject.images, &oracle.images)?;
     let value = match metric {
         Metric::Flips => flips as f64,
@@ -161,7 +165,7 @@ fn max_error(imp: &str, threshold: f64, metric: Metric) -> Result<Verdict> {
         Metric::Mean => errors.context("no shades to compare")?.0,
     };
     let what =
-        format!("{imp}: {metric:?} error against {ORACLE} {value:e}, threshold {threshold:e}")
+        format!("{imp}: {metric:?} error against {oracle_name} {value:e}, threshold {threshold:e}")
             .to_lowercase();
     Ok(if value <= threshold {
         Verdict::Good(what)
@@ -170,8 +174,8 @@ fn max_error(imp: &str, threshold: f64, metric: Metric) -> Result<Verdict> {
     })
 }
 
-fn min_speed(imp: &str, threshold: f64) -> Result<Verdict> {
-    let r = measure::render(imp, &measure::full_image_set(), false)?;
+fn min_speed(cast: &Cast, imp: &str, threshold: f64) -> Result<Verdict> {
+    let r = measure::render(cast, imp, false)?;
     let speed = r.pixels() as f64 / r.render_s.max(1e-9);
     let what = format!("{imp}: {speed:.0} pixels/s, threshold {threshold:.0}");
     Ok(if speed >= threshold {
@@ -181,9 +185,13 @@ fn min_speed(imp: &str, threshold: f64) -> Result<Verdict> {
     })
 }
 
-/// Run `harness check`: print the verdict's line and exit with its code.
-pub fn run(args: CheckArgs) -> Result<ExitCode> {
-    let verdict = decide(&args);
+/// Run `harness check`: print the verdict's line and exit with its code
+/// (a project file that cannot be read makes the question undecidable).
+pub fn run(args: CheckArgs, cast: Result<Cast, CastError>) -> Result<ExitCode> {
+    let verdict = match cast {
+        Ok(cast) => decide(&args, &cast),
+        Err(e) => Verdict::Undecidable(e.to_string()),
+    };
     println!("{}", verdict.line());
     Ok(ExitCode::from(verdict.exit_code()))
 }

@@ -6,7 +6,7 @@
 //! Exit 0: no divergence; 1: divergence; 2: usage or input error (also when
 //! an implementation is unavailable: nothing was compared).
 
-use crate::impls;
+use crate::cast::Cast;
 use crate::report::atomic::{write_file, StagingDir};
 use crate::runner::{diff_set, LevelReport, RunOptions};
 use crate::text;
@@ -40,8 +40,8 @@ impl LevelArg {
 /// Arguments of `harness diff`.
 #[derive(Debug, clap::Args)]
 pub struct DiffArgs {
-    /// The implementation under test (ref-f64, ref-f32, ref-f316, jack,
-    /// gpu-f32, gpu-f316; `NAME+FAULT` injects a fault, e.g.
+    /// The implementation under test: a label of the cast (`harness cast`
+    /// lists them; `NAME+FAULT` injects a fault, e.g.
     /// ref-f316+sqrt-floor-div, jack+web-divide, ref-f64+f32-oracle).
     pub a: String,
     /// The implementation it is compared with.
@@ -114,7 +114,7 @@ pub fn write_report(dir: &Path, reports: &mut [LevelReport]) -> anyhow::Result<(
 }
 
 /// Run `harness diff`.
-pub fn run(args: DiffArgs) -> anyhow::Result<ExitCode> {
+pub fn run(args: DiffArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     if let Some(dir) = &args.report {
         crate::output::check_dir(dir, "--report")?;
     }
@@ -122,7 +122,10 @@ pub fn run(args: DiffArgs) -> anyhow::Result<ExitCode> {
     let labels: Vec<String> = [args.a, args.b].into_iter().chain(args.more).collect();
     let opened = labels
         .iter()
-        .map(|l| impls::open_label(l).with_context(|| format!("implementation `{l}`")))
+        .map(|l| {
+            cast.open(l)
+                .with_context(|| format!("implementation `{l}`"))
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let refs: Vec<&dyn crate::implementation::Implementation> =
         opened.iter().map(|b| b.as_ref()).collect();

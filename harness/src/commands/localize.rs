@@ -6,8 +6,7 @@
 //! triples `s,e,m:s,e,m:s,e,m`. Exit 0: the answers agree; 1: they differ
 //! (the localization is printed); 2: usage or input error.
 
-use crate::implementation::ImplName;
-use crate::impls;
+use crate::cast::Cast;
 use crate::localize::localize;
 use anyhow::{bail, Context};
 use common::{Op, F316};
@@ -17,8 +16,9 @@ use vectors::{OpVector, PixelVector, SdfVector, Vector};
 /// Arguments of `harness localize`.
 #[derive(Debug, clap::Args)]
 pub struct LocalizeArgs {
-    /// One implementation (a Float316 one: ref-f316, jack, gpu-f316, or
-    /// one with a fault: ref-f316+sqrt-floor-div, jack+web-divide).
+    /// One implementation: a Float316 one of the cast (ref-f316, jack,
+    /// gpu-f316, a declared one, or one with a fault:
+    /// ref-f316+sqrt-floor-div, jack+web-divide).
     pub a: String,
     /// The other.
     pub b: String,
@@ -121,11 +121,14 @@ pub fn input_of(args: &LocalizeArgs) -> anyhow::Result<Vector> {
 }
 
 /// Run `harness localize`.
-pub fn run(args: LocalizeArgs) -> anyhow::Result<ExitCode> {
+pub fn run(args: LocalizeArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     let input = input_of(&args)?;
-    let a = impls::open_label(&args.a).with_context(|| format!("implementation `{}`", args.a))?;
-    let b = impls::open_label(&args.b).with_context(|| format!("implementation `{}`", args.b))?;
-    let tracer = impls::open(ImplName::RefF316)?;
+    let open = |label: &str| {
+        cast.open(label)
+            .with_context(|| format!("implementation `{label}`"))
+    };
+    let (a, b) = (open(&args.a)?, open(&args.b)?);
+    let tracer = open(&cast.tracer().name)?;
     let found = localize(a.as_ref(), b.as_ref(), tracer.as_ref(), &input)?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&found)?);

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 pub mod bench;
+pub mod cast;
 pub mod check;
 pub mod diff;
 pub mod jack;

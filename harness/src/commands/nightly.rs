@@ -7,14 +7,14 @@
 //! report directory (`report.json`, `index.html`, images) that replaces the
 //! previous one atomically, plus a line in the history file.
 
+use crate::cast::Cast;
 use crate::compare::{Comparison as LevelComparison, Divergence, Policy};
 use crate::exhaustive;
-use crate::implementation::{ImplName, Implementation};
-use crate::impls;
+use crate::implementation::Implementation;
 use crate::localize::{localizable, localize};
+use crate::measure::{self, FullRender};
 use crate::progress;
 use crate::report::images::Grid;
-use crate::report::measure::{self, FullRender};
 use crate::report::model::{
     BenchRow, Comparison, DivergenceExample, ErrorFigures, ImplStatus, Render, RunMeta, SelfTest,
     StepTiming,
@@ -41,9 +41,6 @@ pub struct NightlyArgs {
     #[arg(long, default_value_t = 16)]
     pub jack_unary_step: usize,
 }
-
-/// Precision variants of ref-f316 rendered for the speed-against-error plot.
-const VARIANTS: [&str; 3] = ["mul-low-product", "newton-1", "newton-3"];
 
 /// Label of the Jack program's own run from `Main.main` (the slow path).
 const JACK_MAIN: &str = "jack-main";
@@ -78,7 +75,7 @@ impl Steps {
 }
 
 /// Run the nightly job.
-pub fn run(args: NightlyArgs) -> Result<ExitCode> {
+pub fn run(args: NightlyArgs, cast: &Cast) -> Result<ExitCode> {
     let started = Instant::now();
     let progress = RunOptions {
         progress: crate::progress::wanted(),
@@ -92,15 +89,16 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     // Which implementations can run here.
     let mut open: Vec<Box<dyn Implementation>> = Vec::new();
     let bar = progress::show(
-        progress::items(ImplName::ALL.len() as u64, "open", "implementations"),
+        progress::items(cast.entries().len() as u64, "open", "implementations"),
         progress.progress,
     );
-    for name in ImplName::ALL {
-        bar.set_message(name.as_str());
+    for entry in cast.entries() {
+        let name = entry.name.as_str();
+        bar.set_message(name.to_string());
         let start = Instant::now();
-        let opened = impls::open(name);
+        let opened = cast.open(name);
         let mut status = ImplStatus {
-            name: name.as_str().into(),
+            name: name.into(),
             available: opened.is_ok(),
             open_s: start.elapsed().as_secs_f64(),
             ..ImplStatus::default()
@@ -113,26 +111,44 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         bar.inc(1);
     }
     bar.finish_and_clear();
-    let by_name = |n: ImplName| open.iter().find(|i| i.label() == n.as_str());
-    let group = |names: &[ImplName]| -> Vec<&dyn Implementation> {
+    let by_name = |n: &str| open.iter().find(|i| i.label() == n);
+    let group = |names: &[&str]| -> Vec<&dyn Implementation> {
         names
             .iter()
-            .filter_map(|n| by_name(*n))
+            .filter_map(|n| by_name(n))
             .map(|b| b.as_ref())
             .collect()
     };
-    let float316 = [ImplName::RefF316, ImplName::Jack, ImplName::GpuF316];
-    let floats = [
-        ImplName::RefF64,
-        ImplName::RefF32,
-        ImplName::GpuF32,
-        ImplName::RefF316,
-    ];
-    // The precision variants (rendered below) and the tracer, for
-    // localizing divergences.
-    let variants: Vec<Box<dyn Implementation>> = VARIANTS
+    let everyone: Vec<&str> = cast.names();
+    let (oracle, tracer_name) = (cast.oracle().name.as_str(), cast.tracer().name.as_str());
+    let float316: Vec<&str> = cast
+        .bit_exact_group()
         .iter()
-        .filter_map(|v| impls::open_label(&format!("ref-f316+{v}")).ok())
+        .map(|e| e.name.as_str())
+        .collect();
+    // The oracle first, then every implementation computing with floats,
+    // then the tracer.
+    let floats: Vec<&str> = std::iter::once(oracle)
+        .chain(
+            cast.entries()
+                .iter()
+                .filter(|e| !e.bit_exact() && e.name != oracle)
+                .map(|e| e.name.as_str()),
+        )
+        .chain([tracer_name])
+        .collect();
+    // The tracer's precision variants (rendered below), and the tracer,
+    // for localizing divergences.
+    let variant_labels: Vec<String> = cast
+        .tracer()
+        .variants
+        .iter()
+        .filter(|v| v.role == crate::cast::VariantRole::Precision)
+        .map(|v| format!("{tracer_name}+{}", v.name))
+        .collect();
+    let variants: Vec<Box<dyn Implementation>> = variant_labels
+        .iter()
+        .filter_map(|l| cast.open(l).ok())
         .collect();
     let find = |label: &str| {
         open.iter()
@@ -140,7 +156,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
             .find(|i| i.label() == label)
             .map(|b| b.as_ref())
     };
-    let tracer = by_name(ImplName::RefF316).map(|b| b.as_ref());
+    let tracer = by_name(tracer_name).map(|b| b.as_ref());
     let first_op = |c: &LevelComparison, d: &Divergence| {
         let (a, b, t) = (find(&c.a)?, find(&c.b)?, tracer?);
         (c.policy == Policy::Exact).then(|| match localize(a, b, t, &d.input) {
@@ -157,15 +173,15 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     for set_name in NIGHTLY_SETS {
         let set = vectors::load_named(set_name)
             .with_context(|| format!("the committed set {set_name}"))?;
-        let everyone: Vec<&dyn Implementation> = group(&ImplName::ALL)
+        let everyone: Vec<&dyn Implementation> = group(&everyone)
             .into_iter()
             .filter(|i| i.supports(set.level))
             .collect();
         let runs = runner::run(&everyone, &set, progress);
-        let runs_of = |names: &[ImplName]| -> Vec<ImplRun> {
+        let runs_of = |names: &[&str]| -> Vec<ImplRun> {
             names
                 .iter()
-                .filter_map(|n| runs.iter().find(|r| r.label == n.as_str()).cloned())
+                .filter_map(|n| runs.iter().find(|r| r.label == *n).cloned())
                 .collect()
         };
         let mut groups = vec![runs_of(&float316)];
@@ -195,10 +211,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         let mut unwritten = Vec::new();
         let rows = stability::rows(&set, &runs, &exact, |imp, vector| {
             match builder.write_repro(vector) {
-                Ok(file) => Some(format!(
-                    "harness diff {imp} {} --vectors {file}",
-                    crate::report::ORACLE
-                )),
+                Ok(file) => Some(format!("harness diff {imp} {oracle} --vectors {file}")),
                 Err(e) => {
                     unwritten.push(format!("repro file for {vector}: {e:#}"));
                     None
@@ -212,13 +225,21 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     }
 
     // Unary operations over every normalised input.
-    let unary_pairs: [(Vec<&dyn Implementation>, usize); 2] = [
-        (group(&[ImplName::RefF316, ImplName::GpuF316]), 1),
-        (
-            group(&[ImplName::RefF316, ImplName::Jack]),
-            args.jack_unary_step.max(1),
-        ),
-    ];
+    // The tracer against each other Float316 implementation; slow ones
+    // (an emulator) take every N-th input.
+    let unary_pairs: Vec<(Vec<&dyn Implementation>, usize)> = cast
+        .bit_exact_group()
+        .iter()
+        .skip(1)
+        .map(|e| {
+            let step = if e.slow {
+                args.jack_unary_step.max(1)
+            } else {
+                1
+            };
+            (group(&[tracer_name, e.name.as_str()]), step)
+        })
+        .collect();
     for (impls, step) in unary_pairs {
         if impls.len() < 2 {
             continue;
@@ -239,7 +260,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
     steps.done("unary checks");
 
     // The self-test.
-    let results = selftest::run_all();
+    let results = selftest::run_all(cast);
     builder.report_mut().selftest = Some(SelfTest {
         passed: results.iter().all(|r| r.passed),
         lines: results.iter().map(|r| r.to_string()).collect(),
@@ -248,9 +269,8 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
 
     // Full-image renders, with the reference's precision variants.
     let spec = measure::spec_image()?;
-    let set = measure::full_image_set();
     let mut labels: Vec<String> = open.iter().map(|i| i.label().to_string()).collect();
-    labels.extend(VARIANTS.iter().map(|v| format!("ref-f316+{v}")));
+    labels.extend(variant_labels.iter().cloned());
     let mut rendered = Vec::new();
     for label in &labels {
         let result = if label == "jack" {
@@ -263,7 +283,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
                 Ok(full)
             })
         } else {
-            measure::render(label, &set, progress.progress)
+            measure::render(cast, label, progress.progress)
                 .and_then(|full| add_render(&mut builder, &full, &spec, None).map(|()| full))
         };
         match result {
@@ -306,7 +326,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         pairs.push(("jack".to_string(), JACK_MAIN.to_string()));
     }
     for label in &rendered {
-        for base in ["ref-f316", "ref-f64"] {
+        for base in [tracer_name, oracle] {
             if label != base && rendered.iter().any(|r| r == base) {
                 pairs.push((base.to_string(), label.clone()));
             }
@@ -322,7 +342,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         // A pixel of the Main.main screen is reproduced through jack's
         // entry point (against ref-f316 when the pair is jack's own).
         let (ra, rb) = (entry_point(a), entry_point(b));
-        let ra = if ra == rb { "ref-f316" } else { ra };
+        let ra = if ra == rb { tracer_name } else { ra };
         let by_localize = matches!(
             (find(ra), find(rb)),
             (Some(x), Some(y)) if localizable(x, y).is_ok()
@@ -342,7 +362,7 @@ pub fn run(args: NightlyArgs) -> Result<ExitCode> {
         bar.inc(1);
     }
     bar.finish_and_clear();
-    if rendered.iter().any(|r| r == "ref-f64") {
+    if rendered.iter().any(|r| r == oracle) {
         for label in &rendered {
             let point = builder.speed_point(label)?;
             let render = builder
@@ -561,7 +581,7 @@ fn jack_render() -> Result<(FullRender, Grid<u64>)> {
     let raymarcher = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
     let setup_s = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let render = impls::jack::render_with_bar(&raymarcher)?;
+    let render = crate::impls::jack::render_with_bar(&raymarcher)?;
     let render_s = start.elapsed().as_secs_f64();
     let pixels = render
         .pixels
@@ -622,8 +642,9 @@ mod tests {
 
     #[test]
     fn pixels_a_fault_flips_are_localized_to_the_faulty_operation() {
-        let clean = impls::open(ImplName::RefF316).unwrap();
-        let faulty = impls::open_label("ref-f316+mul-keep-low").unwrap();
+        let cast = Cast::builtin();
+        let clean = cast.open("ref-f316").unwrap();
+        let faulty = cast.open("ref-f316+mul-keep-low").unwrap();
         let dir = tempfile::tempdir().unwrap();
         let mut builder = ReportBuilder::new(&dir.path().join("r"), RunMeta::default()).unwrap();
         // Row 87 has pixels whose dithered bit the fault flips.
@@ -666,8 +687,9 @@ mod tests {
 
     #[test]
     fn pairs_with_a_float_side_or_the_main_screen_say_why_they_are_not_localized() {
-        let f316 = impls::open(ImplName::RefF316).unwrap();
-        let f64 = impls::open(ImplName::RefF64).unwrap();
+        let cast = Cast::builtin();
+        let f316 = cast.open("ref-f316").unwrap();
+        let f64 = cast.open("ref-f64").unwrap();
         let (a, b) = ("ref-f316".to_string(), "ref-f64".to_string());
         let why = |l: PixelLocalizer| match l {
             PixelLocalizer::Impossible(why) => why,

@@ -1,14 +1,14 @@
 //! `harness render`: render the 512x256 dithered image with one
-//! implementation, write it as PNG (white 255, black 0) and optionally the
-//! per-pixel shade values before dithering as JSON.
-//!
-//! To add an implementation, add an arm to [`render_image`] that returns a
-//! [`Rendered`]; writing the files is shared.
+//! implementation of the cast (the one whole-image render,
+//! [`crate::measure`]), write it as PNG (white 255, black 0) and optionally
+//! the per-pixel shade values before dithering as JSON.
 
-use anyhow::{bail, Context, Result};
+use crate::cast::Cast;
+use crate::implementation::{Answer, Num};
+use anyhow::{Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::Outcome;
-use reference::{PixelValue, RefImpl, Reference, Scalar, Scene, Settings, Variant};
+use reference::{PixelValue, Scalar, Scene};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -16,31 +16,23 @@ use std::process::ExitCode;
 /// Arguments of `harness render`.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// Implementation: ref-f316, ref-f64, ref-f32, jack, gpu-f316, gpu-f32.
+    /// Implementation label (`harness cast` lists them), e.g. ref-f316,
+    /// jack, gpu-f316, ref-f316+newton-3.
     #[arg(long = "impl", value_name = "IMPL")]
     pub implementation: String,
     /// Scene parameters (JSON); the seed scene when left out.
     #[arg(long, value_name = "FILE")]
     pub scene: Option<PathBuf>,
     /// A precision variant or injected fault (repeatable), e.g. newton-3,
-    /// mul-low-product, sqrt-floor-div.
+    /// mul-low-product, sqrt-floor-div: the same as `--impl IMPL+NAME`.
     #[arg(long = "variant", value_name = "NAME")]
-    pub variants: Vec<Variant>,
+    pub variants: Vec<String>,
     /// The PNG to write.
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
     /// Also write each pixel's shade before dithering (JSON).
     #[arg(long, value_name = "FILE.json")]
     pub values: Option<PathBuf>,
-}
-
-/// What an implementation rendered: the white bits and, per pixel, the
-/// outcome of its shade (value before dithering).
-pub struct Rendered {
-    /// `white[y * WIDTH + x]`.
-    pub white: Vec<bool>,
-    /// Per pixel, in the same order.
-    pub values: Vec<Outcome<PixelValue>>,
 }
 
 /// The `--values` file.
@@ -53,106 +45,23 @@ struct ValuesFile<'a> {
     pixels: &'a [Outcome<PixelValue>],
 }
 
-/// Render with the implementation named `name`.
-pub fn render_image(name: &str, scene: &Scene, settings: Settings) -> Result<Rendered> {
-    if let Ok(imp) = name.parse::<RefImpl>() {
-        let r = Reference::new(imp, scene, settings)?;
-        let img = r.render();
-        let white = (0..img.height)
-            .flat_map(|y| (0..img.width).map(move |x| (x, y)))
-            .map(|(x, y)| img.is_white(x, y))
-            .collect();
-        return Ok(Rendered {
-            white,
-            values: img.pixels,
-        });
-    }
-    match name {
-        "jack" => render_jack(scene, settings),
-        "gpu-f316" | "gpu-f32" => render_gpu(name, scene, settings),
-        _ => bail!(
-            "unknown implementation `{name}` (expected ref-f316, ref-f64, ref-f32, jack, gpu-f316 or gpu-f32)"
-        ),
-    }
-}
-
-/// Implementations whose sources hold the seed scene and the spec's
-/// settings only refuse anything else.
-fn require_seed_scene(name: &str, scene: &Scene, settings: Settings) -> Result<()> {
-    if *scene != Scene::default() || settings != Settings::default() {
-        bail!("{name} renders the seed scene with the spec's settings only (no --scene, no --variant)");
-    }
-    Ok(())
-}
-
-/// The render's white bits: a trapped pixel is never drawn, so it is white,
-/// as the reference counts it.
-fn white_bits(values: &[Outcome<PixelValue>]) -> Vec<bool> {
-    values
-        .iter()
-        .map(|v| !matches!(v, Outcome::Value(p) if !p.white))
-        .collect()
-}
-
-/// `gpu-f316` / `gpu-f32`: the WGSL kernels, one invocation per pixel.
-fn render_gpu(name: &str, scene: &Scene, settings: Settings) -> Result<Rendered> {
-    require_seed_scene(name, scene, settings)?;
-    let gpu = gpu::Gpu::new()?;
-    let values: Vec<Outcome<PixelValue>> = if name == "gpu-f316" {
-        gpu.render_f316()?
-            .into_iter()
-            .map(|o| {
-                o.map(|(v, white)| PixelValue {
-                    value: Scalar {
-                        value: v.to_f64(),
-                        triple: Some(v),
-                    },
-                    white,
-                })
-            })
-            .collect()
-    } else {
-        gpu.render_f32()?
-            .into_iter()
-            .map(|(v, white)| {
-                Outcome::Value(PixelValue {
-                    value: Scalar {
-                        value: f64::from(v),
-                        triple: None,
-                    },
-                    white,
-                })
-            })
-            .collect()
-    };
-    Ok(Rendered {
-        white: white_bits(&values),
-        values,
-    })
-}
-
-/// `jack`: the Jack program on the emulator, every pixel through its entry
-/// point `Image.pixel` from one initialised snapshot, in parallel. The Jack
-/// sources hold the seed scene and the spec's settings, nothing else.
-fn render_jack(scene: &Scene, settings: Settings) -> Result<Rendered> {
-    require_seed_scene("jack", scene, settings)?;
-    let jack = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
-    let values: Vec<Outcome<PixelValue>> = crate::impls::jack::render_with_bar(&jack)?
-        .pixels
-        .into_iter()
-        .map(|p| {
-            p.outcome.map(|s| PixelValue {
-                value: Scalar {
-                    value: s.value.to_f64(),
-                    triple: Some(s.value),
+/// A pixel answer as the `--values` file holds it.
+fn pixel_value(answer: &Outcome<Answer>) -> Result<Outcome<PixelValue>> {
+    Ok(match answer {
+        Outcome::Value(Answer::Pixel { shade, white }) => Outcome::Value(PixelValue {
+            value: Scalar {
+                value: shade.to_f64(),
+                triple: match shade {
+                    Num::F316(t) => Some(*t),
+                    _ => None,
                 },
-                white: s.white,
-            })
-        })
-        .collect();
-    Ok(Rendered {
-        white: white_bits(&values),
-        values,
+            },
+            white: *white,
+        }),
+        Outcome::Value(other) => anyhow::bail!("a pixel answered `{other}`"),
+        Outcome::SysError(code) => Outcome::SysError(*code),
+        Outcome::Hang => Outcome::Hang,
+        Outcome::OutOfDomain => Outcome::OutOfDomain,
     })
 }
 
@@ -193,23 +102,32 @@ pub fn write_png(path: &Path, white: &[bool]) -> Result<()> {
 }
 
 /// Render an image.
-pub fn run(args: RenderArgs) -> Result<ExitCode> {
+pub fn run(args: RenderArgs, cast: &Cast) -> Result<ExitCode> {
     let scene = match &args.scene {
-        Some(path) => Scene::from_file(path)?,
-        None => Scene::default(),
+        Some(path) => Some(Scene::from_file(path)?),
+        None => None,
     };
-    let settings = args
-        .variants
-        .iter()
-        .fold(Settings::default(), |s, v| v.apply(s));
-    let rendered = render_image(&args.implementation, &scene, settings)?;
-    write_png(&args.out, &rendered.white)?;
+    let label = std::iter::once(args.implementation.as_str())
+        .chain(args.variants.iter().map(String::as_str))
+        .collect::<Vec<_>>()
+        .join("+");
+    let imp = cast
+        .open_for_scene(&label, scene.as_ref())
+        .with_context(|| format!("implementation `{label}`"))?;
+    let (full, answers) =
+        crate::measure::render_with(imp.as_ref(), 0.0, crate::progress::wanted())?;
+    write_png(&args.out, full.images.bits.data())?;
     if let Some(path) = &args.values {
+        let pixels = answers
+            .iter()
+            .map(pixel_value)
+            .collect::<Result<Vec<_>>>()
+            .with_context(|| label.clone())?;
         let file = ValuesFile {
-            implementation: &args.implementation,
+            implementation: &label,
             width: WIDTH,
             height: HEIGHT,
-            pixels: &rendered.values,
+            pixels: &pixels,
         };
         write_atomically(path, |tmp| {
             let f = std::fs::File::create(tmp)

@@ -3,6 +3,7 @@
 //! right operation, and that the clean pair shows no divergence.
 //! Exit 0: every fault passed; 1: one did not; 2: usage error.
 
+use crate::cast::Cast;
 use crate::selftest::{catalogue, run_fault};
 use anyhow::bail;
 use std::process::ExitCode;
@@ -20,7 +21,7 @@ pub struct SelftestArgs {
 }
 
 /// Run `harness selftest`.
-pub fn run(args: SelftestArgs) -> anyhow::Result<ExitCode> {
+pub fn run(args: SelftestArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     let faults: Vec<_> = catalogue()
         .into_iter()
         .filter(|f| args.fault.as_deref().is_none_or(|n| n == f.name))
@@ -35,7 +36,7 @@ pub fn run(args: SelftestArgs) -> anyhow::Result<ExitCode> {
     }
     let mut results = Vec::new();
     for fault in &faults {
-        let r = run_fault(fault);
+        let r = run_fault(cast, fault);
         if !args.json {
             println!("{r}");
         }

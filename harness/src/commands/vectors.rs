@@ -6,8 +6,8 @@
 //! shades, and their dither-tie pixels (dithered value exactly 0.5) from
 //! ref-f316's image.
 
-use crate::implementation::{Answer, ImplName, Implementation, Num};
-use crate::impls::reference::RefAdapter;
+use crate::cast::Cast;
+use crate::implementation::{Answer, Num};
 use anyhow::{bail, Context};
 use common::image_consts::bayer;
 use common::{Op, OpValue, Outcome, F316};
@@ -49,7 +49,8 @@ fn dithers_to_half(shade: F316, x: usize, y: usize) -> bool {
 
 /// Facts about every pixel of ref-f316's image, for the pixel generators.
 pub fn pixel_facts() -> anyhow::Result<PixelFacts> {
-    let reference = RefAdapter::new(ImplName::RefF316)?;
+    // The generators are defined on ref-f316's image.
+    let reference = Cast::builtin().open("ref-f316")?;
     let all: Vec<Vector> = (0..common::image_consts::HEIGHT as u16)
         .flat_map(|y| (0..common::image_consts::WIDTH as u16).map(move |x| (x, y)))
         .map(|(x, y)| {

@@ -4,16 +4,71 @@
 //! (the float scene: sdf, pixels, image). Without an adapter the
 //! implementation is unavailable, with the reason; nothing is faked.
 
-use crate::implementation::{Answer, Bitmap, ImplError, ImplName, Implementation, Num};
+use crate::cast::file::{FieldError, Fields};
+use crate::cast::{Entry, Kind, Opener, Request};
+use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{OpValue, Outcome, F316};
 use gpu::{Gpu, GpuError};
 use vectors::{Level, Vector};
 
+/// The `gpu` kind: the seed scene's WGSL kernels, `gpu-f316` and
+/// `gpu-f32`; a declared entry picks one with `numbers = "float316" |
+/// "f32"`.
+pub struct GpuKind;
+
+fn entry(numbers: Numbers) -> Entry {
+    if numbers == Numbers::Float316 {
+        Entry::new("gpu-f316", "gpu", numbers, GpuOpener { numbers })
+            .about("the Float316 kernels (Float316 as i32 arithmetic), wgpu")
+    } else {
+        Entry::new("gpu-f32", "gpu", numbers, GpuOpener { numbers })
+            .about("the f32 scene kernels, wgpu")
+            .levels(&[Level::Sdf, Level::Pixels, Level::Image])
+    }
+}
+
+impl Kind for GpuKind {
+    fn name(&self) -> &'static str {
+        "gpu"
+    }
+
+    fn builtins(&self) -> Vec<Entry> {
+        vec![entry(Numbers::F32), entry(Numbers::Float316)]
+    }
+
+    fn declare(&self, _name: &str, fields: &mut Fields<'_>) -> Result<Entry, FieldError> {
+        match fields.parsed::<Numbers>("numbers")? {
+            Some(n @ (Numbers::Float316 | Numbers::F32)) => Ok(entry(n)),
+            Some(n) => Err(fields.error(
+                "numbers",
+                format!("the gpu kernels compute with float316 or f32, not {n}"),
+            )),
+            None => Err(fields.error("numbers", "missing (required): float316 or f32")),
+        }
+    }
+}
+
+/// Opens a device and the kernels of one number type.
+struct GpuOpener {
+    numbers: Numbers,
+}
+
+impl Opener for GpuOpener {
+    fn open(&self, request: &Request<'_>) -> Result<Box<dyn Implementation>, ImplError> {
+        request.seed_scene_only()?;
+        Ok(Box::new(GpuAdapter::new(
+            self.numbers,
+            request.label.to_string(),
+        )?))
+    }
+}
+
 /// One of the two GPU implementations on an opened device.
 pub struct GpuAdapter {
     gpu: Gpu,
-    name: ImplName,
+    numbers: Numbers,
+    label: String,
 }
 
 fn failed(e: GpuError) -> ImplError {
@@ -21,12 +76,16 @@ fn failed(e: GpuError) -> ImplError {
 }
 
 impl GpuAdapter {
-    /// Open a device and compile the kernels for `name` (gpu-f32 or
-    /// gpu-f316).
-    pub fn new(name: ImplName) -> Result<Self, ImplError> {
+    /// Open a device and compile the kernels computing with `numbers`
+    /// (Float316 or f32).
+    pub fn new(numbers: Numbers, label: String) -> Result<Self, ImplError> {
         let gpu = Gpu::new()
             .map_err(|e| ImplError::Unavailable(format!("no usable wgpu adapter: {e}")))?;
-        Ok(GpuAdapter { gpu, name })
+        Ok(GpuAdapter {
+            gpu,
+            numbers,
+            label,
+        })
     }
 
     fn f316(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
@@ -156,15 +215,15 @@ fn pixels_of(batch: &[Vector]) -> Vec<(u16, u16)> {
 
 impl Implementation for GpuAdapter {
     fn label(&self) -> String {
-        self.name.to_string()
+        self.label.clone()
     }
 
-    fn name(&self) -> ImplName {
-        self.name
+    fn numbers(&self) -> Numbers {
+        self.numbers
     }
 
     fn supports(&self, level: Level) -> bool {
-        self.name == ImplName::GpuF316 || level != Level::Ops
+        self.numbers == Numbers::Float316 || level != Level::Ops
     }
 
     fn batch_size(&self, _level: Level) -> usize {
@@ -173,7 +232,7 @@ impl Implementation for GpuAdapter {
     }
 
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
-        if self.name == ImplName::GpuF316 {
+        if self.numbers == Numbers::Float316 {
             self.f316(batch)
         } else {
             self.f32(batch)

@@ -7,17 +7,78 @@
 //! `Math.divide`) or `web` (the web IDE's, whose `Math.divide` floors): the
 //! latter is the "floor division in the emulator's Math.divide" fault.
 
-use crate::implementation::{Answer, Bitmap, ImplError, ImplName, Implementation, Num};
+use crate::cast::file::{FieldError, Fields};
+use crate::cast::{Entry, Kind, Opener, Request, VariantInfo, VariantRole};
+use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{OpValue, Outcome, TraceRecord};
 pub use jack::Profile;
 use jack::{Budgets, JackError, Raymarcher};
 use vectors::{Level, Vector};
 
+/// The `jack` kind: the seed Jack raymarcher on the emulator (built-in
+/// `jack`, fault `web-divide`); a declared entry picks the OS profile with
+/// `profile = "desktop" | "web"`.
+pub struct JackKind;
+
+/// The fault that runs the program under the web IDE's OS profile.
+const WEB_DIVIDE: &str = "web-divide";
+
+fn entry(profile: Profile) -> Entry {
+    Entry::new("jack", "jack", Numbers::Float316, JackOpener { profile })
+        .traces()
+        .slow()
+        .variants(vec![VariantInfo {
+            name: WEB_DIVIDE.into(),
+            role: VariantRole::Fault,
+        }])
+}
+
+impl Kind for JackKind {
+    fn name(&self) -> &'static str {
+        "jack"
+    }
+
+    fn builtins(&self) -> Vec<Entry> {
+        vec![entry(Profile::Desktop)
+            .about("the seed Jack raymarcher on the Hack VM emulator, through its entry points")]
+    }
+
+    fn declare(&self, _name: &str, fields: &mut Fields<'_>) -> Result<Entry, FieldError> {
+        let profile = fields
+            .parsed::<Profile>("profile")?
+            .unwrap_or(Profile::Desktop);
+        Ok(entry(profile).about(format!(
+            "the seed Jack raymarcher under the {} OS profile",
+            profile.name()
+        )))
+    }
+}
+
+/// Opens the raymarcher under a profile (`web-divide`: the web one).
+struct JackOpener {
+    profile: Profile,
+}
+
+impl Opener for JackOpener {
+    fn open(&self, request: &Request<'_>) -> Result<Box<dyn Implementation>, ImplError> {
+        request.seed_scene_only()?;
+        let profile = if request.label.variants.iter().any(|v| v == WEB_DIVIDE) {
+            Profile::Web
+        } else {
+            self.profile
+        };
+        Ok(Box::new(JackAdapter::new(
+            profile,
+            request.label.to_string(),
+        )?))
+    }
+}
+
 /// The Jack raymarcher under one OS profile.
 pub struct JackAdapter {
     raymarcher: Raymarcher,
-    profile: Profile,
+    label: String,
 }
 
 /// The whole image through the pixel entry point, pixels in parallel,
@@ -38,14 +99,11 @@ fn failed(e: JackError) -> ImplError {
 
 impl JackAdapter {
     /// Compile the raymarcher and take its snapshot under `profile`.
-    pub fn new(profile: Profile) -> Result<Self, ImplError> {
+    pub fn new(profile: Profile, label: String) -> Result<Self, ImplError> {
         let raymarcher = Raymarcher::new(profile, Budgets::default()).map_err(|e| {
             ImplError::Unavailable(format!("the Jack raymarcher does not build: {e}"))
         })?;
-        Ok(JackAdapter {
-            raymarcher,
-            profile,
-        })
+        Ok(JackAdapter { raymarcher, label })
     }
 
     fn answer(&self, v: &Vector) -> Result<Outcome<Answer>, ImplError> {
@@ -100,22 +158,13 @@ impl JackAdapter {
     }
 }
 
-/// The "floor division in the emulator's Math.divide" fault: the Jack
-/// raymarcher under the web IDE's OS profile.
-pub fn open_web_profile() -> Result<Box<dyn Implementation>, ImplError> {
-    Ok(Box::new(JackAdapter::new(Profile::Web)?))
-}
-
 impl Implementation for JackAdapter {
     fn label(&self) -> String {
-        match self.profile {
-            Profile::Desktop => "jack".to_string(),
-            Profile::Web => "jack+web-divide".to_string(),
-        }
+        self.label.clone()
     }
 
-    fn name(&self) -> ImplName {
-        ImplName::Jack
+    fn numbers(&self) -> Numbers {
+        Numbers::Float316
     }
 
     fn supports(&self, _level: Level) -> bool {

@@ -1,79 +1,183 @@
-//! Adapter for the Rust reference: `ref-f316` (bit-exact Float316, traces
-//! natively), `ref-f64` (the oracle) and `ref-f32`, optionally with one of
-//! the reference's injected faults, plus the "f32 oracle" fault (ref-f32
-//! posing as ref-f64).
+//! The `reference` kind: the Rust reference's `ref-f316` (bit-exact
+//! Float316, traces natively, the tracer), `ref-f64` (the oracle) and
+//! `ref-f32`, with the reference's variants and faults, plus the "f32
+//! oracle" fault (ref-f32 posing as ref-f64).
 //!
 //! Ops on the float implementations are the real operation on the exact
 //! values of the operands, in that float type; a non-finite result is out
 //! of domain.
 
-use crate::implementation::{Answer, Bitmap, ImplError, ImplName, Implementation, Num};
+use crate::cast::file::{FieldError, Fields};
+use crate::cast::{Entry, Kind, Opener, Request, Roles, VariantInfo, VariantRole};
+use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
 use common::{Op, OpValue, Outcome, TraceRecord, F316};
-use reference::{PixelValue, RefImpl, Reference, Scalar, SdfValue, Settings, Variant};
+use reference::{PixelValue, RefImpl, Reference, Scalar, SdfValue, Settings, Variant, VariantKind};
 use vectors::{Level, OpVector, Vector};
 
-/// One reference implementation, possibly with a fault.
+/// The `reference` kind: the three built-in formulations, and declared
+/// entries `numbers = "float316" | "f64" | "f32"` with `variants = [...]`
+/// of the reference applied.
+pub struct ReferenceKind;
+
+/// The fault that makes ref-f32 answer where ref-f64 is expected.
+const F32_ORACLE: &str = "f32-oracle";
+
+impl Kind for ReferenceKind {
+    fn name(&self) -> &'static str {
+        "reference"
+    }
+
+    fn builtins(&self) -> Vec<Entry> {
+        let oracle = Roles {
+            oracle: true,
+            tracer: false,
+        };
+        let tracer = Roles {
+            oracle: false,
+            tracer: true,
+        };
+        let mut f64_variants = variants_of(RefImpl::F64);
+        f64_variants.push(VariantInfo {
+            name: F32_ORACLE.into(),
+            role: VariantRole::Fault,
+        });
+        vec![
+            entry(RefImpl::F64, Vec::new())
+                .about("the float formulation in f64 (the oracle of the error figures)")
+                .roles(oracle)
+                .variants(f64_variants),
+            entry(RefImpl::F32, Vec::new()).about("the float formulation in f32"),
+            entry(RefImpl::F316, Vec::new())
+                .about("Float316 in Rust, bit-exact with the Jack program; traces natively")
+                .roles(tracer),
+        ]
+    }
+
+    fn declare(&self, _name: &str, fields: &mut Fields<'_>) -> Result<Entry, FieldError> {
+        let formulation = match fields.required_string("numbers")? {
+            "float316" => RefImpl::F316,
+            "f64" => RefImpl::F64,
+            "f32" => RefImpl::F32,
+            other => {
+                return Err(fields.error(
+                    "numbers",
+                    format!("the reference computes with float316, f64 or f32, not `{other}`"),
+                ))
+            }
+        };
+        let accepted = variants_of(formulation);
+        let mut base = Vec::new();
+        for v in fields.strings("variants")? {
+            let variant: Variant = v
+                .parse()
+                .map_err(|e: reference::UnknownVariant| fields.error("variants", e.to_string()))?;
+            if !accepted.iter().any(|a| a.name == v) {
+                return Err(fields.error(
+                    "variants",
+                    format!("`{v}` does not apply to the {formulation} formulation"),
+                ));
+            }
+            base.push(variant);
+        }
+        let about = match base.as_slice() {
+            [] => format!("the reference's {formulation}"),
+            _ => format!(
+                "the reference's {formulation} with {}",
+                base.iter().map(|v| v.name()).collect::<Vec<_>>().join(", ")
+            ),
+        };
+        Ok(entry(formulation, base).about(about).variants(accepted))
+    }
+}
+
+/// The variants of the reference that change `formulation`'s answers: the
+/// Float316 arithmetic's apply to ref-f316 only, the dithering fault to all.
+fn variants_of(formulation: RefImpl) -> Vec<VariantInfo> {
+    Variant::ALL
+        .into_iter()
+        .filter(|v| formulation == RefImpl::F316 || *v == Variant::DitherThreshold)
+        .map(|v| VariantInfo {
+            name: v.name().into(),
+            role: match v.kind() {
+                VariantKind::Precision => VariantRole::Precision,
+                VariantKind::Fault => VariantRole::Fault,
+            },
+        })
+        .collect()
+}
+
+/// The entry of `formulation` with `base` variants always applied.
+fn entry(formulation: RefImpl, base: Vec<Variant>) -> Entry {
+    let numbers = match formulation {
+        RefImpl::F316 => Numbers::Float316,
+        RefImpl::F64 => Numbers::F64,
+        RefImpl::F32 => Numbers::F32,
+    };
+    let e = Entry::new(
+        formulation.name(),
+        "reference",
+        numbers,
+        RefOpener { formulation, base },
+    )
+    .variants(variants_of(formulation));
+    if formulation == RefImpl::F316 {
+        e.traces()
+    } else {
+        e
+    }
+}
+
+/// Opens one formulation with its base variants and the label's.
+struct RefOpener {
+    formulation: RefImpl,
+    base: Vec<Variant>,
+}
+
+impl Opener for RefOpener {
+    fn open(&self, request: &Request<'_>) -> Result<Box<dyn Implementation>, ImplError> {
+        let mut settings = self
+            .base
+            .iter()
+            .fold(Settings::default(), |s, v| v.apply(s));
+        let mut posing_as_f64 = false;
+        for v in &request.label.variants {
+            if v == F32_ORACLE {
+                posing_as_f64 = true;
+            } else {
+                let variant: Variant = v
+                    .parse()
+                    .map_err(|e: reference::UnknownVariant| ImplError::Failed(e.to_string()))?;
+                settings = variant.apply(settings);
+            }
+        }
+        let formulation = if posing_as_f64 {
+            RefImpl::F32
+        } else {
+            self.formulation
+        };
+        let scene = request.scene.cloned().unwrap_or_default();
+        let reference = Reference::new(formulation, &scene, settings)
+            .map_err(|e| ImplError::Failed(format!("the scene: {e}")))?;
+        Ok(Box::new(RefAdapter {
+            label: request.label.to_string(),
+            reference,
+            settings,
+            posing_as_f64,
+        }))
+    }
+}
+
+/// One reference implementation, possibly with variants or faults.
 pub struct RefAdapter {
-    name: ImplName,
+    label: String,
     reference: Reference,
     settings: Settings,
-    fault: Option<String>,
-    /// Answers are widened to f64 and presented as `ref-f64`'s.
+    /// Answers are widened to f64 and presented as `ref-f64`'s (the
+    /// "f32 oracle" fault).
     posing_as_f64: bool,
 }
 
 impl RefAdapter {
-    /// The clean implementation `name` (one of the three `ref-*`).
-    pub fn new(name: ImplName) -> Result<Self, ImplError> {
-        Self::build(name, Settings::default(), None, false)
-    }
-
-    /// `name` with the reference's fault or variant `variant` applied.
-    pub fn with_variant(name: ImplName, variant: Variant) -> Result<Self, ImplError> {
-        let settings = variant.apply(Settings::default());
-        Self::build(name, settings, Some(variant.name().to_string()), false)
-    }
-
-    /// The "f32 oracle" fault: ref-f32 answering where ref-f64 is expected,
-    /// its values widened to f64 so that nothing but their precision tells.
-    pub fn f32_posing_as_f64() -> Result<Self, ImplError> {
-        let mut adapter = Self::build(
-            ImplName::RefF32,
-            Settings::default(),
-            Some("f32-oracle".into()),
-            true,
-        )?;
-        adapter.name = ImplName::RefF64;
-        Ok(adapter)
-    }
-
-    fn build(
-        name: ImplName,
-        settings: Settings,
-        fault: Option<String>,
-        posing_as_f64: bool,
-    ) -> Result<Self, ImplError> {
-        let which = match name {
-            ImplName::RefF316 => RefImpl::F316,
-            ImplName::RefF64 => RefImpl::F64,
-            ImplName::RefF32 => RefImpl::F32,
-            other => {
-                return Err(ImplError::Failed(format!(
-                    "{other} is not a reference implementation"
-                )))
-            }
-        };
-        let reference = Reference::new(which, &reference::Scene::default(), settings)
-            .map_err(|e| ImplError::Failed(format!("the seed scene: {e}")))?;
-        Ok(RefAdapter {
-            name,
-            reference,
-            settings,
-            fault,
-            posing_as_f64,
-        })
-    }
-
     fn num(&self, s: Scalar) -> Num {
         match (s.triple, self.reference.implementation()) {
             (Some(t), _) => Num::F316(t),
@@ -180,14 +284,16 @@ fn float_op(
 
 impl Implementation for RefAdapter {
     fn label(&self) -> String {
-        match &self.fault {
-            Some(f) => format!("{}+{f}", self.name),
-            None => self.name.to_string(),
-        }
+        self.label.clone()
     }
 
-    fn name(&self) -> ImplName {
-        self.name
+    fn numbers(&self) -> Numbers {
+        match self.reference.implementation() {
+            RefImpl::F316 => Numbers::Float316,
+            RefImpl::F64 => Numbers::F64,
+            RefImpl::F32 if self.posing_as_f64 => Numbers::F64,
+            RefImpl::F32 => Numbers::F32,
+        }
     }
 
     fn supports(&self, _level: Level) -> bool {

@@ -9,7 +9,6 @@ pub mod atomic;
 pub mod history;
 pub mod html;
 pub mod images;
-pub mod measure;
 pub mod meta;
 pub mod model;
 pub mod plot;
@@ -342,7 +341,7 @@ fn percentiles<const N: usize>(values: &[f64], qs: [f64; N]) -> [f64; N] {
 }
 
 /// The cheapest Float316 reference variant (label `ref-f316` or
-/// `ref-f316+VARIANT`, as `impls::open_label` names them) whose dithered
+/// `ref-f316+VARIANT`, as the cast labels them) whose dithered
 /// image equals the spec's, with its cost.
 pub fn cheapest_spec_identical(points: &[SpeedPoint]) -> Option<String> {
     points

@@ -102,7 +102,7 @@ pub fn rows(
                 let mut t = tally(indices.iter().map(|&i| &answers[i]));
                 t.diverging = match run.numbers {
                     Numbers::Float316 => diverging(&run.label, category, exact),
-                    Numbers::F64 | Numbers::F32 => None,
+                    Numbers::F64 | Numbers::F32 | Numbers::Ieee { .. } => None,
                 };
                 outcomes.insert(run.label.clone(), t);
                 let Some(oracle) = oracle.filter(|_| run.label != ORACLE) else {

@@ -180,7 +180,9 @@ fn cheapest_variant_is_the_fastest_identical_float316_reference() {
         Some("ref-f316+mul-low-product (2.0 µs per pixel)")
     );
     // The labels are those the nightly renders its variants under.
-    assert!(crate::impls::open_label("ref-f316+mul-low-product").is_ok());
+    assert!(crate::cast::Cast::builtin()
+        .open("ref-f316+mul-low-product")
+        .is_ok());
     assert_eq!(cheapest_spec_identical(&points[1..2]), None);
 }
 

@@ -1,14 +1,14 @@
 //! Helpers shared by the integration tests.
 
-use harness::implementation::{ImplName, Implementation};
-use harness::impls;
+use harness::cast::Cast;
+use harness::implementation::Implementation;
 use harness::runner::{diff_set, RunOptions};
 use vectors::Level;
 
 /// Assert that `subject` agrees with ref-f316 on the committed small set of
 /// every level it answers (ops, sdf, pixels).
 pub fn assert_agrees_with_ref_f316_on_the_small_sets(subject: &dyn Implementation) {
-    let reference = impls::open(ImplName::RefF316).unwrap();
+    let reference = Cast::builtin().open("ref-f316").unwrap();
     for level in [Level::Ops, Level::Sdf, Level::Pixels] {
         let set = vectors::load_named(vectors::named::small_set_name(level)).unwrap();
         let report = diff_set(&[reference.as_ref(), subject], &set, RunOptions::default());

@@ -1,19 +1,25 @@
-//! Errors of the facade: the raymarcher does not build or does not start,
-//! or a run ends in a way no Float316 outcome describes.
+//! Errors of the facade: a Jack program does not build, its bindings do not
+//! fit it, or a run ends in a way no Float316 outcome describes.
 
 use hack_vm::Exit;
 
-/// Why the Jack raymarcher could not be used.
+/// Why a Jack program could not be used.
 #[derive(Debug, thiserror::Error)]
 pub enum JackError {
-    /// The embedded Jack sources do not compile.
-    #[error("the Jack raymarcher does not compile: {0}")]
+    /// The Jack sources do not compile.
+    #[error("the Jack program does not compile: {0}")]
     Compile(#[from] jack_compiler::CompileErrors),
-    /// The compiled VM code does not load.
-    #[error("the compiled raymarcher does not load: {0}")]
+    /// The VM code does not load.
+    #[error("the VM code does not load: {0}")]
     Load(#[from] hack_vm::LoadError),
+    /// The program's folder cannot be read.
+    #[error("{0}")]
+    Io(String),
+    /// A binding does not fit the program (names the field).
+    #[error("bad binding {0}")]
+    Bind(#[from] crate::BindError),
     /// A function the facade calls is missing from the program.
-    #[error("the raymarcher has no function {0}")]
+    #[error("the program has no function {0}")]
     MissingFunction(String),
     /// A run ended in a way that is not a Float316 outcome (a runtime error
     /// of the VM, a halt, a wait for a key): a bug in the Jack program.
@@ -27,6 +33,9 @@ pub enum JackError {
     /// An argument the facade cannot pass to the Jack program.
     #[error("{0}")]
     BadArgument(String),
+    /// The query needs a binding that was not given.
+    #[error("unsupported: {0}")]
+    Unsupported(String),
 }
 
 impl From<hack_vm::UnknownFunction> for JackError {

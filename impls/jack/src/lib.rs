@@ -16,6 +16,7 @@
 //! - The slow path: [`run_main`] (the whole program with a scripted SPACE)
 //!   and [`Raymarcher::render_band_on_screen`], read from screen memory.
 
+mod bind;
 mod error;
 mod profile;
 mod raymarcher;
@@ -23,6 +24,10 @@ mod screen;
 pub mod sources;
 mod trace;
 
+pub use bind::{
+    normalized_coords, BindError, Bindings, BoundProgram, Capture, JackProgram, Layout, Ready,
+    Signatures, Statements, WholeRun, DEFAULT_READY_BUDGET,
+};
 pub use error::JackError;
 pub use hack_vm::{Config, Profile};
 pub use raymarcher::{Budgets, Counted, Raymarcher, Render, Shaded, OUT_OF_DOMAIN_CODE};

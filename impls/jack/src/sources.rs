@@ -1,7 +1,7 @@
 //! The Jack sources of the raymarcher, embedded in the crate, and their
 //! compilation to a loaded VM [`Program`].
 
-use crate::JackError;
+use crate::{Bindings, BoundProgram, Budgets, JackError, JackProgram};
 use hack_vm::{Profile, Program};
 use jack_compiler::VmClass;
 use std::sync::Arc;
@@ -18,6 +18,21 @@ pub const SOURCES: [(&str, &str); 8] = [
     ("Shade.jack", include_str!("../raymarcher/Shade.jack")),
     ("Vec.jack", include_str!("../raymarcher/Vec.jack")),
 ];
+
+/// The raymarcher's bindings (`raymarcher/bindings.toml`), as TOML text.
+pub const BINDINGS: &str = include_str!("../raymarcher/bindings.toml");
+
+/// The raymarcher's bindings, parsed.
+pub fn bindings() -> Bindings {
+    toml::from_str(BINDINGS).expect("the raymarcher's bindings parse")
+}
+
+/// The raymarcher compiled under `profile` and opened through its
+/// bindings.
+pub fn bound(profile: Profile, budgets: Budgets) -> Result<BoundProgram, JackError> {
+    let program = JackProgram::from_jack(&SOURCES, profile)?;
+    BoundProgram::open(&program, &bindings(), budgets)
+}
 
 /// Compile the embedded sources with the compiler of the official tool
 /// `profile` names (desktop or web IDE) and load the VM code.

@@ -31,7 +31,7 @@ mod trace_diff;
 
 pub use error::LoadError;
 pub use exit::{CallStack, Exit};
-pub use jack_os::{KeyScript, Profile, Ram, RAM_SIZE};
+pub use jack_os::{Builtin, Completion, KeyScript, Profile, Ram, Stop, RAM_SIZE};
 pub use load::IMPLICIT;
 pub use machine::{Config, Machine, Register, UnknownFunction, Watcher, MAX_DEPTH};
 pub use program::{FnId, Function, Program};

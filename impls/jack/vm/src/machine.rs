@@ -6,7 +6,7 @@ use crate::exec::Flow;
 use crate::exit::{CallStack, Exit};
 use crate::program::{FnId, Program};
 use crate::timing::{self, Timing};
-use jack_os::{KeyScript, Os, Profile, Ram, KBD};
+use jack_os::{Builtin, Completion, KeyScript, Os, Profile, Ram, KBD};
 use std::sync::Arc;
 
 /// A register that a test script may preset (`set sp 261`, `set local 300`).
@@ -201,6 +201,13 @@ impl Machine {
     /// The OS state (cursor, heap, profile, keys).
     pub fn os(&self) -> &Os {
         &self.os
+    }
+
+    /// Run the OS built-in `builtin` (for example `Memory.alloc`) from the
+    /// host with `args` (VM order), on this machine's RAM and OS state, as a
+    /// program's call of it would.
+    pub fn call_builtin(&mut self, builtin: Builtin, args: &[i16]) -> Completion {
+        self.os.call(builtin, args, &mut self.ram, &mut self.steps)
     }
 
     /// Preset a register like a test script's `set sp|local|argument|this|that`,

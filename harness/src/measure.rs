@@ -1,12 +1,11 @@
-//! Timed full-image renders through the [`Implementation`] trait, as the
-//! nightly report, `harness bench` and `harness check` need them: every
-//! pixel at the `pixels` level, so that shades (values before dithering)
-//! come with the dithered bits.
-//!
-//! [`Implementation`]: crate::implementation::Implementation
+//! The one whole-image render: every pixel of the image through the
+//! [`Implementation`] trait at the `pixels` level (so that shades, the
+//! values before dithering, come with the dithered bits), timed, as
+//! `harness render`, `harness bench`, `harness check` and the nightly
+//! need it; and the error figures of one render against another.
 
-use crate::implementation::Answer;
-use crate::impls;
+use crate::cast::Cast;
+use crate::implementation::{Answer, Implementation};
 use crate::report::images::Grid;
 use crate::report::RenderImages;
 use crate::runner::{self, RunOptions};
@@ -92,15 +91,28 @@ impl FullRender {
     }
 }
 
-/// Open `label` and render every pixel of `set` (from [`full_image_set`]).
-/// Fails when the implementation cannot be opened (unknown, unavailable) or
-/// gives no answers.
-pub fn render(label: &str, set: &VectorSet, progress: bool) -> Result<FullRender> {
+/// Open `label` from the cast and render every pixel. Fails when the
+/// implementation cannot be opened (unknown, unavailable) or gives no
+/// answers.
+pub fn render(cast: &Cast, label: &str, progress: bool) -> Result<FullRender> {
     let start = Instant::now();
-    let imp = impls::open_label(label).with_context(|| format!("implementation `{label}`"))?;
+    let imp = cast
+        .open(label)
+        .with_context(|| format!("implementation `{label}`"))?;
     let setup_s = start.elapsed().as_secs_f64();
+    Ok(render_with(imp.as_ref(), setup_s, progress)?.0)
+}
+
+/// Every pixel through `imp`, opened in `setup_s` seconds: the render and
+/// each pixel's answer in row order.
+pub fn render_with(
+    imp: &dyn Implementation,
+    setup_s: f64,
+    progress: bool,
+) -> Result<(FullRender, Vec<Outcome<Answer>>)> {
+    let label = imp.label();
     let start = Instant::now();
-    let run = runner::run(&[imp.as_ref()], set, RunOptions { progress })
+    let run = runner::run(&[imp], &full_image_set(), RunOptions { progress })
         .into_iter()
         .next()
         .context("the runner returned no run")?;
@@ -114,7 +126,8 @@ pub fn render(label: &str, set: &VectorSet, progress: bool) -> Result<FullRender
             _ => Ok(None),
         })
         .collect::<Result<Vec<_>>>()?;
-    FullRender::from_pixels(label, setup_s, render_s, pixels)
+    let full = FullRender::from_pixels(&label, setup_s, render_s, pixels)?;
+    Ok((full, answers))
 }
 
 /// The spec's dithered image (`vectors/images/seed-float316-512x256.png`).

@@ -1,0 +1,135 @@
+//! What a user writes: the bindings of a Jack program, as plain data
+//! (deserialized from the `[impl.NAME]` table of a `harness.toml`, see
+//! `docs/bindings.md`). Nothing here is checked yet; [`crate::BoundProgram`]
+//! checks every field against the program and names the field it rejects.
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// The bindings of one Jack program.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Bindings {
+    /// Where the program is ready to be queried.
+    pub ready: Ready,
+    /// The float class.
+    pub float: Layout,
+    /// The 3-vector class (needed by an SDF function that takes `p`).
+    #[serde(default)]
+    pub vec3: Option<Layout>,
+    /// The SDF result class (a distance and a colour), for an SDF function
+    /// that gives `hit`.
+    #[serde(default)]
+    pub sdf_result: Option<Layout>,
+    /// Operation name (`add`, `inv_sqrt`, ...) to its call statement.
+    #[serde(default)]
+    pub ops: BTreeMap<String, String>,
+    /// The statements of one SDF query.
+    #[serde(default)]
+    pub sdf: Option<Statements>,
+    /// The statements of one pixel.
+    #[serde(default)]
+    pub pixel: Option<Statements>,
+    /// How whole-program mode sees pixels and their operations.
+    #[serde(default)]
+    pub capture: Option<Capture>,
+    /// The `Sys.error` code by which the program says an operand is out of
+    /// an operation's domain (reported as "out of domain", like the
+    /// reference's floor and mod2 outside their table).
+    #[serde(default)]
+    pub out_of_domain: Option<i16>,
+}
+
+/// A class of the program: its fields in declaration order, by role, and
+/// how to make an object of it.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Layout {
+    /// The class name.
+    pub class: String,
+    /// One role per field, in the order the class declares its fields
+    /// (`s`, `e`, `m` for a float; `x`, `y`, `z` for a vector; `distance`,
+    /// `colour` for an SDF result; `_` for a field the harness leaves alone).
+    pub fields: Vec<String>,
+    /// A constructor statement (`Float316.new(s, e, m)`), or `alloc`: a
+    /// `Memory.alloc` of one word per field, then field writes.
+    pub new: String,
+}
+
+/// One statement or several, run in order on the same machine.
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(untagged)]
+pub enum Statements {
+    /// `"white = Image.pixel(x, y)"`.
+    One(String),
+    /// `["Scene.eval(p)", "distance = Scene.distance()", ...]`.
+    Many(Vec<String>),
+}
+
+impl Statements {
+    /// The statements as a list.
+    pub fn list(&self) -> Vec<&str> {
+        match self {
+            Statements::One(s) => vec![s.as_str()],
+            Statements::Many(v) => v.iter().map(String::as_str).collect(),
+        }
+    }
+}
+
+/// Where the program is ready: after init statements, or after running the
+/// program's entry with scripted keys up to the first call of a function.
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(untagged, deny_unknown_fields)]
+pub enum Ready {
+    /// Call these statements in order from a fresh machine.
+    Init {
+        /// `["Main.init()"]`.
+        init: Vec<String>,
+    },
+    /// Run the program (`Sys.init`, hence `Main.main`) until it first calls
+    /// `until_call`; stop just before that call.
+    Run {
+        /// The function the run starts from: `Main.main` (the program's
+        /// own `Sys.init` calls it).
+        run: String,
+        /// Keys pressed in turn (`SPACE`, `A`, ...; see `harness jack run`).
+        #[serde(default)]
+        keys: String,
+        /// Instructions each key is held (and then released).
+        #[serde(default)]
+        hold: Option<u64>,
+        /// The function whose first call is the ready point.
+        until_call: String,
+        /// Instructions the run may take to get there.
+        #[serde(default)]
+        budget: Option<u64>,
+    },
+}
+
+impl Default for Ready {
+    fn default() -> Self {
+        Ready::Init { init: Vec::new() }
+    }
+}
+
+/// How whole-program mode captures pixels.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Capture {
+    /// A statement naming the program's per-pixel function and what its
+    /// arguments and return value are: `"white = Image.shadeAt(_, _, x, y)"`
+    /// (x and y ints), `"shade = Render.shade(u, v)"`. Each return is one
+    /// pixel.
+    #[serde(default)]
+    pub pixel: Option<String>,
+    /// A program function that draws one pixel: `"Canvas.plot(x, y)"` (a
+    /// black pixel) or `"Canvas.plot(x, y, white)"`. Each call is one pixel.
+    #[serde(default)]
+    pub draw: Option<String>,
+    /// Keys pressed in turn during the run (default: those of `ready`).
+    #[serde(default)]
+    pub keys: Option<String>,
+    /// Instructions each key is held (and then released).
+    #[serde(default)]
+    pub hold: Option<u64>,
+}

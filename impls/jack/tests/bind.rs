@@ -1,0 +1,201 @@
+//! The raymarcher through its bindings (`raymarcher/bindings.toml`) agrees
+//! with its own entry points, answer for answer and trace for trace.
+
+use common::{Op, F316};
+use jack::{Bindings, BoundProgram, Budgets, JackProgram, Profile, Raymarcher};
+use std::sync::OnceLock;
+
+fn bound() -> &'static BoundProgram {
+    static B: OnceLock<BoundProgram> = OnceLock::new();
+    B.get_or_init(|| jack::sources::bound(Profile::Desktop, Budgets::default()).unwrap())
+}
+
+fn entry() -> &'static Raymarcher {
+    static R: OnceLock<Raymarcher> = OnceLock::new();
+    R.get_or_init(|| Raymarcher::new(Profile::Desktop, Budgets::default()).unwrap())
+}
+
+#[test]
+fn ops_sdf_and_pixels_agree_with_the_entry_points() {
+    let vals = [
+        F316::new(0, 129, 10240),
+        F316::new(1, 127, 12288),
+        F316::new(0, 140, 9000),
+        F316::ZERO,
+        F316::new(1, 120, 16383),
+    ];
+    for op in Op::ALL {
+        for &a in &vals {
+            for &b in &vals {
+                let args: Vec<F316> = [a, b][..op.arity()].to_vec();
+                let x = bound().op(op, &args).unwrap();
+                let y = entry().op(op, &args).unwrap();
+                assert_eq!(x.outcome, y.outcome, "{op}{args:?}");
+                assert_eq!(
+                    bound().trace_op(op, &args).unwrap(),
+                    entry().trace_op(op, &args).unwrap()
+                );
+            }
+        }
+    }
+    let p = [F316::new(0, 127, 8192), F316::ZERO, F316::new(0, 128, 8192)];
+    assert_eq!(
+        bound().sdf(p).unwrap().outcome,
+        entry().sdf(p).unwrap().outcome
+    );
+    let tb: Vec<_> = bound().trace_sdf(p).unwrap();
+    let te: Vec<_> = entry().trace_sdf(p).unwrap();
+    assert_eq!(tb.len(), te.len());
+    assert!(tb.iter().zip(&te).all(|(a, b)| a.same_computation(b)));
+    for (x, y) in [(330, 150), (100, 200), (0, 0), (511, 255)] {
+        assert_eq!(
+            bound().pixel(x, y).unwrap().outcome,
+            entry().pixel(x, y).unwrap().outcome
+        );
+        let tb = bound().trace_pixel(x, y).unwrap();
+        let te = entry().trace_pixel(x, y).unwrap();
+        assert_eq!(tb.len(), te.len());
+        assert!(tb.iter().zip(&te).all(|(a, b)| a.same_computation(b)));
+    }
+}
+
+fn port() -> &'static BoundProgram {
+    static P: OnceLock<BoundProgram> = OnceLock::new();
+    P.get_or_init(|| {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/jack-port");
+        let program = JackProgram::from_dir(std::path::Path::new(dir), Profile::Desktop).unwrap();
+        let text = std::fs::read_to_string(format!("{dir}/bindings.toml")).unwrap();
+        let bindings: Bindings = toml::from_str(&text).unwrap();
+        BoundProgram::open(&program, &bindings, Budgets::default()).unwrap()
+    })
+}
+
+#[test]
+fn the_port_agrees_with_the_raymarcher() {
+    let vals = [
+        F316::new(0, 129, 10240),
+        F316::new(1, 127, 12288),
+        F316::new(0, 140, 9000),
+        F316::ZERO,
+        F316::new(1, 120, 16383),
+    ];
+    for op in Op::ALL {
+        for &a in &vals {
+            for &b in &vals {
+                let args: Vec<F316> = [a, b][..op.arity()].to_vec();
+                assert_eq!(
+                    port().op(op, &args).unwrap().outcome,
+                    entry().op(op, &args).unwrap().outcome,
+                    "{op}{args:?}"
+                );
+            }
+        }
+    }
+    let p = [F316::new(0, 127, 8192), F316::ZERO, F316::new(0, 128, 8192)];
+    assert_eq!(
+        port().sdf(p).unwrap().outcome,
+        entry().sdf(p).unwrap().outcome
+    );
+    for (x, y) in [(330, 150), (100, 200), (0, 0), (511, 255)] {
+        assert_eq!(
+            port().pixel(x, y).unwrap().outcome,
+            entry().pixel(x, y).unwrap().outcome,
+            "pixel ({x},{y})"
+        );
+    }
+}
+
+#[test]
+fn normalized_coordinates_are_the_references() {
+    use common::OpValue;
+    let reference = reference::Reference::seed(reference::RefImpl::F316);
+    let coords = |x, y| {
+        let t = reference.trace_pixel(x, y).unwrap().records;
+        let num = |r: &common::TraceRecord| match r.result {
+            common::Outcome::Value(OpValue::Num(v)) => v,
+            other => panic!("{other:?}"),
+        };
+        let divs: Vec<&common::TraceRecord> = t
+            .iter()
+            .filter(|r| r.op == common::Op::Div)
+            .take(2)
+            .collect();
+        (num(divs[0]), num(divs[1]).negated())
+    };
+    for x in 0..512 {
+        assert_eq!(jack::normalized_coords(x, 7).0, coords(x, 7).0, "x = {x}");
+    }
+    for y in 0..256 {
+        assert_eq!(jack::normalized_coords(3, y).1, coords(3, y).1, "y = {y}");
+    }
+}
+
+/// Every record's result is what ref-f316 gives on the same operands.
+fn replays_to_the_reference(trace: &[common::TraceRecord]) {
+    assert!(!trace.is_empty());
+    for r in trace {
+        let want = reference::op(r.op, &r.args, reference::Arith::default()).unwrap();
+        assert_eq!(r.result, want, "{r}");
+    }
+}
+
+#[test]
+fn whole_program_mode_captures_the_first_rows_and_their_traces() {
+    for (b, name) in [(bound(), "raymarcher"), (port(), "port")] {
+        let run = b.run_whole(&[(5, 1)], 400_000_000, &mut |_| {}).unwrap();
+        assert_eq!(
+            run.outcome,
+            common::Outcome::Hang,
+            "{name}: the budget ends the run"
+        );
+        let done: Vec<usize> = (0..run.shades.len())
+            .filter(|&i| run.captured[i].is_some() || run.shades[i].is_some())
+            .collect();
+        assert!(done.len() > 600, "{name}: {} pixels", done.len());
+        for &i in done.iter().step_by(37) {
+            let (x, y) = (i % 512, i / 512);
+            let want = entry().pixel(x, y).unwrap().outcome.value().unwrap();
+            if let Some(white) = run.captured[i] {
+                assert_eq!(white, want.white, "{name} ({x},{y})");
+            }
+            if let Some(shade) = run.shades[i] {
+                assert_eq!(shade, want.value, "{name} ({x},{y})");
+            }
+        }
+        replays_to_the_reference(&run.traces[&(5, 1)]);
+    }
+    // The raymarcher's per-pixel function is the whole pixel: its trace is
+    // the entry point's.
+    let run = bound()
+        .run_whole(&[(5, 1)], 400_000_000, &mut |_| {})
+        .unwrap();
+    let whole = &run.traces[&(5, 1)];
+    let query = entry().trace_pixel(5, 1).unwrap();
+    assert_eq!(whole.len(), query.len());
+    assert!(whole.iter().zip(&query).all(|(a, b)| a.same_computation(b)));
+    assert!(whole[0]
+        .path
+        .join(" > ")
+        .contains("Main.main > Image.render > Image.shadeAt"));
+}
+
+/// The whole program (`cargo test --release -p jack -- --ignored`).
+#[test]
+#[ignore = "full program runs: nightly"]
+fn whole_program_mode_captures_the_render() {
+    let render = entry().render().unwrap();
+    let want: Vec<bool> = render
+        .pixels
+        .iter()
+        .map(|p| p.outcome.value().unwrap().white)
+        .collect();
+    for b in [bound(), port()] {
+        let run = b
+            .run_whole(&[(330, 150)], 40_000_000_000, &mut |_| {})
+            .unwrap();
+        assert_eq!(run.outcome, common::Outcome::Value(()));
+        assert_eq!(run.image(), want);
+        assert_eq!(run.screen, want);
+        replays_to_the_reference(&run.traces[&(330, 150)]);
+    }
+}

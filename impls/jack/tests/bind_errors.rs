@@ -1,0 +1,95 @@
+//! Bad bindings are refused at start-up with an error naming the field.
+
+use jack::{BindError, Bindings, BoundProgram, Budgets, JackError, JackProgram, Profile};
+use std::sync::OnceLock;
+
+const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/jack-port");
+
+fn program() -> &'static JackProgram {
+    static P: OnceLock<JackProgram> = OnceLock::new();
+    P.get_or_init(|| JackProgram::from_dir(std::path::Path::new(DIR), Profile::Desktop).unwrap())
+}
+
+/// The port's bindings with `edit` applied to their TOML text.
+fn open_edited(from: &str, to: &str) -> Result<BoundProgram, JackError> {
+    let text = std::fs::read_to_string(format!("{DIR}/bindings.toml")).unwrap();
+    assert!(text.contains(from), "{from}");
+    let bindings: Bindings = toml::from_str(&text.replace(from, to)).unwrap();
+    BoundProgram::open(program(), &bindings, Budgets::default())
+}
+
+fn bind_error(r: Result<BoundProgram, JackError>) -> BindError {
+    match r {
+        Err(JackError::Bind(e)) => e,
+        Err(e) => panic!("not a binding error: {e}"),
+        Ok(_) => panic!("the bad binding was accepted"),
+    }
+}
+
+#[test]
+fn the_port_binds() {
+    open_edited("", "").unwrap();
+}
+
+#[test]
+fn a_function_that_does_not_exist_is_named() {
+    let e = bind_error(open_edited(
+        "add = \"result = Num.add(a, b)\"",
+        "add = \"result = Num.plus(a, b)\"",
+    ));
+    assert_eq!(e.field, "ops.add");
+    assert!(e.message.contains("no function `Num.plus`"), "{e}");
+    assert!(e.message.contains("Num has: "), "{e}");
+}
+
+#[test]
+fn the_wrong_arity_is_named() {
+    let e = bind_error(open_edited(
+        "sqrt = \"result = Num.sqrt(a)\"",
+        "sqrt = \"result = Num.sqrt(a, 1)\"",
+    ));
+    assert_eq!(e.field, "ops.sqrt");
+    assert!(e.message.contains("wrong arity"), "{e}");
+    assert!(e.message.contains("function Num sqrt(Num a)"), "{e}");
+}
+
+#[test]
+fn a_field_order_that_reads_garbage_fails_the_round_trip() {
+    let e = bind_error(open_edited(
+        "fields = [\"m\", \"e\", \"s\"]",
+        "fields = [\"s\", \"e\", \"m\"]",
+    ));
+    assert_eq!(e.field, "float.fields");
+    assert!(e.message.contains("round trip failed"), "{e}");
+}
+
+#[test]
+fn a_ready_call_never_reached_is_named() {
+    let e = bind_error(open_edited(
+        "keys = \"SPACE\", until_call = \"Picture.render\"",
+        "keys = \"A\", until_call = \"Picture.render\", budget = 3000000",
+    ));
+    assert_eq!(e.field, "ready.until_call");
+    assert!(e.message.contains("never called"), "{e}");
+    assert!(e.message.contains("3000000 instructions"), "{e}");
+}
+
+#[test]
+fn a_method_called_as_on_an_object_must_be_a_method() {
+    let e = bind_error(open_edited(
+        "add = \"result = Num.add(a, b)\"",
+        "add = \"result = a.add(b)\"",
+    ));
+    assert_eq!(e.field, "ops.add");
+    assert!(e.message.contains("not a method"), "{e}");
+}
+
+#[test]
+fn an_unbound_operation_is_unsupported() {
+    let bound = open_edited("halve = \"result = Num.halve(a)\"\n", "").unwrap();
+    assert!(!bound.has_op(common::Op::Halve));
+    match bound.op(common::Op::Halve, &[common::F316::ONE]) {
+        Err(JackError::Unsupported(m)) => assert!(m.contains("ops.halve")),
+        other => panic!("{other:?}"),
+    }
+}
