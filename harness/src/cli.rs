@@ -40,7 +40,11 @@ pub enum Command {
     Bench(commands::bench::BenchArgs),
     /// Everything: levels, unary checks, self-test, renders, speed and error; HTML + JSON report.
     Nightly(commands::nightly::NightlyArgs),
-    /// Vector sets: regenerate the committed ones, check a file.
+    /// Join the reports of `diff --shard K/N` runs into the whole campaign's report.
+    Merge(commands::merge::MergeArgs),
+    /// A binary operation over every equivalence class of its operands, bit for bit.
+    Sweep(commands::sweep::SweepArgs),
+    /// Vector sets: regenerate the committed ones, check a file, TestFloat-style cases.
     #[command(subcommand)]
     Vectors(commands::vectors::VectorsCommand),
 }
@@ -56,6 +60,8 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Diff(args) => commands::diff::run(args, &cast()?),
         Command::Localize(args) => commands::localize::run(args, &cast()?),
         Command::Selftest(args) => commands::selftest::run(args, &cast()?),
+        Command::Merge(args) => commands::merge::run(args),
+        Command::Sweep(args) => commands::sweep::run(args, &cast()?),
         Command::Vectors(cmd) => commands::vectors::run(cmd),
         Command::Check(args) => commands::check::run(args, cast()),
         Command::Bench(args) => commands::bench::run(args, &cast()?),

@@ -53,6 +53,10 @@ pub struct LevelReport {
     pub runs: Vec<RunSummary>,
     /// The first implementation against each other one that answered.
     pub comparisons: Vec<Comparison>,
+    /// The shard of the set this report covers (`None`: the whole set);
+    /// indices are the vectors' indices in the whole set either way.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shard: Option<vectors::Shard>,
 }
 
 impl LevelReport {
@@ -249,5 +253,6 @@ pub fn level_report(set: &VectorSet, runs: &[ImplRun]) -> LevelReport {
             })
             .collect(),
         comparisons,
+        shard: None,
     }
 }

@@ -34,7 +34,8 @@ pub struct Fault {
     pub faulty: [&'static str; 2],
     /// The same pair without the fault: the control, which must agree.
     pub clean: [&'static str; 2],
-    /// The committed set it runs on.
+    /// The set it runs on: a committed set, or a TestFloat set by its name
+    /// (`testfloat-2-add`).
     pub set: &'static str,
     /// What detection must show.
     pub expect: Expect,
@@ -82,6 +83,30 @@ pub fn catalogue() -> Vec<Fault> {
             clean: ["ref-f316", "ref-f316"],
             set: "pixels-small",
             expect: Expect::After(Op::Gt),
+        },
+        Fault {
+            name: "add-carry-bit",
+            description: "reference: add tests its carry by bit 14 (missed by the committed sets)",
+            faulty: ["ref-f316+add-carry-bit", "ref-f316"],
+            clean: ["ref-f316", "jack"],
+            set: "testfloat-2-add",
+            expect: Expect::Op(&[Op::Add]),
+        },
+        Fault {
+            name: "add-drop-far",
+            description: "reference: add drops an operand 14 exponents below (missed by the committed sets)",
+            faulty: ["ref-f316+add-drop-far", "ref-f316"],
+            clean: ["ref-f316", "jack"],
+            set: "testfloat-2-add",
+            expect: Expect::Op(&[Op::Add]),
+        },
+        Fault {
+            name: "div-normalise-once",
+            description: "reference: div normalises its quotient by one doubling (missed by the committed sets)",
+            faulty: ["ref-f316+div-normalise-once", "ref-f316"],
+            clean: ["ref-f316", "jack"],
+            set: "testfloat-2-div",
+            expect: Expect::Op(&[Op::Div]),
         },
         Fault {
             name: "f32-oracle",
@@ -162,7 +187,10 @@ pub fn run_fault(cast: &Cast, fault: &Fault) -> FaultResult {
     let opened = (|| {
         let open = |label: &str| cast.open(label).map_err(|e| format!("{label}: {e}"));
         let pair = |[a, b]: [&str; 2]| Ok::<_, String>((open(a)?, open(b)?));
-        let set: VectorSet = vectors::load_named(fault.set).map_err(|e| e.to_string())?;
+        let set: VectorSet = match vectors::gen::testfloat::named(fault.set) {
+            Some(set) => set,
+            None => vectors::load_named(fault.set).map_err(|e| e.to_string())?,
+        };
         let faulty = pair(fault.faulty)?;
         let clean = pair(fault.clean)?;
         let tracer = open(&cast.tracer().name)?;

@@ -7,9 +7,11 @@
 pub mod gen;
 pub mod named;
 pub mod set;
+pub mod shard;
 mod validate;
 
 pub use set::{
     load_named, sets_dir, ImageVector, Level, OpVector, PixelVector, SdfVector, SetError, Vector,
     VectorSet, FORMAT_VERSION,
 };
+pub use shard::Shard;

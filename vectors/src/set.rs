@@ -283,7 +283,7 @@ impl VectorSet {
 
     /// Load and validate a set file.
     pub fn load(path: &Path) -> Result<Self, SetError> {
-        let text = common::input::read_text(path)?;
+        let text = common::input::read_text_limited(path, MAX_SET_BYTES)?;
         Self::parse(&path.display().to_string(), &text)
     }
 
@@ -342,6 +342,11 @@ pub fn sets_dir() -> PathBuf {
 }
 
 /// Load a committed set by name (`ops-small`) from [`sets_dir`].
+/// The largest set file [`VectorSet::load`] reads: a whole TestFloat
+/// level-2 campaign of one binary operation is about 92 MB of JSON.
+pub const MAX_SET_BYTES: u64 = 1 << 30;
+
+/// The committed set `name` from [`sets_dir`].
 pub fn load_named(name: &str) -> Result<VectorSet, SetError> {
     VectorSet::load(&sets_dir().join(format!("{name}.json")))
 }

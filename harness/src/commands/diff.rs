@@ -1,5 +1,5 @@
 //! `harness diff A B [C...] [--level ops|sdf|pixels|image|all] [--vectors
-//! FILE] [--report DIR]`: run vector sets through the implementations,
+//! FILE] [--report DIR] [--shard K/N]`: run vector sets through the implementations,
 //! compare the first with each other one, print the divergences (each with
 //! the localize command that reproduces it) and, with `--report`, write a
 //! JSON report and a one-line repro file per divergence.
@@ -7,13 +7,14 @@
 //! an implementation is unavailable: nothing was compared).
 
 use crate::cast::Cast;
+use crate::merge::run_shard;
 use crate::report::atomic::{write_file, StagingDir};
-use crate::runner::{diff_set, LevelReport, RunOptions};
+use crate::runner::{LevelReport, RunOptions};
 use crate::text;
 use anyhow::{bail, Context};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use vectors::{Level, Vector, VectorSet};
+use vectors::{Level, Shard, Vector, VectorSet};
 
 /// Levels selectable with `--level`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -58,6 +59,11 @@ pub struct DiffArgs {
     /// Write report.json and repro/*.json into this directory.
     #[arg(long)]
     pub report: Option<PathBuf>,
+    /// Run only shard K/N of each set (K counts from 0; a vector's shard
+    /// is a stable hash of its identity); `harness merge` joins the
+    /// shards' reports.
+    #[arg(long)]
+    pub shard: Option<Shard>,
 }
 
 /// The sets a diff runs: the file given, or each level's small set.
@@ -134,7 +140,7 @@ pub fn run(args: DiffArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     };
     let mut reports: Vec<LevelReport> = sets
         .iter()
-        .map(|set| diff_set(&refs, set, options))
+        .map(|set| run_shard(&refs, set, args.shard.unwrap_or(Shard::WHOLE), options))
         .collect();
     if let Some(dir) = &args.report {
         write_report(dir, &mut reports)?;

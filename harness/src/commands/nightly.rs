@@ -573,12 +573,12 @@ fn add_render(
     )
 }
 
-/// The Jack program's whole image through its pixel entry point, with the
-/// per-pixel VM instruction counts (the cost map).
+/// The Jack program's whole image through its bound pixel statements, with
+/// the per-pixel VM instruction counts (the cost map).
 fn jack_render() -> Result<(FullRender, Grid<u64>)> {
     use common::image_consts::{HEIGHT, WIDTH};
     let start = Instant::now();
-    let raymarcher = jack::Raymarcher::new(jack::Profile::Desktop, jack::Budgets::default())?;
+    let raymarcher = jack::sources::bound(jack::Profile::Desktop, jack::Budgets::default())?;
     let setup_s = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let render = crate::impls::jack::render_with_bar(&raymarcher)?;

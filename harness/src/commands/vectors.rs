@@ -1,6 +1,7 @@
 //! `harness vectors regenerate [--only NAME] [--dir DIR]`: rebuild the
 //! committed vector sets deterministically (same seed, same vectors);
-//! `harness vectors check FILE`: validate a set file.
+//! `harness vectors check FILE`: validate a set file; `harness vectors gen
+//! --level 1|2 [--op OP] --out FILE`: TestFloat-style Float316 cases.
 //!
 //! Pixel sets take their silhouette and shadow-edge pixels from ref-f316's
 //! shades, and their dither-tie pixels (dithered value exactly 0.5) from
@@ -15,8 +16,9 @@ use rayon::prelude::*;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use vectors::gen::pixels::PixelFacts;
+use vectors::gen::testfloat::{self, CaseLevel};
 use vectors::named::SETS;
-use vectors::{Level, PixelVector, Vector, VectorSet};
+use vectors::{Level, PixelVector, Shard, Vector, VectorSet};
 
 /// `harness vectors` subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -29,6 +31,24 @@ pub enum VectorsCommand {
         /// Write here instead of vectors/sets.
         #[arg(long)]
         dir: Option<PathBuf>,
+    },
+    /// Write TestFloat-style Float316 cases as a set (docs/coverage.md).
+    Gen {
+        /// TestFloat level: 1 (quick) or 2 (thorough).
+        #[arg(long)]
+        level: CaseLevel,
+        /// Only this operation (default: every operation).
+        #[arg(long)]
+        op: Option<Op>,
+        /// The seed of level 2's random pairs.
+        #[arg(long, default_value_t = testfloat::DEFAULT_SEED)]
+        seed: u64,
+        /// Keep only shard K/N of the cases (K counts from 0).
+        #[arg(long)]
+        shard: Option<Shard>,
+        /// The set file to write.
+        #[arg(long)]
+        out: PathBuf,
     },
     /// Validate a set file and print its summary.
     Check {
@@ -116,6 +136,20 @@ pub fn run(cmd: VectorsCommand) -> anyhow::Result<ExitCode> {
                 set.save(&path)?;
                 println!("{}: {} vectors", path.display(), set.vectors.len());
             }
+            Ok(ExitCode::SUCCESS)
+        }
+        VectorsCommand::Gen {
+            level,
+            op,
+            seed,
+            shard,
+            out,
+        } => {
+            let ops = op.map_or_else(|| Op::ALL.to_vec(), |op| vec![op]);
+            let set = testfloat::set(&ops, level, seed);
+            let set = shard.unwrap_or(Shard::WHOLE).of_set(&set);
+            set.save(&out)?;
+            println!("{}: {} vectors", out.display(), set.vectors.len());
             Ok(ExitCode::SUCCESS)
         }
         VectorsCommand::Check { file } => {

@@ -1,37 +1,145 @@
-//! Adapter for the Jack raymarcher on the Hack VM emulator: every call runs
-//! on a clone of a snapshot taken after `Main.init`; op traces come from
-//! the emulator watching the Float316 subroutines. The image level renders
-//! through the pixel entry point, pixels in parallel.
+//! The `jack` kind: a Jack program on the Hack VM emulator, reached through
+//! its bindings (`docs/bindings.md`). The built-in `jack` is the seed
+//! raymarcher with `impls/jack/raymarcher/bindings.toml`; a declared
+//! `[impl.NAME]` names a program folder and binds it, inline or in a
+//! bindings file. Every query runs on a clone of the program's ready
+//! snapshot; op traces come from the emulator watching the bound operation
+//! functions. The image level renders through the pixel statements, pixels
+//! in parallel, or (with only `capture` bound) runs the whole program.
 //!
-//! The OS profile is selectable: `desktop` (the seed program's, truncating
-//! `Math.divide`) or `web` (the web IDE's, whose `Math.divide` floors): the
-//! latter is the "floor division in the emulator's Math.divide" fault.
+//! The fault `web-divide` runs a program under the web IDE's OS profile
+//! (flooring `Math.divide`) instead of its own.
 
 use crate::cast::file::{FieldError, Fields};
 use crate::cast::{Entry, Kind, Opener, Request, VariantInfo, VariantRole};
 use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
 use common::image_consts::{HEIGHT, WIDTH};
-use common::{OpValue, Outcome, TraceRecord};
+use common::{Op, OpValue, Outcome, TraceRecord};
 pub use jack::Profile;
-use jack::{Budgets, JackError, Raymarcher};
+use jack::{Bindings, BoundProgram, Budgets, JackError, JackProgram};
+use serde::de::IntoDeserializer;
+use std::path::PathBuf;
 use vectors::{Level, Vector};
 
-/// The `jack` kind: the seed Jack raymarcher on the emulator (built-in
-/// `jack`, fault `web-divide`); a declared entry picks the OS profile with
-/// `profile = "desktop" | "web"`.
+/// The `jack` kind.
 pub struct JackKind;
 
 /// The fault that runs the program under the web IDE's OS profile.
 const WEB_DIVIDE: &str = "web-divide";
 
-fn entry(profile: Profile) -> Entry {
-    Entry::new("jack", "jack", Numbers::Float316, JackOpener { profile })
-        .traces()
-        .slow()
-        .variants(vec![VariantInfo {
-            name: WEB_DIVIDE.into(),
-            role: VariantRole::Fault,
-        }])
+/// Instructions a whole-program run may take (the seed program takes 21 G).
+const WHOLE_BUDGET: u64 = 100_000_000_000;
+
+/// Where a program's sources come from.
+#[derive(Clone, Debug)]
+enum Source {
+    /// The seed raymarcher, embedded in the `jack` crate.
+    Seed,
+    /// A folder of .jack or .vm files.
+    Folder(PathBuf),
+}
+
+/// The levels `bindings` can answer.
+fn levels(b: &Bindings) -> Vec<Level> {
+    let mut levels = Vec::new();
+    if !b.ops.is_empty() {
+        levels.push(Level::Ops);
+    }
+    if b.sdf.is_some() {
+        levels.push(Level::Sdf);
+    }
+    if b.pixel.is_some() {
+        levels.push(Level::Pixels);
+    }
+    if b.pixel.is_some() || b.capture.is_some() {
+        levels.push(Level::Image);
+    }
+    levels
+}
+
+fn entry(name: &str, source: Source, profile: Profile, bindings: Bindings) -> Entry {
+    let levels = levels(&bindings);
+    Entry::new(
+        name,
+        "jack",
+        Numbers::Float316,
+        JackOpener {
+            source,
+            profile,
+            bindings,
+        },
+    )
+    .levels(&levels)
+    .traces()
+    .slow()
+    .variants(vec![VariantInfo {
+        name: WEB_DIVIDE.into(),
+        role: VariantRole::Fault,
+    }])
+}
+
+/// The seed raymarcher's bindings.
+fn seed_bindings() -> Bindings {
+    toml::from_str(jack::sources::BINDINGS).expect("the raymarcher's bindings parse")
+}
+
+/// The binding fields of an `[impl.NAME]` table.
+const BINDING_FIELDS: [&str; 9] = [
+    "ready",
+    "float",
+    "vec3",
+    "sdf_result",
+    "ops",
+    "sdf",
+    "pixel",
+    "capture",
+    "out_of_domain",
+];
+
+/// Read field `key` of `fields` as a `T`; errors located in the file.
+fn part<T: serde::de::DeserializeOwned>(
+    fields: &mut Fields<'_>,
+    key: &str,
+) -> Result<Option<T>, FieldError> {
+    let Some(value) = fields.raw(key) else {
+        return Ok(None);
+    };
+    T::deserialize(value.clone().into_deserializer())
+        .map(Some)
+        .map_err(|e| {
+            let at = e.span().map_or(value.span().start, |s| s.start);
+            fields.error_at(key, at, e.message().trim_end().to_string())
+        })
+}
+
+/// The bindings of a declared entry: inline fields, or a bindings file.
+fn declared_bindings(fields: &mut Fields<'_>) -> Result<Bindings, FieldError> {
+    if let Some(path) = fields.path("bindings")? {
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| fields.error("bindings", format!("{}: {e}", path.display())))?;
+        return toml::from_str(&text).map_err(|e| {
+            let at = e.span().map_or(0, |s| s.start);
+            crate::cast::file::Source {
+                file: &path,
+                text: &text,
+            }
+            .error(at, "", e.message().trim_end().to_string())
+        });
+    }
+    let mut b = Bindings {
+        ready: part(fields, "ready")?.unwrap_or_default(),
+        float: part(fields, "float")?
+            .ok_or_else(|| fields.error("float", "missing (required: the float's layout)"))?,
+        vec3: part(fields, "vec3")?,
+        sdf_result: part(fields, "sdf_result")?,
+        ops: part(fields, "ops")?.unwrap_or_default(),
+        sdf: part(fields, "sdf")?,
+        pixel: part(fields, "pixel")?,
+        capture: part(fields, "capture")?,
+        out_of_domain: part(fields, "out_of_domain")?,
+    };
+    b.ops.retain(|_, v| !v.trim().is_empty());
+    Ok(b)
 }
 
 impl Kind for JackKind {
@@ -40,24 +148,44 @@ impl Kind for JackKind {
     }
 
     fn builtins(&self) -> Vec<Entry> {
-        vec![entry(Profile::Desktop)
-            .about("the seed Jack raymarcher on the Hack VM emulator, through its entry points")]
+        vec![
+            entry("jack", Source::Seed, Profile::Desktop, seed_bindings())
+                .about("the seed Jack raymarcher on the Hack VM emulator, through its bindings"),
+        ]
     }
 
     fn declare(&self, _name: &str, fields: &mut Fields<'_>) -> Result<Entry, FieldError> {
         let profile = fields
             .parsed::<Profile>("profile")?
             .unwrap_or(Profile::Desktop);
-        Ok(entry(profile).about(format!(
-            "the seed Jack raymarcher under the {} OS profile",
+        let Some(dir) = fields.path("program")? else {
+            for key in BINDING_FIELDS.iter().chain(&["bindings"]) {
+                if fields.raw(key).is_some() {
+                    return Err(fields.error(key, "bindings need a `program` folder"));
+                }
+            }
+            return Ok(
+                entry("jack", Source::Seed, profile, seed_bindings()).about(format!(
+                    "the seed Jack raymarcher under the {} OS profile",
+                    profile.name()
+                )),
+            );
+        };
+        let bindings = declared_bindings(fields)?;
+        let about = format!(
+            "the Jack program {} under the {} OS profile, through bindings",
+            dir.display(),
             profile.name()
-        )))
+        );
+        Ok(entry("jack", Source::Folder(dir), profile, bindings).about(about))
     }
 }
 
-/// Opens the raymarcher under a profile (`web-divide`: the web one).
+/// Opens a bound program under a profile (`web-divide`: the web one).
 struct JackOpener {
+    source: Source,
     profile: Profile,
+    bindings: Bindings,
 }
 
 impl Opener for JackOpener {
@@ -68,59 +196,91 @@ impl Opener for JackOpener {
         } else {
             self.profile
         };
-        Ok(Box::new(JackAdapter::new(
-            profile,
-            request.label.to_string(),
-        )?))
+        let program = match &self.source {
+            Source::Seed => JackProgram::from_jack(&jack::sources::SOURCES, profile),
+            Source::Folder(dir) => JackProgram::from_dir(dir, profile),
+        }
+        .map_err(|e| ImplError::Unavailable(e.to_string()))?;
+        let bound = BoundProgram::open(&program, &self.bindings, Budgets::default())
+            .map_err(|e| ImplError::Unavailable(e.to_string()))?;
+        Ok(Box::new(JackAdapter {
+            bound,
+            label: request.label.to_string(),
+        }))
     }
 }
 
-/// The Jack raymarcher under one OS profile.
+/// A bound Jack program as an implementation.
 pub struct JackAdapter {
-    raymarcher: Raymarcher,
+    bound: BoundProgram,
     label: String,
 }
 
-/// The whole image through the pixel entry point, pixels in parallel,
+/// The whole image through the pixel statements, pixels in parallel,
 /// with a bar of pixels done when standard error is a terminal.
-pub fn render_with_bar(raymarcher: &Raymarcher) -> Result<jack::Render, JackError> {
+pub fn render_with_bar(bound: &BoundProgram) -> Result<jack::Render, JackError> {
     let bar = crate::progress::show(
         crate::progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
         crate::progress::wanted(),
     );
-    let render = raymarcher.render_rows_observed(0..HEIGHT, &|| bar.inc(1));
+    let render = bound.render_rows_observed(0..HEIGHT, &|| bar.inc(1));
     bar.finish_and_clear();
     render
 }
 
 fn failed(e: JackError) -> ImplError {
-    ImplError::Failed(e.to_string())
+    match e {
+        JackError::Unsupported(what) => ImplError::Unsupported(what),
+        e => ImplError::Failed(e.to_string()),
+    }
+}
+
+fn op_answer(r: OpValue) -> Answer {
+    match r {
+        OpValue::Bool(value) => Answer::Bool { value },
+        OpValue::Num(t) => Answer::Num {
+            value: Num::F316(t),
+        },
+    }
 }
 
 impl JackAdapter {
-    /// Compile the raymarcher and take its snapshot under `profile`.
-    pub fn new(profile: Profile, label: String) -> Result<Self, ImplError> {
-        let raymarcher = Raymarcher::new(profile, Budgets::default()).map_err(|e| {
-            ImplError::Unavailable(format!("the Jack raymarcher does not build: {e}"))
-        })?;
-        Ok(JackAdapter { raymarcher, label })
+    /// The image: through the pixel statements, else by running the
+    /// whole program.
+    fn image(&self) -> Result<Vec<bool>, ImplError> {
+        if self.bound.has_pixel() {
+            let render = render_with_bar(&self.bound).map_err(failed)?;
+            // A pixel whose computation trapped is never drawn: the Hack
+            // screen starts white.
+            return Ok(render
+                .pixels
+                .iter()
+                .map(|p| p.outcome.value().is_none_or(|s| s.white))
+                .collect());
+        }
+        let run = self
+            .bound
+            .run_whole(&[], WHOLE_BUDGET, &mut |_| {})
+            .map_err(failed)?;
+        match run.outcome {
+            Outcome::Value(()) => Ok(run.image()),
+            other => Err(ImplError::Failed(format!(
+                "the whole program did not finish: {}",
+                other.map(|_| "halted")
+            ))),
+        }
     }
 
     fn answer(&self, v: &Vector) -> Result<Outcome<Answer>, ImplError> {
         Ok(match v {
             Vector::Op(o) => self
-                .raymarcher
+                .bound
                 .op(o.op, &o.args())
                 .map_err(failed)?
                 .outcome
-                .map(|r| match r {
-                    OpValue::Bool(value) => Answer::Bool { value },
-                    OpValue::Num(t) => Answer::Num {
-                        value: Num::F316(t),
-                    },
-                }),
+                .map(op_answer),
             Vector::Sdf(s) => self
-                .raymarcher
+                .bound
                 .sdf(s.p)
                 .map_err(failed)?
                 .outcome
@@ -129,7 +289,7 @@ impl JackAdapter {
                     col: Num::F316(col),
                 }),
             Vector::Pixel(p) => self
-                .raymarcher
+                .bound
                 .pixel(usize::from(p.x), usize::from(p.y))
                 .map_err(failed)?
                 .outcome
@@ -137,23 +297,13 @@ impl JackAdapter {
                     shade: Num::F316(s.value),
                     white: s.white,
                 }),
-            Vector::Image(_) => {
-                let render = self.raymarcher.render().map_err(failed)?;
-                // A pixel whose computation trapped is never drawn: the
-                // Hack screen starts white.
-                let white = render
-                    .pixels
-                    .iter()
-                    .map(|p| p.outcome.value().is_none_or(|s| s.white))
-                    .collect();
-                Outcome::Value(Answer::Image {
-                    bitmap: Bitmap {
-                        width: WIDTH,
-                        height: HEIGHT,
-                        white,
-                    },
-                })
-            }
+            Vector::Image(_) => Outcome::Value(Answer::Image {
+                bitmap: Bitmap {
+                    width: WIDTH,
+                    height: HEIGHT,
+                    white: self.image()?,
+                },
+            }),
         })
     }
 }
@@ -167,8 +317,13 @@ impl Implementation for JackAdapter {
         Numbers::Float316
     }
 
-    fn supports(&self, _level: Level) -> bool {
-        true
+    fn supports(&self, level: Level) -> bool {
+        match level {
+            Level::Ops => Op::ALL.into_iter().any(|op| self.bound.has_op(op)),
+            Level::Sdf => self.bound.has_sdf(),
+            Level::Pixels => self.bound.has_pixel(),
+            Level::Image => self.bound.has_pixel() || self.bound.captures_pixels(),
+        }
     }
 
     fn batch_size(&self, level: Level) -> usize {
@@ -187,11 +342,25 @@ impl Implementation for JackAdapter {
 
     fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {
         match input {
-            Vector::Op(o) => self.raymarcher.trace_op(o.op, &o.args()),
-            Vector::Sdf(s) => self.raymarcher.trace_sdf(s.p),
-            Vector::Pixel(p) => self
-                .raymarcher
-                .trace_pixel(usize::from(p.x), usize::from(p.y)),
+            Vector::Op(o) => self.bound.trace_op(o.op, &o.args()),
+            Vector::Sdf(s) => self.bound.trace_sdf(s.p),
+            Vector::Pixel(p) => {
+                let (x, y) = (usize::from(p.x), usize::from(p.y));
+                if self.bound.has_pixel() {
+                    self.bound.trace_pixel(x, y)
+                } else {
+                    // The whole program, watching the pixel's operations.
+                    self.bound
+                        .run_whole(&[(x, y)], WHOLE_BUDGET, &mut |_| {})
+                        .and_then(|run| {
+                            run.traces.get(&(x, y)).cloned().ok_or_else(|| {
+                                JackError::Unsupported(format!(
+                                    "the whole program never computed pixel ({x},{y})"
+                                ))
+                            })
+                        })
+                }
+            }
             Vector::Image(_) => {
                 return Err(ImplError::Unsupported("a trace of the whole image".into()))
             }

@@ -8,9 +8,15 @@
 pub mod gpu;
 pub mod jack;
 pub mod reference;
+pub mod shader;
 
 use crate::cast::Kind;
 
 /// Every kind, by its `kind = "..."` name; their built-in entries come in
 /// this order.
-pub const KINDS: &[&dyn Kind] = &[&reference::ReferenceKind, &jack::JackKind, &gpu::GpuKind];
+pub const KINDS: &[&dyn Kind] = &[
+    &reference::ReferenceKind,
+    &jack::JackKind,
+    &gpu::GpuKind,
+    &shader::ShaderKind,
+];

@@ -55,11 +55,15 @@ impl std::fmt::Display for AdapterDescription {
 pub(crate) struct Health {
     lost: Mutex<Option<String>>,
     uncaptured: Mutex<Vec<String>>,
+    stuck: Mutex<Option<(String, f64)>>,
 }
 
 impl Health {
     /// The first problem recorded, if any.
     pub(crate) fn check(&self) -> Result<(), GpuError> {
+        if let Some((kernel, seconds)) = lock(&self.stuck).clone() {
+            return Err(GpuError::Timeout { kernel, seconds });
+        }
         if let Some(reason) = lock(&self.lost).clone() {
             return Err(GpuError::DeviceLost { reason });
         }
@@ -70,6 +74,12 @@ impl Health {
             });
         }
         Ok(())
+    }
+
+    /// Record that a dispatch of `kernel` outran its time limit: the
+    /// device is still busy with it, so every later call fails at once.
+    pub(crate) fn set_stuck(&self, kernel: &str, seconds: f64) {
+        *lock(&self.stuck) = Some((kernel.to_string(), seconds));
     }
 }
 
@@ -82,11 +92,7 @@ pub(crate) fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
 /// kernel, created once. Methods take `&self`; buffers are reused between
 /// calls.
 pub struct Gpu {
-    pub(crate) device: wgpu::Device,
-    pub(crate) queue: wgpu::Queue,
-    pub(crate) health: Arc<Health>,
-    pub(crate) layout: wgpu::BindGroupLayout,
-    adapter: AdapterDescription,
+    pub(crate) dev: Device,
     pub(crate) f316_ops: Kernel,
     pub(crate) f316_sdf: Kernel,
     pub(crate) f316_pixels: Kernel,
@@ -144,12 +150,14 @@ fn choose_adapter(instance: &wgpu::Instance) -> Result<wgpu::Adapter, GpuError> 
         })
 }
 
-/// An open device with its health records, before any kernel is compiled.
+/// An open device with its health records and the bind group layout every
+/// kernel shares, before any kernel is compiled.
 pub(crate) struct Device {
     pub(crate) device: wgpu::Device,
     pub(crate) queue: wgpu::Queue,
     pub(crate) health: Arc<Health>,
     pub(crate) adapter: AdapterDescription,
+    pub(crate) layout: wgpu::BindGroupLayout,
 }
 
 impl Device {
@@ -179,11 +187,13 @@ impl Device {
         device.on_uncaptured_error(Arc::new(move |error: wgpu::Error| {
             lock(&uncaptured.uncaptured).push(error.to_string());
         }));
+        let layout = crate::kernel::bind_group_layout(&device);
         Ok(Device {
             device,
             queue,
             health,
             adapter: description,
+            layout,
         })
     }
 }
@@ -194,25 +204,15 @@ impl Gpu {
     ///
     /// `WGPU_BACKEND` (e.g. `vulkan`) restricts the backends tried.
     pub fn new() -> Result<Gpu, GpuError> {
-        let Device {
-            device,
-            queue,
-            health,
-            adapter,
-        } = Device::open()?;
-        let layout = crate::kernel::bind_group_layout(&device);
-        let compile = |spec: &KernelSpec| Kernel::new(&device, &health, &layout, spec);
+        let dev = Device::open()?;
+        let compile = |spec: &KernelSpec| Kernel::new(&dev, spec);
         let gpu = Gpu {
             f316_ops: compile(&float316::OPS)?,
             f316_sdf: compile(&float316::SDF)?,
             f316_pixels: compile(&float316::PIXELS)?,
             f32_sdf: compile(&float32::SDF)?,
             f32_pixels: compile(&float32::PIXELS)?,
-            device,
-            queue,
-            health,
-            layout,
-            adapter,
+            dev,
         };
         gpu.warm_up()?;
         Ok(gpu)
@@ -234,12 +234,20 @@ impl Gpu {
 
     /// The adapter the kernels run on.
     pub fn adapter_info(&self) -> &AdapterDescription {
-        &self.adapter
+        &self.dev.adapter
     }
 
     /// Release the device now. Every later call fails with
     /// [`GpuError::DeviceLost`], as it would after a driver reset.
     pub fn destroy(&self) {
+        self.dev.destroy();
+    }
+}
+
+impl Device {
+    /// Release the device now; every later call fails with
+    /// [`GpuError::DeviceLost`].
+    pub(crate) fn destroy(&self) {
         self.device.destroy();
         // Deliver the device-lost callback now; its error is the point.
         let _ = self.device.poll(wgpu::PollType::wait_indefinitely());

@@ -45,6 +45,44 @@ pub enum GpuError {
         /// wgpu's message.
         message: String,
     },
+    /// A dispatch ran longer than its time limit (a shader that loops for
+    /// ever, or nearly). The device stays busy with it and is not used
+    /// again; the harness goes on with the other implementations.
+    #[error(
+        "GPU kernel `{kernel}` ran longer than its limit of {seconds} s and was abandoned \
+         (the shader loops for ever or nearly; raise `timeout_s` if it is only slow)"
+    )]
+    Timeout {
+        /// The kernel's label.
+        kernel: String,
+        /// The limit it outran, in seconds.
+        seconds: f64,
+    },
+    /// A user's shader file could not be read.
+    #[error("cannot read the shader `{path}`: {source}")]
+    ShaderFile {
+        /// The file.
+        path: String,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
+    /// A user's shader does not parse, does not validate, or lacks the
+    /// entry functions of its convention. The diagnostic names the user's
+    /// file, line and column.
+    #[error("{diagnostic}")]
+    Shader {
+        /// naga's diagnostic (or the convention's), pointing into the
+        /// user's file.
+        diagnostic: String,
+    },
+    /// A level or number type the shader does not provide.
+    #[error("the shader `{shader}` does not provide {what}")]
+    NotProvided {
+        /// The shader's file.
+        shader: String,
+        /// What was asked of it.
+        what: String,
+    },
     /// A pixel coordinate outside the 512x256 image.
     #[error("pixel ({x},{y}) lies outside the {width}x{height} image")]
     PixelOutsideImage {

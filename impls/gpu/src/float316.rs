@@ -20,24 +20,25 @@ pub(crate) const SDF: KernelSpec = KernelSpec::new("f316 sdf", SOURCE, "sdf_main
 pub(crate) const PIXELS: KernelSpec = KernelSpec::new("f316 pixels", SOURCE, "pixels_main", 2, 5);
 
 /// The op code the kernel switches on: the index in [`Op::ALL`].
-fn op_code(op: Op) -> u32 {
+pub(crate) fn op_code(op: Op) -> u32 {
     Op::ALL
         .iter()
         .position(|&o| o == op)
         .expect("Op::ALL lists every op") as u32
 }
 
-fn push(words: &mut Vec<u32>, v: F316) {
+/// Append a triple as three input words (each field sign-extended).
+pub(crate) fn push_triple(words: &mut Vec<u32>, v: F316) {
     words.extend([v.s, v.e, v.m].map(|field| field as i32 as u32));
 }
 
 /// A triple from three output words (each a sign-extended Jack word).
-fn triple(words: &[u32]) -> F316 {
+pub(crate) fn triple(words: &[u32]) -> F316 {
     F316::new(words[0] as i16, words[1] as i16, words[2] as i16)
 }
 
 /// Decode a status word (`kind | code << 4`, see f316.wgsl) around `value`.
-fn outcome<T>(status: u32, value: impl FnOnce() -> T) -> Outcome<T> {
+pub(crate) fn outcome<T>(status: u32, value: impl FnOnce() -> T) -> Outcome<T> {
     let status = status as i32;
     match status & 15 {
         0 => Outcome::Value(value()),
@@ -54,10 +55,10 @@ impl Gpu {
         let mut words = Vec::with_capacity(OPS.in_words * cases.len());
         for &(op, a, b) in cases {
             words.push(op_code(op));
-            push(&mut words, a);
-            push(&mut words, b);
+            push_triple(&mut words, a);
+            push_triple(&mut words, b);
         }
-        let out = self.f316_ops.run(self, &words)?;
+        let out = self.f316_ops.run(&self.dev, &words)?;
         Ok(out
             .chunks(OPS.out_words)
             .zip(cases)
@@ -74,9 +75,9 @@ impl Gpu {
     pub fn f316_sdf(&self, points: &[[F316; 3]]) -> Result<Vec<Outcome<(F316, F316)>>, GpuError> {
         let mut words = Vec::with_capacity(SDF.in_words * points.len());
         for p in points {
-            p.iter().for_each(|&c| push(&mut words, c));
+            p.iter().for_each(|&c| push_triple(&mut words, c));
         }
-        let out = self.f316_sdf.run(self, &words)?;
+        let out = self.f316_sdf.run(&self.dev, &words)?;
         Ok(out
             .chunks(SDF.out_words)
             .map(|o| outcome(o[0], || (triple(&o[1..4]), triple(&o[4..7]))))
@@ -89,7 +90,7 @@ impl Gpu {
         &self,
         pixels: &[(u16, u16)],
     ) -> Result<Vec<Outcome<(F316, bool)>>, GpuError> {
-        let out = self.f316_pixels.run(self, &pixel_words(pixels)?)?;
+        let out = self.f316_pixels.run(&self.dev, &pixel_words(pixels)?)?;
         Ok(out
             .chunks(PIXELS.out_words)
             .map(|o| outcome(o[0], || (triple(&o[1..4]), o[4] == 1)))

@@ -18,7 +18,7 @@ impl Gpu {
     /// The scene at f32 points: `(sd, col)` per point.
     pub fn f32_sdf(&self, points: &[[f32; 3]]) -> Result<Vec<(f32, f32)>, GpuError> {
         let words: Vec<u32> = points.iter().flatten().map(|c| c.to_bits()).collect();
-        let out = self.f32_sdf.run(self, &words)?;
+        let out = self.f32_sdf.run(&self.dev, &words)?;
         Ok(out
             .chunks(SDF.out_words)
             .map(|o| (f32::from_bits(o[0]), f32::from_bits(o[1])))
@@ -28,7 +28,7 @@ impl Gpu {
     /// Pixel shades: the value clamped to [0, 1] before dithering and
     /// whether the dithered pixel is white, per `(x, y)`.
     pub fn f32_pixels(&self, pixels: &[(u16, u16)]) -> Result<Vec<(f32, bool)>, GpuError> {
-        let out = self.f32_pixels.run(self, &pixel_words(pixels)?)?;
+        let out = self.f32_pixels.run(&self.dev, &pixel_words(pixels)?)?;
         Ok(out
             .chunks(PIXELS.out_words)
             .map(|o| (f32::from_bits(o[0]), o[1] == 1))

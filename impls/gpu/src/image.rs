@@ -2,7 +2,7 @@
 //! the full image in row-major order.
 
 use crate::error::GpuError;
-use common::image_consts::{BAYER, HEIGHT, WIDTH};
+use common::image_consts::{bayer, BAYER, HEIGHT, WIDTH};
 
 /// Every pixel of the 512x256 image, row by row (the order of the renders).
 pub fn all_pixels() -> Vec<(u16, u16)> {
@@ -38,4 +38,12 @@ pub(crate) fn pixel_words(pixels: &[(u16, u16)]) -> Result<Vec<u32>, GpuError> {
         words.extend([x as u32, y as u32]);
     }
     Ok(words)
+}
+
+/// The spec's dithering of a clamped f32 shade at pixel (x, y): white when
+/// `(value + B/64) - 0.5 > 0.5`, in f32 (the same IEEE operations as the
+/// f32 kernel's WGSL and the float reference).
+pub(crate) fn dither_f32(value: f32, x: u16, y: u16) -> bool {
+    let b = f32::from(bayer(x as usize, y as usize));
+    (value + b / 64.0) - 0.5 > 0.5
 }

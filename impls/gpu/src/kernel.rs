@@ -6,10 +6,11 @@
 //! writes `out_words` words per item. Every kernel's source is compiled after
 //! the same prelude: those bindings and the Bayer matrix.
 
-use crate::context::{lock, Gpu, Health};
+use crate::context::{lock, Device, Health};
 use crate::error::GpuError;
 use crate::image::bayer_wgsl;
 use std::sync::{mpsc, Mutex};
+use std::time::Duration;
 
 /// Invocations per workgroup; equals `WG` in shaders/io.wgsl.
 const WORKGROUP_SIZE: usize = 64;
@@ -67,11 +68,14 @@ struct Buffers {
 
 /// A compiled kernel with its buffers.
 pub(crate) struct Kernel {
-    label: &'static str,
+    label: String,
     in_words: usize,
     out_words: usize,
     pipeline: wgpu::ComputePipeline,
     buffers: Mutex<Option<Buffers>>,
+    /// How long one batch may run before the device counts as stuck
+    /// (`None`: no limit, for our own kernels, whose loops are bounded).
+    time_limit: Option<Duration>,
 }
 
 /// The bind group layout of shaders/io.wgsl.
@@ -132,10 +136,24 @@ pub(crate) fn compile(
     source: &str,
     entry: &str,
 ) -> Result<wgpu::ComputePipeline, GpuError> {
+    let source = wgpu::ShaderSource::Wgsl(format!("{}\n{source}", prelude()).into());
+    compile_source(device, health, layout, label, source, entry)
+}
+
+/// Compile a shader module from `source` into a compute pipeline with entry
+/// point `entry`; any error is a [`GpuError::Compile`].
+pub(crate) fn compile_source(
+    device: &wgpu::Device,
+    health: &Health,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    source: wgpu::ShaderSource<'_>,
+    entry: &str,
+) -> Result<wgpu::ComputePipeline, GpuError> {
     let (pipeline, error) = scoped(device, || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(format!("{}\n{source}", prelude()).into()),
+            source,
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some(label),
@@ -163,19 +181,46 @@ pub(crate) fn compile(
 
 impl Kernel {
     /// Compile the kernel described by `spec`.
-    pub(crate) fn new(
-        device: &wgpu::Device,
-        health: &Health,
-        layout: &wgpu::BindGroupLayout,
-        spec: &KernelSpec,
-    ) -> Result<Kernel, GpuError> {
-        Ok(Kernel {
-            label: spec.label,
-            in_words: spec.in_words,
-            out_words: spec.out_words,
-            pipeline: compile(device, health, layout, spec.label, spec.source, spec.entry)?,
+    pub(crate) fn new(dev: &Device, spec: &KernelSpec) -> Result<Kernel, GpuError> {
+        let pipeline = compile(
+            &dev.device,
+            &dev.health,
+            &dev.layout,
+            spec.label,
+            spec.source,
+            spec.entry,
+        )?;
+        Ok(Kernel::from_pipeline(
+            spec.label.to_string(),
+            pipeline,
+            spec.in_words,
+            spec.out_words,
+            None,
+        ))
+    }
+
+    /// A kernel around an already compiled `pipeline`; a batch that runs
+    /// longer than `time_limit` is a [`GpuError::Timeout`].
+    pub(crate) fn from_pipeline(
+        label: String,
+        pipeline: wgpu::ComputePipeline,
+        in_words: usize,
+        out_words: usize,
+        time_limit: Option<Duration>,
+    ) -> Kernel {
+        Kernel {
+            label,
+            in_words,
+            out_words,
+            pipeline,
             buffers: Mutex::new(None),
-        })
+            time_limit,
+        }
+    }
+
+    /// Change how long one batch may run.
+    pub(crate) fn set_time_limit(&mut self, time_limit: Option<Duration>) {
+        self.time_limit = time_limit;
     }
 
     /// The most items one batch may hold on this device: storage binding
@@ -191,7 +236,7 @@ impl Kernel {
         by_binding.min(by_dispatch).min(MAX_BATCH_ITEMS as u64) as usize
     }
 
-    fn make_buffers(&self, gpu: &Gpu, capacity: usize) -> Buffers {
+    fn make_buffers(&self, gpu: &Device, capacity: usize) -> Buffers {
         let buffer = |label, words: usize, usage| {
             gpu.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -214,7 +259,7 @@ impl Kernel {
         );
         let params = buffer("params", 4, U::UNIFORM | U::COPY_DST);
         let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(self.label),
+            label: Some(&self.label),
             layout: &gpu.layout,
             entries: &[
                 wgpu::BindGroupEntry {
@@ -243,7 +288,7 @@ impl Kernel {
 
     /// Run the kernel on `input` (`in_words` per item) and return the output
     /// words (`out_words` per item), in batches that fit the device.
-    pub(crate) fn run(&self, gpu: &Gpu, input: &[u32]) -> Result<Vec<u32>, GpuError> {
+    pub(crate) fn run(&self, gpu: &Device, input: &[u32]) -> Result<Vec<u32>, GpuError> {
         gpu.health.check()?;
         debug_assert_eq!(input.len() % self.in_words, 0);
         let items = input.len() / self.in_words;
@@ -263,14 +308,14 @@ impl Kernel {
 
     fn run_batch(
         &self,
-        gpu: &Gpu,
+        gpu: &Device,
         buffers: &Buffers,
         chunk: &[u32],
         n: usize,
         output: &mut Vec<u32>,
     ) -> Result<(), GpuError> {
         let out_bytes = (4 * n * self.out_words) as u64;
-        let ((), error) = scoped(&gpu.device, || {
+        let (submission, error) = scoped(&gpu.device, || {
             gpu.queue
                 .write_buffer(&buffers.input, 0, bytemuck::cast_slice(chunk));
             gpu.queue.write_buffer(
@@ -281,11 +326,11 @@ impl Kernel {
             let mut encoder = gpu
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some(self.label),
+                    label: Some(&self.label),
                 });
             {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some(self.label),
+                    label: Some(&self.label),
                     timestamp_writes: None,
                 });
                 pass.set_pipeline(&self.pipeline);
@@ -293,7 +338,7 @@ impl Kernel {
                 pass.dispatch_workgroups(n.div_ceil(WORKGROUP_SIZE) as u32, 1, 1);
             }
             encoder.copy_buffer_to_buffer(&buffers.output, 0, &buffers.readback, 0, out_bytes);
-            gpu.queue.submit([encoder.finish()]);
+            gpu.queue.submit([encoder.finish()])
         });
         if let Some(error) = error {
             // A lost device shows as invalid resources: name the cause.
@@ -308,7 +353,13 @@ impl Kernel {
                 // The receiver waits below; a send error cannot happen.
                 let _ = sender.send(result);
             });
-        let polled = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        let polled = gpu.device.poll(wgpu::PollType::Wait {
+            submission_index: Some(submission),
+            timeout: self.time_limit,
+        });
+        if let (Err(wgpu::PollError::Timeout), Some(limit)) = (&polled, self.time_limit) {
+            return Err(self.stuck(gpu, limit));
+        }
         gpu.health.check()?;
         polled.map_err(|e| self.failure(e.to_string()))?;
         let mapped = receiver.recv().map_err(|e| self.failure(e.to_string()))?;
@@ -326,8 +377,23 @@ impl Kernel {
 
     fn failure(&self, message: String) -> GpuError {
         GpuError::Execution {
-            kernel: self.label.to_string(),
+            kernel: self.label.clone(),
             message,
+        }
+    }
+
+    /// A batch outran `limit`. The device cannot be stopped (lavapipe runs
+    /// the dispatch on CPU threads to its end), so it is marked stuck (every
+    /// later call fails at once) and its handles are leaked: dropping them
+    /// would wait for the dispatch, and the harness must go on.
+    fn stuck(&self, gpu: &Device, limit: Duration) -> GpuError {
+        gpu.health.set_stuck(&self.label, limit.as_secs_f64());
+        std::mem::forget(gpu.device.clone());
+        std::mem::forget(gpu.queue.clone());
+        std::mem::forget(self.pipeline.clone());
+        GpuError::Timeout {
+            kernel: self.label.clone(),
+            seconds: limit.as_secs_f64(),
         }
     }
 }
@@ -350,12 +416,11 @@ mod tests {
             }
             Err(error) => panic!("{error} (set {} to skip the GPU leg)", crate::SKIP_ENV),
         };
-        let layout = bind_group_layout(&device.device);
         let compile = |source: &str| {
             compile(
                 &device.device,
                 &device.health,
-                &layout,
+                &device.layout,
                 "probe",
                 source,
                 "main",

@@ -2,6 +2,8 @@
 //!
 //! - `gpu-f32`: the float formulation of the seed scene (spec section 7) in
 //!   WGSL f32 ([`Gpu::f32_sdf`], [`Gpu::f32_pixels`], [`Gpu::render_f32`]);
+//! - a user's shader ([`shader`]): WGSL or Shadertoy-style GLSL, unmodified,
+//!   wrapped into the same kind of kernels ([`shader::UserShader`]);
 //! - `gpu-f316`: Float316 ported to WGSL integer arithmetic with Jack's
 //!   16-bit semantics, bit-exact with `ref-f316` ([`Gpu::f316_ops`],
 //!   [`Gpu::f316_sdf`], [`Gpu::f316_pixels`], [`Gpu::render_f316`]).
@@ -23,6 +25,7 @@ mod float316;
 mod float32;
 mod image;
 mod kernel;
+pub mod shader;
 
 pub use context::{AdapterDescription, Gpu};
 pub use error::GpuError;

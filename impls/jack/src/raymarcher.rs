@@ -37,7 +37,7 @@ pub struct Budgets {
 impl Default for Budgets {
     fn default() -> Self {
         Budgets {
-            op: 1_000_000,
+            op: 100_000,
             sdf: 5_000_000,
             pixel: 50_000_000,
         }

@@ -219,6 +219,9 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
     if arith.add_alignment_off_by_one && shift > 0 {
         shift = j::add(shift, 1);
     }
+    if arith.add_drops_operand_at_gap_14 && shift >= 14 {
+        return Ok(big);
+    }
     // Halving `shift` times, each truncating toward zero, equals one
     // truncating division by 2^shift; after 16 halvings any word is 0.
     let sm = trunc_shift(small.m, shift);
@@ -226,7 +229,12 @@ fn add(arith: &Arith, a: F316, b: F316) -> R<F316> {
     let mut m;
     if big.s == small.s {
         m = j::add(big.m, sm);
-        if m > M_MAX {
+        let carry = if arith.add_carry_by_bit_test {
+            m & 16384 != 0
+        } else {
+            m > M_MAX
+        };
+        if carry {
             m = j::halve(m);
             e = j::add(e, 1);
         }
@@ -313,7 +321,7 @@ fn mantissa_product_small(arith: &Arith, am: i16, bm: i16) -> i16 {
 
 /// `div(a, b)`: long division with a shrinking divisor.
 #[inline(always)]
-fn div(a: F316, b: F316) -> R<F316> {
+fn div(arith: &Arith, a: F316, b: F316) -> R<F316> {
     let sign = j::and(j::add(a.s, b.s), 1);
     // Normalised mantissas are not 0, so neither operand is zero.
     let q = if is_normalised(a.m) && is_normalised(b.m) {
@@ -331,6 +339,13 @@ fn div(a: F316, b: F316) -> R<F316> {
     // q is a sum of distinct powers 2^0..2^13: 0 <= q <= 16383.
     if q == 0 {
         return Err(Trap::Hang);
+    }
+    if arith.div_normalises_once && q < M_MIN {
+        return Ok(F316 {
+            s: sign,
+            e: j::sub(e, 1),
+            m: j::mul(q, 2),
+        });
     }
     let (q, e) = normalise_positive(q, e);
     Ok(F316 { s: sign, e, m: q })
@@ -504,7 +519,7 @@ impl<Rec: Recorder, A: ArithSource> Engine for F316Engine<Rec, A> {
 
     #[inline(always)]
     fn div(&mut self, a: F316, b: F316) -> R<F316> {
-        self.traced(Op::Div, &[a, b], |_| div(a, b))
+        self.traced(Op::Div, &[a, b], |s| div(&s.arith.arith(), a, b))
     }
 
     #[inline(always)]
@@ -782,7 +797,7 @@ mod tests {
                         let (x, g) = (F316::new(s, xe, m), F316::new(0, ge, m));
                         let fast = div_by_same_mantissa(x, g);
                         if let Some(q) = fast {
-                            assert_eq!(Ok(q), div(x, g), "{x:?} / {g:?}");
+                            assert_eq!(Ok(q), div(&Arith::SPEC, x, g), "{x:?} / {g:?}");
                         }
                         assert_eq!(fast.is_some(), s == 0 && is_normalised(m));
                         // A different mantissa never takes the shortcut.

@@ -23,6 +23,18 @@ pub struct Arith {
     /// `add` halves the smaller mantissa once more than the exponent
     /// difference (when the exponents differ).
     pub add_alignment_off_by_one: bool,
+    /// `add` tests its carry by the sum's bit 14 instead of `m > 16383`:
+    /// the same for normalised operands, not when an operand's carry or
+    /// overflow-detector bits are set and the sum wraps.
+    pub add_carry_by_bit_test: bool,
+    /// `add` returns the larger operand alone when the exponents are 14 or
+    /// more apart, as if the smaller were always shifted out: true only
+    /// for mantissas below 16384.
+    pub add_drops_operand_at_gap_14: bool,
+    /// `div` normalises its quotient with one doubling instead of a loop:
+    /// enough when both mantissas are normalised, not when the divisor has
+    /// its carry or overflow-detector bits set.
+    pub div_normalises_once: bool,
 }
 
 impl Arith {
@@ -32,6 +44,9 @@ impl Arith {
         mul_keeps_low_product: false,
         sqrt_guess_from_biased_difference: false,
         add_alignment_off_by_one: false,
+        add_carry_by_bit_test: false,
+        add_drops_operand_at_gap_14: false,
+        div_normalises_once: false,
     };
 }
 
@@ -97,6 +112,12 @@ pub enum Variant {
     SqrtFloorDiv,
     /// `add-align-off-by-one` (fault): add over-shifts the smaller operand.
     AddAlignOffByOne,
+    /// `add-carry-bit` (fault): add's carry tested by bit 14.
+    AddCarryBit,
+    /// `add-drop-far` (fault): add drops an operand 14 exponents below.
+    AddDropFar,
+    /// `div-normalise-once` (fault): div's quotient normalised by one step.
+    DivNormaliseOnce,
     /// `mul-keep-low` (fault): the arithmetic of `mul-low-product`, used as
     /// an injected fault against the spec.
     MulKeepLow,
@@ -106,12 +127,15 @@ pub enum Variant {
 
 impl Variant {
     /// Every variant.
-    pub const ALL: [Variant; 7] = [
+    pub const ALL: [Variant; 10] = [
         Variant::MulLowProduct,
         Variant::Newton1,
         Variant::Newton3,
         Variant::SqrtFloorDiv,
         Variant::AddAlignOffByOne,
+        Variant::AddCarryBit,
+        Variant::AddDropFar,
+        Variant::DivNormaliseOnce,
         Variant::MulKeepLow,
         Variant::DitherThreshold,
     ];
@@ -124,6 +148,9 @@ impl Variant {
             Variant::Newton3 => "newton-3",
             Variant::SqrtFloorDiv => "sqrt-floor-div",
             Variant::AddAlignOffByOne => "add-align-off-by-one",
+            Variant::AddCarryBit => "add-carry-bit",
+            Variant::AddDropFar => "add-drop-far",
+            Variant::DivNormaliseOnce => "div-normalise-once",
             Variant::MulKeepLow => "mul-keep-low",
             Variant::DitherThreshold => "dither-threshold",
         }
@@ -146,6 +173,9 @@ impl Variant {
             Variant::Newton3 => s.arith.newton_steps = 3,
             Variant::SqrtFloorDiv => s.arith.sqrt_guess_from_biased_difference = true,
             Variant::AddAlignOffByOne => s.arith.add_alignment_off_by_one = true,
+            Variant::AddCarryBit => s.arith.add_carry_by_bit_test = true,
+            Variant::AddDropFar => s.arith.add_drops_operand_at_gap_14 = true,
+            Variant::DivNormaliseOnce => s.arith.div_normalises_once = true,
             Variant::DitherThreshold => s.dither_threshold = true,
         }
         s
@@ -160,7 +190,7 @@ impl fmt::Display for Variant {
 
 /// An unknown variant name.
 #[derive(Debug, thiserror::Error)]
-#[error("unknown variant `{0}` (expected one of mul-low-product, newton-1, newton-3, sqrt-floor-div, add-align-off-by-one, mul-keep-low, dither-threshold)")]
+#[error("unknown variant `{0}` (expected one of mul-low-product, newton-1, newton-3, sqrt-floor-div, add-align-off-by-one, add-carry-bit, add-drop-far, div-normalise-once, mul-keep-low, dither-threshold)")]
 pub struct UnknownVariant(pub String);
 
 impl FromStr for Variant {

@@ -3,9 +3,11 @@
 //! hard cases. The same seed always gives the same vectors, so the
 //! committed sets can be rebuilt bit for bit.
 
+pub mod classes;
 pub mod ops;
 pub mod pixels;
 pub mod sdf;
+pub mod testfloat;
 
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};

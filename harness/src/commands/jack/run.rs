@@ -4,7 +4,7 @@
 
 use crate::progress;
 use anyhow::Context;
-use hack_vm::{Config, Exit, KeyScript, Machine, Profile, Program, Ram};
+use hack_vm::{Config, Engine, Exit, KeyScript, Machine, Profile, Program, Ram};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -41,6 +41,11 @@ pub struct RunArgs {
     /// Set RAM[A] to V before the run; repeatable.
     #[arg(long = "set", value_name = "A=V", value_parser = parse_set)]
     pub set: Vec<(i32, i16)>,
+    /// The emulator's engine: `interp` (the interpreter) or `native` (VM
+    /// functions compiled with Cranelift; the interpreter where the host is
+    /// not supported). Both give the same run.
+    #[arg(long, default_value = "interp")]
+    pub engine: Engine,
 }
 
 /// The last RAM address.
@@ -118,6 +123,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         profile,
         keys: keys.clone(),
         profile_functions: args.profile_functions,
+        engine: args.engine,
     };
     if let Some(path) = &args.screen {
         for p in screen_paths(path, args.compare_profiles) {

@@ -8,3 +8,4 @@ mod f316_ops;
 mod f316_vs_reference;
 mod f32_errors;
 mod support;
+mod user_shader;

@@ -11,7 +11,7 @@
 mod support;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use hack_vm::{Config, Exit, Machine, Program};
+use hack_vm::{Config, Engine, Exit, Machine, Program};
 use rayon::prelude::*;
 use std::sync::Arc;
 use support::raymarcher;
@@ -76,16 +76,33 @@ fn pixels(snapshot: &Machine) -> u64 {
         .sum()
 }
 
+/// The raymarcher's pixels on each engine, side by side (the compiled
+/// engine's compile time is printed once, outside the measurement).
 fn jack_raymarcher(c: &mut Criterion) {
-    let mut init = Machine::new(raymarcher(), Config::default());
-    let exit = init.call("Main.init", &[], None).expect("Main.init exists");
-    assert_eq!(exit, Exit::Returned(0));
-    let steps = pixels(&init);
+    let program = raymarcher();
+    match program.compile_native(hack_vm::Profile::Desktop) {
+        Ok(t) => eprintln!(
+            "raymarcher compiled to native code in {:.3} s",
+            t.as_secs_f64()
+        ),
+        Err(e) => eprintln!("no native code: {e}"),
+    }
     let mut g = c.benchmark_group("hack-vm");
-    g.throughput(Throughput::Elements(steps));
-    g.bench_function("raymarcher, 32 pixels, single thread", |b| {
-        b.iter(|| pixels(&init))
-    });
+    for engine in [Engine::Interp, Engine::Native] {
+        let config = Config {
+            engine,
+            ..Config::default()
+        };
+        let mut init = Machine::new(program.clone(), config);
+        let exit = init.call("Main.init", &[], None).expect("Main.init exists");
+        assert_eq!(exit, Exit::Returned(0));
+        let steps = pixels(&init);
+        g.throughput(Throughput::Elements(steps));
+        g.bench_function(
+            format!("raymarcher, 32 pixels, single thread, {engine:?}"),
+            |b| b.iter(|| pixels(&init)),
+        );
+    }
     g.finish();
 }
 

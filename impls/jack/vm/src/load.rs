@@ -454,6 +454,7 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
         synthetic_entry,
         command_lines,
         statics,
+        native: Default::default(),
     })
 }
 

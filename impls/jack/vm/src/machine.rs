@@ -4,6 +4,7 @@
 
 use crate::exec::Flow;
 use crate::exit::{CallStack, Exit};
+use crate::native::{Engine, Fault, Native};
 use crate::program::{FnId, Program};
 use crate::timing::{self, Timing};
 use jack_os::{Builtin, Completion, KeyScript, Os, Profile, Ram, KBD};
@@ -36,7 +37,9 @@ pub(crate) const ARGS_FIT: u8 = 16;
 pub(crate) const HOST: u32 = u32::MAX;
 
 /// A frame of the internal call stack: what to restore in the caller.
+/// `repr(C)`: compiled code reads and writes frames by field offset.
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub(crate) struct Frame {
     pub caller: FnId,
     pub ret_pc: u32,
@@ -61,6 +64,9 @@ pub struct Config {
     pub keys: KeyScript,
     /// Count instructions per function (see [`Machine::function_profile`]).
     pub profile_functions: bool,
+    /// Interpreter or compiled code (default: `HACK_VM_ENGINE`, else the
+    /// interpreter).
+    pub engine: Engine,
 }
 
 /// Observer of calls to chosen functions (see [`Machine::run_watched`]).
@@ -97,6 +103,8 @@ pub struct Machine {
     pub(crate) next_key_sync: u64,
     /// The desktop's start-up step is still to be taken (by a run from the entry).
     pub(crate) startup_pending: bool,
+    /// The program's compiled code, when the compiling engine runs.
+    pub(crate) native: Option<Arc<Native>>,
 }
 
 impl Machine {
@@ -115,6 +123,15 @@ impl Machine {
         let profile = config
             .profile_functions
             .then(|| vec![0; program.functions.len()]);
+        let native = match config.engine {
+            Engine::Interp => None,
+            Engine::Native => program.native(config.profile).ok(),
+            Engine::NativeBrokenSub => {
+                Native::compile(&program, config.profile, Some(Fault::SubSwapped))
+                    .ok()
+                    .map(Arc::new)
+            }
+        };
         let f = &program.functions[entry as usize];
         let at_head = timing.function_step && f.headed;
         let mut machine = Machine {
@@ -133,9 +150,19 @@ impl Machine {
             scratch: Vec::new(),
             next_key_sync: 0,
             startup_pending: false,
+            native,
         };
         machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
         machine
+    }
+
+    /// The engine that runs this machine: [`Engine::Interp`] if that was
+    /// asked for or the program could not be compiled for this host.
+    pub fn engine(&self) -> Engine {
+        match &self.native {
+            None => Engine::Interp,
+            Some(_) => Engine::Native,
+        }
     }
 
     /// The desktop's first step, a hidden `call Sys.init` of its built-in,
@@ -443,11 +470,14 @@ impl Machine {
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
         let code = &program.code[timing::index(self.os.profile())];
+        let native = self.native.clone();
         let exit = loop {
             let key_change = self.next_key_sync;
             let limit = budget_end.min(key_change);
             let soft = limit.saturating_sub(crate::fuse::MAX_FUSED_STEPS);
-            let flow = if self.steps < soft {
+            let flow = if let Some(native) = &native {
+                self.exec_native::<W>(&program, code, native, limit, &mut watch)
+            } else if self.steps < soft {
                 self.exec::<W>(&program, code, true, soft, &mut watch)
             } else if self.steps < limit {
                 self.exec::<W>(&program, code, false, limit, &mut watch)

@@ -2,8 +2,11 @@
 //! table. Built once by [`crate::load`], shared read-only (`Arc<Program>`)
 //! by every [`crate::Machine`].
 
-use jack_os::Builtin;
+use crate::native::Native;
+use jack_os::{Builtin, Profile};
 use std::collections::HashMap;
+use std::sync::{Arc, OnceLock};
+use std::time::Duration;
 
 /// Index of a VM function in [`Program::functions`].
 pub type FnId = u32;
@@ -303,6 +306,8 @@ pub struct Program {
     pub(crate) command_lines: usize,
     /// Number of static slots allocated (RAM 16..16+n).
     pub(crate) statics: usize,
+    /// Compiled code under each OS profile (desktop, web), made on first use.
+    pub(crate) native: [OnceLock<Result<Arc<Native>, String>>; 2],
 }
 
 impl Program {
@@ -336,5 +341,18 @@ impl Program {
     /// ends and wasted-step jumps included).
     pub fn instruction_count(&self) -> usize {
         self.code[0].plain.len()
+    }
+
+    /// Compile the program to native code for machines of OS `profile`
+    /// (done once; later calls and [`crate::Machine::new`] share it), and
+    /// say how long compiling took, or why it cannot be done on this host.
+    pub fn compile_native(&self, profile: Profile) -> Result<Duration, String> {
+        self.native(profile).map(|n| n.compile_time())
+    }
+
+    pub(crate) fn native(&self, profile: Profile) -> Result<Arc<Native>, String> {
+        let slot = &self.native[crate::timing::index(profile)];
+        slot.get_or_init(|| Native::compile(self, profile, None).map(Arc::new))
+            .clone()
     }
 }

@@ -28,8 +28,16 @@
 //! differ per profile only in those jump targets); the hand-over step is
 //! added where a built-in returns; the start-up is set up by
 //! [`crate::Machine::new`]. No instruction pays for any of this.
+//!
+//! The compiled engine (`crate::native`) translates the same per-profile
+//! code: a desktop call enters the callee at its `Function` op (which
+//! zeroes the locals, as a step of its own), each block charges its
+//! instructions' [`crate::program::Op::steps`], and its stack test uses
+//! [`Timing::stack_end`]; blocking built-ins, halts and errors are left to
+//! the interpreter.
 
 use crate::Profile;
+use jack_os::RAM_SIZE;
 
 /// The first word past the stack segment; the desktop keeps SP in
 /// `STACK_BASE..=STACK_LAST`.
@@ -64,6 +72,18 @@ impl Timing {
             label_pair_step: desktop,
             hidden_sys_init: desktop,
             stack_check: desktop,
+        }
+    }
+
+    /// The highest SP that pushes may reach before a stack rule of this
+    /// profile applies: the end of the stack segment (desktop, "Stack
+    /// overflow" beyond), the end of RAM (web, whose stack runs on through
+    /// plain memory). Compiled code checks each block's stack against it.
+    pub(crate) const fn stack_end(self) -> u16 {
+        if self.stack_check {
+            STACK_LAST
+        } else {
+            RAM_SIZE as u16
         }
     }
 }

@@ -3,8 +3,9 @@
 //! plain command at a time (RAM, step count and end), on random programs
 //! that poke at registers, RAM edges, the this/that checks and the built-ins.
 
-use hack_vm::{Config, Exit, Machine, Program};
+use hack_vm::{Config, Engine, Exit, KeyScript, Machine, Program, Watcher};
 use proptest::prelude::*;
+use proptest::test_runner::TestCaseError;
 
 const VALID: &str = "function Main.main 2\npush constant 7\npop local 0\nlabel L\npush local 0\n\
                      push constant 1\nsub\npop local 0\npush local 0\nif-goto L\npush argument 0\n\
@@ -47,32 +48,14 @@ proptest! {
         args in prop::array::uniform2(any::<i16>()),
         web in any::<bool>(),
     ) {
-        let mut lines: Vec<String> = body;
-        for (k, at) in labels.into_iter().enumerate() {
-            lines.insert(at.min(lines.len()), format!("label L{k}"));
-        }
-        let src = format!(
-            "function Main.main 0\npush constant 0\nreturn\nfunction Main.f 3\n{}\npush constant 0\nreturn\n{}",
-            lines.join("\n"),
-            // Fused argument reads are checked once per call: a call with
-            // too few arguments must fail exactly where plain code fails.
-            // Main.m opens like a method, which a fused call runs itself.
-            "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n\
-             function Main.m 1\npush argument 0\npop pointer 0\npush this 0\npush argument 1\nadd\nreturn\n"
-        );
+        let src = random_program(body, labels);
         let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("generated programs load");
         let profile = if web { hack_vm::Profile::Web } else { hack_vm::Profile::Desktop };
-        let start = || {
-            let mut m = Machine::new(program.clone(), Config { profile, ..Config::default() });
-            // Enter Main.f without running anything.
-            let e = m.call("Main.f", &args, Some(0)).expect("Main.f exists");
-            assert!(matches!(e, Exit::Budget { .. }));
-            m
-        };
+        let config = Config { profile, engine: Engine::Interp, ..Config::default() };
         const BUDGET: u64 = 3000;
-        let mut fused = start();
+        let mut fused = enter(&program, config.clone(), &args);
         let fused_end = fused.run(Some(BUDGET));
-        let mut plain = start();
+        let mut plain = enter(&program, config, &args);
         let plain_end = loop {
             let e = plain.run(Some(1));
             if !matches!(e, Exit::Budget { .. }) || plain.steps() >= BUDGET {
@@ -83,6 +66,144 @@ proptest! {
         prop_assert_eq!(&fused_end, &plain_end, "{}", src);
         prop_assert!(fused.ram() == plain.ram(), "RAM differs\n{}", src);
     }
+
+    #[test]
+    fn compiled_execution_equals_interpretation(case in engine_case()) {
+        engines_agree(&case, Engine::Native)?;
+    }
+}
+
+/// Enter Main.f of `program` with `args` without running anything.
+fn enter(program: &std::sync::Arc<Program>, config: Config, args: &[i16]) -> Machine {
+    let mut m = Machine::new(program.clone(), config);
+    let e = m.call("Main.f", args, Some(0)).expect("Main.f exists");
+    assert!(matches!(e, Exit::Budget { .. }));
+    m
+}
+
+/// `Main.f` made of `body` with labels L0.. inserted at `labels`, and the
+/// functions it may call.
+fn random_program(body: Vec<String>, labels: Vec<usize>) -> String {
+    let mut lines: Vec<String> = body;
+    for (k, at) in labels.into_iter().enumerate() {
+        lines.insert(at.min(lines.len()), format!("label L{k}"));
+    }
+    format!(
+        "function Main.main 0\npush constant 0\nreturn\nfunction Main.f 3\n{}\npush constant 0\nreturn\n{}",
+        lines.join("\n"),
+        // Fused argument reads are checked once per call: a call with
+        // too few arguments must fail exactly where plain code fails.
+        // Main.m opens like a method, which a fused call runs itself.
+        // Main.r recurses (calls and returns inside compiled code).
+        "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n\
+         function Main.m 1\npush argument 0\npop pointer 0\npush this 0\npush argument 1\nadd\nreturn\n\
+         function Main.r 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
+         push argument 0\npush constant 1\nsub\ncall Main.r 1\npush constant 3\nadd\nreturn\n"
+    )
+}
+
+/// A random program and how to run it on two engines.
+#[derive(Debug, Clone)]
+struct EngineCase {
+    src: String,
+    args: [i16; 2],
+    web: bool,
+    /// Successive budgets (the last run has 3000 more).
+    budgets: Vec<u64>,
+    /// Key changes every `hold` instructions (None: no keys).
+    hold: Option<u64>,
+    /// Watch every call and return.
+    watched: bool,
+}
+
+fn engine_case() -> impl Strategy<Value = EngineCase> {
+    (
+        prop::collection::vec(command(), 1..60),
+        prop::collection::vec(0usize..60, 3),
+        prop::array::uniform2(any::<i16>()),
+        any::<bool>(),
+        prop::collection::vec(0u64..200, 0..4),
+        prop::option::of(1u64..50),
+        any::<bool>(),
+    )
+        .prop_map(
+            |(body, labels, args, web, budgets, hold, watched)| EngineCase {
+                src: random_program(body, labels),
+                args,
+                web,
+                budgets,
+                hold,
+                watched,
+            },
+        )
+}
+
+/// Records every call and return it is told about.
+#[derive(Default)]
+struct Log(Vec<(bool, u32, Vec<i16>)>);
+
+impl Watcher for Log {
+    fn on_call(&mut self, _: &Program, function: u32, args: &[i16], _: &hack_vm::Ram) {
+        self.0.push((true, function, args.to_vec()));
+    }
+    fn on_return(&mut self, _: &Program, function: u32, value: i16, _: &hack_vm::Ram) {
+        self.0.push((false, function, vec![value]));
+    }
+}
+
+/// Run `case` on the interpreter and on `engine`: the same end, step count,
+/// RAM and watched calls after every budget.
+fn engines_agree(case: &EngineCase, engine: Engine) -> Result<(), TestCaseError> {
+    let program =
+        Program::from_sources(&[("Main.vm", case.src.as_str())]).expect("generated programs load");
+    let profile = if case.web {
+        hack_vm::Profile::Web
+    } else {
+        hack_vm::Profile::Desktop
+    };
+    let keys = match case.hold {
+        Some(hold) => KeyScript::parse("A,B,SPACE,ENTER,Z", hold).expect("a valid key script"),
+        None => KeyScript::none(),
+    };
+    let config = |engine| Config {
+        profile,
+        keys: keys.clone(),
+        engine,
+        ..Config::default()
+    };
+    let mut a = enter(&program, config(Engine::Interp), &case.args);
+    let mut b = enter(&program, config(engine), &case.args);
+    prop_assert_eq!(b.engine(), Engine::Native);
+    let watch = vec![true; program.functions().len()];
+    let (mut log_a, mut log_b) = (Log::default(), Log::default());
+    let run = |m: &mut Machine, log: &mut Log, budget| {
+        if case.watched {
+            m.run_watched(Some(budget), &watch, log)
+        } else {
+            m.run(Some(budget))
+        }
+    };
+    for &budget in case.budgets.iter().chain(&[3000]) {
+        let end_a = run(&mut a, &mut log_a, budget);
+        let end_b = run(&mut b, &mut log_b, budget);
+        prop_assert_eq!(a.steps(), b.steps(), "{}", case.src);
+        prop_assert_eq!(&end_a, &end_b, "{}", case.src);
+        prop_assert!(a.ram() == b.ram(), "RAM differs\n{}", case.src);
+        prop_assert_eq!(&log_a.0, &log_b.0, "{}", case.src);
+    }
+    Ok(())
+}
+
+#[test]
+fn a_broken_translation_is_caught() {
+    let mut runner = proptest::test_runner::TestRunner::new(ProptestConfig {
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    });
+    let found = runner.run(&engine_case(), |case| {
+        engines_agree(&case, Engine::NativeBrokenSub)
+    });
+    assert!(found.is_err(), "a wrong `sub` went unnoticed");
 }
 
 /// One VM command of the random programs.
@@ -90,6 +211,8 @@ fn command() -> impl Strategy<Value = String> {
     let value = prop_oneof![
         0u16..8,
         250u16..262,
+        // The desktop's stack ends at 2047 ("Stack overflow" past it).
+        2040u16..2050,
         3000u16..3004,
         16380u16..16390,
         24570u16..24578,
@@ -104,7 +227,8 @@ fn command() -> impl Strategy<Value = String> {
         2 => (0u16..2).prop_map(|p| format!("pop pointer {p}")),
         1 => value.prop_map(|v| format!("pop constant {}", v % 6)),
         4 => prop::sample::select(vec!["add", "sub", "neg", "eq", "gt", "lt", "and", "or", "not"]).prop_map(String::from),
-        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2"]).prop_map(String::from),
+        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1"]).prop_map(String::from),
+        1 => Just("push constant 24576\npop pointer 1\npush that 0".to_string()),
         1 => (0u8..3).prop_map(|l| format!("if-goto L{l}")),
         1 => (0u8..3).prop_map(|l| format!("goto L{l}")),
         1 => Just("return".to_string()),

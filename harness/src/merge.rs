@@ -1,0 +1,197 @@
+//! Campaigns split across machines: running one shard of a set
+//! ([`run_shard`]: the shard's vectors, with every index reported as the
+//! vector's index in the whole set) and joining shard reports again
+//! ([`merge`]) into the report the unsharded run gives, timings apart.
+//!
+//! Merged error figures of the error policy take each shard's mean
+//! weighted by its values, so a merged mean can differ from the unsharded
+//! one in its last bits; every other field is reproduced exactly.
+
+use crate::compare::{Comparison, Group, MAX_KEPT};
+use crate::implementation::Implementation;
+use crate::runner::{diff_set, LevelReport, RunOptions};
+use std::collections::BTreeMap;
+use vectors::{Shard, VectorSet};
+
+/// Run shard `shard` of `set` through `impls`: the report counts only the
+/// shard's vectors, but every divergence and group names the vector's
+/// index in the whole set, and the report says which shard it is.
+pub fn run_shard(
+    impls: &[&dyn Implementation],
+    set: &VectorSet,
+    shard: Shard,
+    options: RunOptions,
+) -> LevelReport {
+    if shard == Shard::WHOLE {
+        return diff_set(impls, set, options);
+    }
+    let whole_index: Vec<usize> = set
+        .vectors
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| shard.contains(v))
+        .map(|(i, _)| i)
+        .collect();
+    let part = shard.of_set(set);
+    let mut report = diff_set(impls, &part, options);
+    for c in &mut report.comparisons {
+        for d in &mut c.divergences {
+            d.index = whole_index[d.index];
+        }
+        for g in &mut c.groups {
+            g.first = whole_index[g.first];
+        }
+    }
+    report.shard = Some(shard);
+    report
+}
+
+/// Why shard reports could not be merged.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum MergeError {
+    #[error("no shard reports to merge")]
+    Empty,
+    #[error("report {0} has a set without a shard (it was not run with --shard)")]
+    NotSharded(usize),
+    #[error("shards of different campaigns: {0} and {1} shards")]
+    Counts(u32, u32),
+    #[error("shard {0} is given twice")]
+    Duplicate(Shard),
+    #[error("the shards ran different sets or implementations ({0})")]
+    Mismatch(String),
+}
+
+/// Shard reports joined into one.
+#[derive(Debug, PartialEq)]
+pub struct Merged {
+    /// One report per set, as the unsharded run gives it.
+    pub reports: Vec<LevelReport>,
+    /// How many shards the campaign has.
+    pub count: u32,
+    /// The shards not given (K of K/N).
+    pub missing: Vec<u32>,
+}
+
+/// Join shard reports (each the reports of one `diff --shard K/N` run, its
+/// sets in the same order) into the reports of the whole campaign.
+pub fn merge(parts: &[Vec<LevelReport>]) -> Result<Merged, MergeError> {
+    let first = parts.first().ok_or(MergeError::Empty)?;
+    let mut seen = BTreeMap::new();
+    let mut count = None;
+    for (i, part) in parts.iter().enumerate() {
+        let shard = part
+            .first()
+            .and_then(|r| r.shard)
+            .ok_or(MergeError::NotSharded(i))?;
+        if part.iter().any(|r| r.shard != Some(shard)) {
+            return Err(MergeError::NotSharded(i));
+        }
+        match count {
+            Some(n) if n != shard.count => return Err(MergeError::Counts(n, shard.count)),
+            _ => count = Some(shard.count),
+        }
+        if seen.insert(shard.index, i).is_some() {
+            return Err(MergeError::Duplicate(shard));
+        }
+        let shape = |p: &[LevelReport]| -> Vec<(String, Vec<String>)> {
+            p.iter()
+                .map(|r| {
+                    (
+                        r.set.clone(),
+                        r.runs.iter().map(|s| s.label.clone()).collect(),
+                    )
+                })
+                .collect()
+        };
+        if shape(part) != shape(first) {
+            return Err(MergeError::Mismatch(format!("report {i} against report 0")));
+        }
+    }
+    let count = count.expect("at least one part");
+    let missing = (0..count).filter(|k| !seen.contains_key(k)).collect();
+    let reports = (0..first.len())
+        .map(|s| merge_set(parts.iter().map(|p| &p[s])))
+        .collect::<Result<_, _>>()?;
+    Ok(Merged {
+        reports,
+        count,
+        missing,
+    })
+}
+
+fn merge_set<'a>(parts: impl Iterator<Item = &'a LevelReport>) -> Result<LevelReport, MergeError> {
+    let parts: Vec<&LevelReport> = parts.collect();
+    let mut out = parts[0].clone();
+    out.shard = None;
+    out.vectors = parts.iter().map(|p| p.vectors).sum();
+    for (i, run) in out.runs.iter_mut().enumerate() {
+        run.seconds = parts.iter().map(|p| p.runs[i].seconds).sum();
+        run.error = parts.iter().find_map(|p| p.runs[i].error.clone());
+    }
+    let pairs = |p: &LevelReport| -> Vec<(String, String)> {
+        p.comparisons
+            .iter()
+            .map(|c| (c.a.clone(), c.b.clone()))
+            .collect()
+    };
+    if let Some(p) = parts.iter().find(|p| pairs(p) != pairs(parts[0])) {
+        return Err(MergeError::Mismatch(format!(
+            "set {}: compared pairs differ ({:?} against {:?})",
+            p.set,
+            pairs(p),
+            pairs(parts[0])
+        )));
+    }
+    out.comparisons = (0..out.comparisons.len())
+        .map(|c| merge_comparison(parts.iter().map(|p| &p.comparisons[c]), out.vectors))
+        .collect();
+    Ok(out)
+}
+
+fn merge_comparison<'a>(parts: impl Iterator<Item = &'a Comparison>, vectors: usize) -> Comparison {
+    let parts: Vec<&Comparison> = parts.collect();
+    let mut out = parts[0].clone();
+    out.vectors = vectors;
+    let found: usize = parts.iter().map(|c| c.divergences.len() + c.omitted).sum();
+    let mut divergences: Vec<_> = parts.iter().flat_map(|c| c.divergences.clone()).collect();
+    divergences.sort_by_key(|d| d.index);
+    divergences.truncate(MAX_KEPT);
+    out.omitted = found - divergences.len();
+    out.divergences = divergences;
+    let mut groups: BTreeMap<_, Group> = BTreeMap::new();
+    for g in parts.iter().flat_map(|c| &c.groups) {
+        let key = (g.op, g.category.clone(), g.kind, g.tolerated);
+        groups
+            .entry(key)
+            .and_modify(|m| {
+                m.count += g.count;
+                m.first = m.first.min(g.first);
+            })
+            .or_insert_with(|| g.clone());
+    }
+    out.groups = groups.into_values().collect();
+    out.stats = out.stats.map(|mut s| {
+        let stats: Vec<_> = parts.iter().filter_map(|c| c.stats.as_ref()).collect();
+        s.values = stats.iter().map(|t| t.values).sum();
+        s.pixels = stats.iter().map(|t| t.pixels).sum();
+        s.flips = stats.iter().map(|t| t.flips).sum();
+        s.max_abs = stats.iter().map(|t| t.max_abs).fold(0.0, f64::max);
+        s.max_rel = stats.iter().map(|t| t.max_rel).fold(0.0, f64::max);
+        s.max_ulps_f32 = stats.iter().filter_map(|t| t.max_ulps_f32).reduce(f64::max);
+        s.mean_abs = if s.values == 0 {
+            0.0
+        } else {
+            stats
+                .iter()
+                .map(|t| t.mean_abs * t.values as f64)
+                .sum::<f64>()
+                / s.values as f64
+        };
+        s
+    });
+    let mut findings: Vec<String> = parts.iter().flat_map(|c| c.findings.clone()).collect();
+    findings.dedup();
+    out.findings = findings;
+    out.diverged = parts.iter().any(|c| c.diverged);
+    out
+}

@@ -1,0 +1,165 @@
+//! Basic blocks of one VM function, as the translator sees them: where
+//! compiled code may be entered (leaders), how many steps each block
+//! charges (each instruction's [`Op::steps`], the same count the
+//! interpreter charges), and how far its stack pointer moves, so that one
+//! test at the block's entry covers every stack access inside it.
+
+use crate::program::Op;
+
+/// A frame's locals are zeroed by straight-line stores up to this many; a
+/// `function` line or a call that zeroes more is left to the interpreter.
+pub(crate) const MAX_INLINE_LOCALS: u16 = 64;
+
+/// How the translator handles one instruction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Kind {
+    /// Runs inside the block; control falls through.
+    Straight,
+    /// `goto` or `if-goto`: ends the block.
+    Jump,
+    /// A call of a VM function or a return: compiled inline, ends the block.
+    CallOrReturn,
+    /// Left to the interpreter (built-ins, halt, load-time failures, the
+    /// entry function's checked accesses, `pop constant` outside plain RAM,
+    /// a `function` line with more than [`MAX_INLINE_LOCALS`] locals):
+    /// the block ends before it, and compiled code exits there.
+    Interpreted,
+}
+
+pub(crate) fn kind(op: Op) -> Kind {
+    match op {
+        Op::Goto(_) | Op::IfGoto(_) => Kind::Jump,
+        Op::Call { .. } | Op::Return => Kind::CallOrReturn,
+        Op::CallBuiltin { .. } | Op::Halt | Op::Fail(_) | Op::EntryAccess { .. } => {
+            Kind::Interpreted
+        }
+        Op::PopRam(a) if !crate::native::plain_address(a) => Kind::Interpreted,
+        Op::Function { n_vars, .. } if n_vars > MAX_INLINE_LOCALS => Kind::Interpreted,
+        _ => Kind::Straight,
+    }
+}
+
+/// Stack words an instruction pops, then pushes (calls and returns:
+/// only what the block-entry test must cover).
+fn stack_effect(op: Op) -> (i32, i32) {
+    match op {
+        Op::PushConst(_)
+        | Op::PushLocal(_)
+        | Op::PushArg(_)
+        | Op::PushThis(_)
+        | Op::PushThisChk(_)
+        | Op::PushThat(_)
+        | Op::PushThatChk(_)
+        | Op::PushAbs(_)
+        | Op::PushPtr(_) => (0, 1),
+        Op::PopLocal(_)
+        | Op::PopArg(_)
+        | Op::PopThis(_)
+        | Op::PopThisChk(_)
+        | Op::PopThat(_)
+        | Op::PopThatChk(_)
+        | Op::PopAbs(_)
+        | Op::PopPtr(_)
+        | Op::PopRam(_)
+        | Op::IfGoto(_)
+        | Op::Return => (1, 0),
+        Op::Add
+        | Op::Sub
+        | Op::And
+        | Op::Or
+        | Op::Eq
+        | Op::Gt
+        | Op::Lt
+        | Op::Multiply
+        | Op::Divide => (2, 1),
+        Op::Neg | Op::Not => (1, 1),
+        Op::Function { n_vars, .. } => (0, i32::from(n_vars)),
+        _ => (0, 0),
+    }
+}
+
+/// One basic block: instructions `start..end` (global indices) run
+/// compiled; `exit_at` is the instruction after them when the block ends
+/// by leaving compiled code for the interpreter.
+#[derive(Clone, Debug)]
+pub(crate) struct Block {
+    pub start: u32,
+    pub end: u32,
+    /// Steps charged when the whole block runs (its instructions, a final
+    /// call or return included).
+    pub steps: u64,
+    /// Lowest and highest stack pointer, relative to the entry's, over the
+    /// block (a final call's frame and a return's frame are checked apart).
+    pub min_depth: i32,
+    pub max_depth: i32,
+    /// Whether the entry test must check SP: the block touches the stack,
+    /// or holds a `function` line (whose stack rule applies even with no
+    /// locals).
+    pub checks_stack: bool,
+}
+
+/// The blocks of the function whose instructions are `code[start..end]`,
+/// in order, and for each instruction index (relative to `start`) the
+/// block that begins there, if one does. Blocks begin at `start`, at
+/// every jump target, after every instruction that ends a block, and at
+/// each of `entries` (where the machine may stand when compiled code is
+/// entered).
+pub(crate) fn blocks(
+    code: &[Op],
+    start: u32,
+    end: u32,
+    entries: &[u32],
+) -> (Vec<Block>, Vec<Option<u32>>) {
+    let len = (end - start) as usize;
+    let mut leader = vec![false; len];
+    leader[0] = true;
+    for &e in entries {
+        leader[(e - start) as usize] = true;
+    }
+    for (i, &op) in code[start as usize..end as usize].iter().enumerate() {
+        if let Op::Goto(t) | Op::IfGoto(t) = op {
+            leader[(t - start) as usize] = true;
+        }
+        if kind(op) != Kind::Straight && i + 1 < len {
+            leader[i + 1] = true;
+        }
+    }
+    let mut blocks = Vec::new();
+    let mut index = vec![None; len];
+    let mut i = 0;
+    while i < len {
+        index[i] = Some(blocks.len() as u32);
+        let (mut depth, mut min_depth, mut max_depth) = (0i32, 0i32, 0i32);
+        let (mut steps, mut checks_stack) = (0, false);
+        let mut j = i;
+        loop {
+            let op = code[start as usize + j];
+            if kind(op) == Kind::Interpreted {
+                break;
+            }
+            let (pops, pushes) = stack_effect(op);
+            depth -= pops;
+            min_depth = min_depth.min(depth);
+            depth += pushes;
+            max_depth = max_depth.max(depth);
+            checks_stack |= pops + pushes > 0 || matches!(op, Op::Function { .. });
+            steps += op.steps();
+            j += 1;
+            if kind(op) != Kind::Straight || j == len || leader[j] {
+                break;
+            }
+        }
+        blocks.push(Block {
+            start: start + i as u32,
+            end: start + j as u32,
+            steps,
+            min_depth,
+            max_depth,
+            checks_stack,
+        });
+        // An interpreted instruction is a block of its own with no compiled
+        // instruction: entering it exits at once.
+        i = j.max(i + 1);
+    }
+    (blocks, index)
+}

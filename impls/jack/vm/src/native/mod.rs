@@ -1,0 +1,367 @@
+//! The compiling engine: each VM function translated to native code with
+//! Cranelift (module `translate`, blocks from module `blocks`), run by a
+//! dispatcher that hands every instruction compiled code does not take to
+//! the interpreter (`exec.rs`), one at a time, until compiled code can take
+//! over again at the start of a block. The interpreter stays the oracle:
+//! compiled code changes the machine exactly as the interpreter would,
+//! counting steps per block and leaving before any block that would cross
+//! the stop (budget or key change), so every stop falls on the same
+//! instruction.
+//!
+//! Calls and returns between VM functions run in compiled code (a compiled
+//! function calls its callee's directly) unless a watcher or the function
+//! profile is on; then the interpreter runs them, with its callbacks.
+
+mod blocks;
+mod translate;
+
+use crate::exec::Flow;
+use crate::machine::{Frame, Machine, Watcher, MAX_DEPTH};
+use crate::program::{Code, FnId, Op, Program};
+use crate::timing::{self, Timing};
+use cranelift_codegen::ir::{types, AbiParam, UserFuncName};
+use cranelift_codegen::settings::{self, Configurable};
+use cranelift_frontend::FunctionBuilderContext;
+use cranelift_jit::{JITBuilder, JITModule};
+use cranelift_module::{default_libcall_names, FuncId, Linkage, Module};
+use jack_os::{Profile, RAM_SIZE};
+use std::time::{Duration, Instant};
+
+/// Which engine runs a [`Machine`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+// The hidden variant is a test switch, not a reserved future variant.
+#[allow(clippy::manual_non_exhaustive)]
+pub enum Engine {
+    /// The interpreter (`exec.rs`) alone.
+    Interp,
+    /// VM functions compiled to native code with Cranelift, with the
+    /// interpreter for what compiled code leaves to it; the interpreter
+    /// alone where Cranelift cannot target the host.
+    Native,
+    /// `Native` with `sub` translated wrongly (operands swapped), so that
+    /// tests can show the differential tests catch a broken translation.
+    #[doc(hidden)]
+    NativeBrokenSub,
+}
+
+impl Default for Engine {
+    /// `HACK_VM_ENGINE=native|interp` if set (how the test suites run on
+    /// both engines), else `Interp`: the compiled engine is exact but not
+    /// yet faster than the fused interpreter (docs/performance.md).
+    fn default() -> Engine {
+        match std::env::var("HACK_VM_ENGINE").as_deref() {
+            Ok("native") => Engine::Native,
+            _ => Engine::Interp,
+        }
+    }
+}
+
+impl std::str::FromStr for Engine {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Engine, String> {
+        match s {
+            "interp" => Ok(Engine::Interp),
+            "native" => Ok(Engine::Native),
+            _ => Err(format!("unknown engine {s:?} (interp or native)")),
+        }
+    }
+}
+
+/// A deliberate translation error (see [`Engine::NativeBrokenSub`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Fault {
+    SubSwapped,
+}
+
+/// Code a compiled function returns: it returned into its compiled caller.
+pub(crate) const RETURNED: i32 = -1;
+/// Code: continue in compiled code at `Ctx::pc` of function `Ctx::cur`.
+pub(crate) const CONTINUE: i32 = -2;
+/// Compiled functions nested deeper than this leave calls to the
+/// interpreter, which bounds the host stack compiled code uses.
+pub(crate) const NATIVE_DEPTH: u32 = 256;
+
+/// The machine state compiled code works on (layout shared with
+/// `translate`, which reads fields by offset).
+#[repr(C)]
+pub(crate) struct Ctx {
+    pub ram: *mut i16,
+    pub frames: *mut Frame,
+    pub frames_len: u64,
+    /// The frame stack's capacity, at most [`MAX_DEPTH`].
+    pub frames_cap: u64,
+    pub steps: u64,
+    pub stop_at: u64,
+    pub sp: u16,
+    pub lcl: u16,
+    pub arg: u16,
+    pub this: u16,
+    pub that: u16,
+    pub nargs: u16,
+    pub flags: u8,
+    /// Whether calls and returns may run compiled (no watcher, no profile).
+    pub inline: u8,
+    pub cur: u32,
+    pub pc: u32,
+    /// Compiled functions currently nested on the host stack.
+    pub depth: u32,
+}
+
+type Entry = unsafe extern "C" fn(*mut Ctx, u32) -> i32;
+
+/// A program's compiled code: one native function per VM function, and for
+/// each instruction the function it belongs to and the index of the block
+/// starting there (`NO_BLOCK` if none), which is where compiled code of
+/// that function can be entered.
+pub(crate) struct Native {
+    module: Option<JITModule>,
+    entries: Vec<Entry>,
+    block_at: Vec<(FnId, u32)>,
+    compile_time: Duration,
+}
+
+const NO_BLOCK: u32 = u32::MAX;
+
+// SAFETY: after `finalize_definitions` the module is only kept to own the
+// code's memory (freed in `Drop`, with exclusive access); the entries point
+// into that memory, which is never written again. Running the code from
+// several threads at once is sound: it only touches the `Ctx` it is given.
+unsafe impl Send for Native {}
+unsafe impl Sync for Native {}
+
+impl Drop for Native {
+    fn drop(&mut self) {
+        if let Some(module) = self.module.take() {
+            // SAFETY: the last owner of the code is going; no entry is
+            // running (a running machine holds an `Arc` to this).
+            unsafe { module.free_memory() }
+        }
+    }
+}
+
+impl std::fmt::Debug for Native {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Native")
+            .field("functions", &self.entries.len())
+            .field("compile_time", &self.compile_time)
+            .finish()
+    }
+}
+
+impl Native {
+    /// Compile every function of `program` for this host, `Err` naming
+    /// why not (a host Cranelift cannot target, or a translation error).
+    pub(crate) fn compile(
+        program: &Program,
+        profile: Profile,
+        fault: Option<Fault>,
+    ) -> Result<Native, String> {
+        let started = Instant::now();
+        let mut flags = settings::builder();
+        let set = |f: &mut settings::Builder, k: &str, v: &str| {
+            f.set(k, v).map_err(|e| format!("cranelift flag {k}: {e}"))
+        };
+        set(&mut flags, "opt_level", "speed")?;
+        set(&mut flags, "use_colocated_libcalls", "false")?;
+        set(&mut flags, "is_pic", "false")?;
+        set(
+            &mut flags,
+            "enable_verifier",
+            if cfg!(debug_assertions) {
+                "true"
+            } else {
+                "false"
+            },
+        )?;
+        let isa = cranelift_native::builder()
+            .map_err(|e| format!("host not supported by Cranelift: {e}"))?
+            .finish(settings::Flags::new(flags))
+            .map_err(|e| format!("cranelift: {e}"))?;
+        let mut module = JITModule::new(JITBuilder::with_isa(isa, default_libcall_names()));
+        let mut sig = module.make_signature();
+        sig.params.push(AbiParam::new(types::I64));
+        sig.params.push(AbiParam::new(types::I32));
+        sig.returns.push(AbiParam::new(types::I32));
+        let ids: Vec<FuncId> = (0..program.functions.len())
+            .map(|i| {
+                module
+                    .declare_function(&format!("vm{i}"), Linkage::Local, &sig)
+                    .map_err(|e| format!("cranelift: {e}"))
+            })
+            .collect::<Result<_, _>>()?;
+        let target = module.target_config();
+        let timing = Timing::of(profile);
+        let code = &program.code[timing::index(profile)].plain;
+        let mut block_at = vec![(0, NO_BLOCK); code.len()];
+        let mut ctx = module.make_context();
+        let mut fctx = FunctionBuilderContext::new();
+        for (i, &id) in ids.iter().enumerate() {
+            ctx.func.signature = sig.clone();
+            ctx.func.name = UserFuncName::user(0, id.as_u32());
+            let f = &program.functions[i];
+            let (start, end) = extent(code, f, timing);
+            // Where a run may stand in this function other than at a block
+            // that compiled code reaches: the body of a function without a
+            // `function` line (the start of `__implicit`).
+            let entries: &[u32] = if start == f.start || f.headed {
+                &[]
+            } else {
+                std::slice::from_ref(&f.start)
+            };
+            let (vm_blocks, starts) = blocks::blocks(code, start, end, entries);
+            for (k, b) in starts.iter().enumerate() {
+                block_at[start as usize + k] = (i as FnId, b.unwrap_or(NO_BLOCK));
+            }
+            let mut callee = |func: &mut cranelift_codegen::ir::Function, callee: FnId| {
+                module.declare_func_in_func(ids[callee as usize], func)
+            };
+            translate::translate(
+                cranelift_frontend::FunctionBuilder::new(&mut ctx.func, &mut fctx),
+                translate::Env {
+                    program,
+                    code,
+                    start,
+                    timing,
+                    id: i as FnId,
+                    blocks: &vm_blocks,
+                    block_at: &starts,
+                    profile,
+                    fault,
+                    target,
+                    callee: &mut callee,
+                },
+            );
+            module
+                .define_function(id, &mut ctx)
+                .map_err(|e| format!("cranelift, function {}: {e:?}", f.name))?;
+            module.clear_context(&mut ctx);
+        }
+        module
+            .finalize_definitions()
+            .map_err(|e| format!("cranelift: {e}"))?;
+        let entries = ids
+            .iter()
+            .map(|&id| {
+                let p = module.get_finalized_function(id);
+                // SAFETY: every function was defined with `sig`, which is
+                // this type under the host's default calling convention.
+                unsafe { std::mem::transmute::<*const u8, Entry>(p) }
+            })
+            .collect();
+        Ok(Native {
+            module: Some(module),
+            entries,
+            block_at,
+            compile_time: started.elapsed(),
+        })
+    }
+
+    /// How long compiling took.
+    pub(crate) fn compile_time(&self) -> Duration {
+        self.compile_time
+    }
+}
+
+/// The instructions `start..end` of function `f` in `code` that compiled
+/// code runs: from the instruction a call lands on (its `function` line
+/// where that is a step, crate::timing, else its body), through its
+/// `Halt` and the wasted-step jumps after it.
+fn extent(code: &[Op], f: &crate::program::Function, timing: Timing) -> (u32, u32) {
+    let start = f.start - u32::from(timing.function_step);
+    let halt = f.start as usize
+        + code[f.start as usize..]
+            .iter()
+            .position(|op| *op == Op::Halt)
+            .expect("every function ends in Halt");
+    let jumps = code[halt + 1..]
+        .iter()
+        .take_while(|op| matches!(op, Op::Goto(_)))
+        .count();
+    (start, (halt + 1 + jumps) as u32)
+}
+
+/// Whether `a` is an ordinary word (not a register, inside RAM).
+pub(crate) fn plain_address(a: u16) -> bool {
+    (5..RAM_SIZE).contains(&usize::from(a))
+}
+
+impl Machine {
+    /// Run until the step count reaches `stop_at` or the run ends: compiled
+    /// code where a block starts, the interpreter for one instruction
+    /// wherever compiled code stops.
+    pub(crate) fn exec_native<const W: bool>(
+        &mut self,
+        program: &Program,
+        code: &Code,
+        native: &Native,
+        stop_at: u64,
+        watch: &mut Option<(&[bool], &mut dyn Watcher)>,
+    ) -> Flow {
+        loop {
+            if self.steps >= stop_at {
+                return Flow::Limit;
+            }
+            // (A host call's return leaves PC in the callee: no block then.)
+            let (owner, block) = native.block_at[self.pc as usize];
+            if block != NO_BLOCK
+                && owner == self.cur
+                && self.enter_native::<W>(native, block, stop_at) == CONTINUE
+            {
+                continue;
+            }
+            if self.steps >= stop_at {
+                return Flow::Limit;
+            }
+            if let Flow::End(exit) = self.exec::<W>(program, code, false, self.steps + 1, watch) {
+                return Flow::End(exit);
+            }
+        }
+    }
+
+    /// Run compiled code from block `block` of the current function.
+    fn enter_native<const W: bool>(&mut self, native: &Native, block: u32, stop_at: u64) -> i32 {
+        let w = self.ram.words_mut();
+        let reg = |i: usize| w[i] as u16;
+        let mut ctx = Ctx {
+            ram: std::ptr::null_mut(),
+            frames: self.frames.as_mut_ptr(),
+            frames_len: self.frames.len() as u64,
+            frames_cap: self.frames.capacity().min(MAX_DEPTH) as u64,
+            steps: self.steps,
+            stop_at,
+            sp: reg(0),
+            lcl: reg(1),
+            arg: reg(2),
+            this: reg(3),
+            that: reg(4),
+            nargs: self.nargs,
+            flags: self.flags,
+            inline: u8::from(!W && self.profile.is_none()),
+            cur: self.cur,
+            pc: self.pc,
+            depth: 0,
+        };
+        ctx.ram = w.as_mut_ptr();
+        // SAFETY: the entry was compiled for this program and function; it
+        // reads and writes RAM words 5..RAM_SIZE only (all it checks), and
+        // frame slots below `frames_cap`, setting `frames_len` to cover
+        // exactly the slots it filled.
+        let code = unsafe { native.entries[self.cur as usize](&mut ctx, block) };
+        // SAFETY: see above: slots 0..frames_len are initialised.
+        unsafe { self.frames.set_len(ctx.frames_len as usize) };
+        let w = self.ram.words_mut();
+        for (i, r) in [ctx.sp, ctx.lcl, ctx.arg, ctx.this, ctx.that]
+            .into_iter()
+            .enumerate()
+        {
+            w[i] = r as i16;
+        }
+        self.steps = ctx.steps;
+        self.pc = ctx.pc;
+        self.cur = ctx.cur;
+        self.nargs = ctx.nargs;
+        self.flags = ctx.flags;
+        code
+    }
+}

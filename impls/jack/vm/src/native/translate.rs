@@ -1,0 +1,909 @@
+//! One VM function to Cranelift IR.
+//!
+//! The compiled function takes the machine state in a [`Ctx`] and the index
+//! of the block to start at, keeps SP, LCL, ARG, THIS, THAT, the flags, the
+//! argument count and the step count in registers, and returns a code (see
+//! `native::RETURNED`, `native::CONTINUE`; a code >= 0 is the instruction
+//! the interpreter must run next). Every block first checks that its whole
+//! step count fits under the stop and that its stack accesses stay between
+//! 256 and the profile's stack end (`Timing::stack_end`); otherwise, and wherever an instruction meets a case that
+//! only the interpreter handles (a register or an address outside RAM
+//! through a computed address, a failed segment check, a division by zero,
+//! a built-in), it stores the exact state before that instruction and
+//! exits. Stack words are always written to RAM; a word the block pushed
+//! itself is popped from a register unless a computed store might have
+//! overwritten it.
+
+use super::blocks::{self, Block, Kind, MAX_INLINE_LOCALS};
+use super::{Ctx, Fault, CONTINUE, NATIVE_DEPTH, RETURNED};
+use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
+use crate::program::{FnId, Op, Program};
+use crate::timing::{Timing, STACK_BASE};
+use cranelift_codegen::ir::condcodes::IntCC;
+use cranelift_codegen::ir::{
+    self, types, BlockArg, FuncRef, InstBuilder, JumpTableData, MemFlagsData, Value,
+};
+use cranelift_frontend::{FunctionBuilder, Variable};
+use jack_os::{Profile, RAM_SIZE};
+use std::mem::offset_of;
+
+const T16: ir::Type = types::I16;
+const T32: ir::Type = types::I32;
+const T64: ir::Type = types::I64;
+
+/// No block arguments.
+const NONE: &[BlockArg] = &[];
+
+/// A field offset as Cranelift takes it.
+fn field(offset: usize) -> i32 {
+    offset as i32
+}
+
+/// The registers kept in variables while compiled code runs.
+struct Vars {
+    sp: Variable,
+    lcl: Variable,
+    arg: Variable,
+    this: Variable,
+    that: Variable,
+    flags: Variable,
+    nargs: Variable,
+    steps: Variable,
+}
+
+/// What the translation of one function needs from its surroundings.
+pub(crate) struct Env<'a> {
+    pub program: &'a Program,
+    /// The profile's plain instructions.
+    pub code: &'a [Op],
+    /// The function's first instruction in `code` (where a call lands).
+    pub start: u32,
+    /// The profile's step and stack rules.
+    pub timing: Timing,
+    pub id: FnId,
+    /// The function's blocks, and the block starting at each instruction
+    /// (relative to the function's start), from [`blocks::blocks`].
+    pub blocks: &'a [Block],
+    pub block_at: &'a [Option<u32>],
+    pub profile: Profile,
+    pub fault: Option<Fault>,
+    pub target: cranelift_codegen::isa::TargetFrontendConfig,
+    /// The compiled function of a callee, as a reference in this function.
+    pub callee: &'a mut dyn FnMut(&mut ir::Function, FnId) -> FuncRef,
+}
+
+struct Translator<'a, 'b> {
+    b: FunctionBuilder<'b>,
+    env: Env<'a>,
+    v: Vars,
+    ctx: Value,
+    ram: Value,
+    stop_at: Value,
+    inline: Value,
+    /// The Cranelift block of each VM block.
+    cl: Vec<ir::Block>,
+    /// VM block index by instruction index relative to the function start.
+    block_at: &'a [Option<u32>],
+    start: u32,
+    /// Stores the state and returns (code, pc).
+    leave: ir::Block,
+}
+
+/// Build the IR of function `env.id` into `b` (signature: ctx pointer,
+/// block index; returns the code).
+pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
+    let start = env.start;
+    let (vm_blocks, block_at) = (env.blocks, env.block_at);
+
+    let entry = b.create_block();
+    b.append_block_params_for_function_params(entry);
+    b.switch_to_block(entry);
+    let ctx = b.block_params(entry)[0];
+    let which = b.block_params(entry)[1];
+    let v = Vars {
+        sp: b.declare_var(T16),
+        lcl: b.declare_var(T16),
+        arg: b.declare_var(T16),
+        this: b.declare_var(T16),
+        that: b.declare_var(T16),
+        flags: b.declare_var(T32),
+        nargs: b.declare_var(T16),
+        steps: b.declare_var(T64),
+    };
+    let mem = MemFlagsData::trusted();
+    let ram = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, ram)));
+    let stop_at = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, stop_at)));
+    let inline = b
+        .ins()
+        .uload8(T32, mem, ctx, field(offset_of!(Ctx, inline)));
+    let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
+    let leave = b.create_block();
+    b.append_block_param(leave, T32);
+    b.append_block_param(leave, T32);
+    let mut t = Translator {
+        b,
+        env,
+        v,
+        ctx,
+        ram,
+        stop_at,
+        inline,
+        cl,
+        block_at,
+        start,
+        leave,
+    };
+    t.load_state();
+    // Dispatch on the block index; an index out of range (never passed)
+    // leaves at once with the pc the caller gave.
+    let default = t.b.create_block();
+    let calls: Vec<_> =
+        t.cl.iter()
+            .map(|&blk| t.b.func.dfg.block_call(blk, NONE))
+            .collect();
+    let def = t.b.func.dfg.block_call(default, NONE);
+    let table = t.b.create_jump_table(JumpTableData::new(def, &calls));
+    t.b.ins().br_table(which, table);
+
+    t.b.switch_to_block(default);
+    let pc = t.b.ins().load(T32, mem, ctx, field(offset_of!(Ctx, pc)));
+    t.b.ins()
+        .jump(leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+
+    for (i, blk) in vm_blocks.iter().enumerate() {
+        t.block(i, blk);
+    }
+
+    t.b.switch_to_block(leave);
+    let code = t.b.block_params(leave)[0];
+    let pc = t.b.block_params(leave)[1];
+    t.store_state();
+    t.b.ins().store(mem, pc, ctx, field(offset_of!(Ctx, pc)));
+    t.b.ins().return_(&[code]);
+    t.b.seal_all_blocks();
+    t.b.finalize(t.env.target);
+}
+
+impl Translator<'_, '_> {
+    fn c16(&mut self, v: i64) -> Value {
+        self.b.ins().iconst(T16, v & 0xFFFF)
+    }
+
+    fn c32(&mut self, v: i64) -> Value {
+        self.b.ins().iconst(T32, v & 0xFFFF_FFFF)
+    }
+
+    /// Load the registers from the context into the variables.
+    fn load_state(&mut self) {
+        let mem = MemFlagsData::trusted();
+        let ctx = self.ctx;
+        let regs = [
+            (self.v.sp, offset_of!(Ctx, sp)),
+            (self.v.lcl, offset_of!(Ctx, lcl)),
+            (self.v.arg, offset_of!(Ctx, arg)),
+            (self.v.this, offset_of!(Ctx, this)),
+            (self.v.that, offset_of!(Ctx, that)),
+            (self.v.nargs, offset_of!(Ctx, nargs)),
+        ];
+        for (var, o) in regs {
+            let x = self.b.ins().load(T16, mem, ctx, field(o));
+            self.b.def_var(var, x);
+        }
+        let flags = self
+            .b
+            .ins()
+            .uload8(T32, mem, ctx, field(offset_of!(Ctx, flags)));
+        self.b.def_var(self.v.flags, flags);
+        let steps = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, steps)));
+        self.b.def_var(self.v.steps, steps);
+    }
+
+    /// Store the variables into the context.
+    fn store_state(&mut self) {
+        let mem = MemFlagsData::trusted();
+        let ctx = self.ctx;
+        let regs = [
+            (self.v.sp, offset_of!(Ctx, sp)),
+            (self.v.lcl, offset_of!(Ctx, lcl)),
+            (self.v.arg, offset_of!(Ctx, arg)),
+            (self.v.this, offset_of!(Ctx, this)),
+            (self.v.that, offset_of!(Ctx, that)),
+            (self.v.nargs, offset_of!(Ctx, nargs)),
+        ];
+        for (var, o) in regs {
+            let x = self.b.use_var(var);
+            self.b.ins().store(mem, x, ctx, field(o));
+        }
+        let flags = self.b.use_var(self.v.flags);
+        self.b
+            .ins()
+            .istore8(mem, flags, ctx, field(offset_of!(Ctx, flags)));
+        let steps = self.b.use_var(self.v.steps);
+        self.b
+            .ins()
+            .store(mem, steps, ctx, field(offset_of!(Ctx, steps)));
+    }
+
+    /// The host address of RAM word `a` (a 16-bit value known to be a
+    /// plain word).
+    fn word(&mut self, a: Value) -> Value {
+        let a = self.b.ins().uextend(T64, a);
+        let off = self.b.ins().ishl_imm_u(a, 1);
+        self.b.ins().iadd(self.ram, off)
+    }
+
+    fn load_word(&mut self, a: Value) -> Value {
+        let p = self.word(a);
+        self.b.ins().load(T16, MemFlagsData::trusted(), p, 0)
+    }
+
+    fn store_word(&mut self, a: Value, x: Value) {
+        let p = self.word(a);
+        self.b.ins().store(MemFlagsData::trusted(), x, p, 0);
+    }
+
+    /// `5 <= a <= 24576` for a 16-bit address.
+    fn is_plain(&mut self, a: Value) -> Value {
+        let minus5 = self.c16(-5);
+        let t = self.b.ins().iadd(a, minus5);
+        let limit = self.c16(RAM_SIZE as i64 - 5);
+        self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit)
+    }
+
+    /// Continue if `ok`, else leave for the interpreter at `at.pc` with
+    /// the state before that instruction (computed only on the way out).
+    fn guard(&mut self, ok: Value, at: &Before) {
+        let cont = self.b.create_block();
+        let stub = self.b.create_block();
+        self.b.ins().brif(ok, cont, NONE, stub, NONE);
+        self.b.switch_to_block(stub);
+        self.b.set_cold_block(stub);
+        self.exit_before(at);
+        self.b.switch_to_block(cont);
+    }
+
+    /// Leave for the interpreter at `at.pc`, in the state before it.
+    fn exit_before(&mut self, at: &Before) {
+        let steps = self.b.ins().iadd_imm_s(at.steps0, at.k as i64);
+        self.b.def_var(self.v.steps, steps);
+        let sp = self.b.ins().iadd_imm_s(at.sp0, i64::from(at.depth));
+        self.b.def_var(self.v.sp, sp);
+        let pc = self.c32(i64::from(at.pc));
+        self.b
+            .ins()
+            .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+    }
+
+    fn flag_set(&mut self, bit: u8) -> Value {
+        let flags = self.b.use_var(self.v.flags);
+        let m = self.b.ins().band_imm_u(flags, i64::from(bit));
+        self.b.ins().icmp_imm_s(IntCC::NotEqual, m, 0)
+    }
+
+    fn set_flag(&mut self, bit: u8) {
+        let flags = self.b.use_var(self.v.flags);
+        let f = self.b.ins().bor_imm_u(flags, i64::from(bit));
+        self.b.def_var(self.v.flags, f);
+    }
+
+    fn jump_to(&mut self, pc: u32) {
+        let i = self.block_at[(pc - self.start) as usize].expect("jump targets start blocks");
+        let blk = self.cl[i as usize];
+        self.b.ins().jump(blk, NONE);
+    }
+
+    fn block(&mut self, index: usize, blk: &Block) {
+        self.b.switch_to_block(self.cl[index]);
+        let steps0 = self.b.use_var(self.v.steps);
+        let sp0 = self.b.use_var(self.v.sp);
+        if blk.steps == 0 {
+            let pc = self.c32(i64::from(blk.start));
+            self.b
+                .ins()
+                .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+            return;
+        }
+        // The whole block fits under the stop, and its stack stays where
+        // no stack rule applies: from 256 (no pop at SP = 256) up to the
+        // profile's stack end.
+        let last = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
+        let mut ok = self
+            .b
+            .ins()
+            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at);
+        if blk.checks_stack {
+            // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1).
+            let low = self.c16(i64::from(STACK_BASE) - i64::from(blk.min_depth));
+            let c = self
+                .b
+                .ins()
+                .icmp(IntCC::UnsignedGreaterThanOrEqual, sp0, low);
+            ok = self.b.ins().band(ok, c);
+            let end = i64::from(self.env.timing.stack_end());
+            let high = self.c16(end - i64::from(blk.max_depth));
+            let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, sp0, high);
+            ok = self.b.ins().band(ok, c);
+        }
+        let entry = Before {
+            pc: blk.start,
+            k: 0,
+            depth: 0,
+            steps0,
+            sp0,
+        };
+        self.guard(ok, &entry);
+
+        let mut s = Stack {
+            sp0,
+            depth: 0,
+            known: Vec::new(),
+        };
+        for pc in blk.start..blk.end {
+            let op = self.env.code[pc as usize];
+            let before = Before {
+                pc,
+                k: u64::from(pc - blk.start),
+                depth: s.depth,
+                steps0,
+                sp0,
+            };
+            self.op(op, &mut s, &before, blk);
+        }
+        if blocks::kind(self.env.code[blk.end as usize - 1]) == Kind::Straight {
+            // Falls through into the next block (or the interpreted
+            // instruction that ends this one).
+            self.end_block(&s, steps0, blk);
+            self.jump_to(blk.end);
+        }
+    }
+
+    /// Define SP and the step count as they are after the whole block.
+    fn end_block(&mut self, s: &Stack, steps0: Value, blk: &Block) {
+        let steps = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
+        self.b.def_var(self.v.steps, steps);
+        let sp = s.sp(self);
+        self.b.def_var(self.v.sp, sp);
+    }
+
+    /// Read RAM[a] through a computed address.
+    fn read(&mut self, a: Value, before: &Before) -> Value {
+        let ok = self.is_plain(a);
+        self.guard(ok, before);
+        self.load_word(a)
+    }
+
+    /// Write RAM[a] through a computed address.
+    fn write(&mut self, a: Value, x: Value, s: &mut Stack, before: &Before) {
+        let ok = self.is_plain(a);
+        self.guard(ok, before);
+        self.store_word(a, x);
+        s.known.clear();
+    }
+
+    fn seg_addr(&mut self, var: Variable, i: u16) -> Value {
+        let base = self.b.use_var(var);
+        self.b.ins().iadd_imm_s(base, i64::from(i))
+    }
+
+    fn arg_ok(&mut self, i: u16, before: &Before) {
+        let nargs = self.b.use_var(self.v.nargs);
+        let i = self.c16(i64::from(i));
+        let ok = self.b.ins().icmp(IntCC::UnsignedGreaterThan, nargs, i);
+        self.guard(ok, before);
+    }
+
+    fn flag_ok(&mut self, bit: u8, before: &Before) {
+        let ok = self.flag_set(bit);
+        self.guard(ok, before);
+    }
+
+    fn op(&mut self, op: Op, s: &mut Stack, before: &Before, blk: &Block) {
+        match op {
+            Op::PushConst(c) => {
+                let x = self.c16(i64::from(c));
+                s.push(self, x);
+            }
+            Op::PushLocal(i) => {
+                let a = self.seg_addr(self.v.lcl, i);
+                let x = self.read(a, before);
+                s.push(self, x);
+            }
+            Op::PushArg(i) => {
+                self.arg_ok(i, before);
+                let a = self.seg_addr(self.v.arg, i);
+                let x = self.read(a, before);
+                s.push(self, x);
+            }
+            Op::PushThis(i) | Op::PushThisChk(i) => {
+                if matches!(op, Op::PushThisChk(_)) {
+                    self.flag_ok(THIS_OK, before);
+                }
+                let a = self.seg_addr(self.v.this, i);
+                let x = self.read(a, before);
+                s.push(self, x);
+            }
+            Op::PushThat(i) | Op::PushThatChk(i) => {
+                if matches!(op, Op::PushThatChk(_)) {
+                    self.flag_ok(THAT_OK, before);
+                }
+                let a = self.seg_addr(self.v.that, i);
+                let x = self.read(a, before);
+                s.push(self, x);
+            }
+            Op::PushAbs(a) => {
+                let a = self.c16(i64::from(a));
+                let x = self.load_word(a);
+                s.push(self, x);
+            }
+            Op::PushPtr(p) => {
+                let x = self
+                    .b
+                    .use_var(if p == 0 { self.v.this } else { self.v.that });
+                s.push(self, x);
+            }
+            Op::PopLocal(i) => {
+                let x = s.pop(self);
+                let a = self.seg_addr(self.v.lcl, i);
+                self.write(a, x, s, before);
+            }
+            Op::PopArg(i) => {
+                self.arg_ok(i, before);
+                let x = s.pop(self);
+                let a = self.seg_addr(self.v.arg, i);
+                self.write(a, x, s, before);
+            }
+            Op::PopThis(i) | Op::PopThisChk(i) => {
+                if matches!(op, Op::PopThisChk(_)) {
+                    self.flag_ok(THIS_OK, before);
+                }
+                let x = s.pop(self);
+                let a = self.seg_addr(self.v.this, i);
+                self.write(a, x, s, before);
+            }
+            Op::PopThat(i) | Op::PopThatChk(i) => {
+                if matches!(op, Op::PopThatChk(_)) {
+                    self.flag_ok(THAT_OK, before);
+                }
+                let x = s.pop(self);
+                let a = self.seg_addr(self.v.that, i);
+                self.write(a, x, s, before);
+            }
+            Op::PopAbs(a) => {
+                // 5..=255: never a stack word.
+                let x = s.pop(self);
+                let a = self.c16(i64::from(a));
+                self.store_word(a, x);
+            }
+            Op::PopRam(a) => {
+                let x = s.pop(self);
+                let addr = self.c16(i64::from(a));
+                self.store_word(addr, x);
+                if usize::from(a) >= 256 {
+                    s.known.clear();
+                }
+            }
+            Op::PopPtr(p) => {
+                let x = s.pop(self);
+                if p == 0 {
+                    self.b.def_var(self.v.this, x);
+                    self.set_flag(THIS_OK);
+                } else {
+                    self.b.def_var(self.v.that, x);
+                    self.set_flag(THAT_OK);
+                }
+            }
+            Op::Add | Op::Sub | Op::And | Op::Or | Op::Multiply => {
+                let y = s.pop(self);
+                let x = s.pop(self);
+                let r = match op {
+                    Op::Add => self.b.ins().iadd(x, y),
+                    Op::Sub if self.env.fault == Some(Fault::SubSwapped) => self.b.ins().isub(y, x),
+                    Op::Sub => self.b.ins().isub(x, y),
+                    Op::And => self.b.ins().band(x, y),
+                    Op::Or => self.b.ins().bor(x, y),
+                    _ => self.b.ins().imul(x, y),
+                };
+                s.push(self, r);
+            }
+            Op::Eq | Op::Gt | Op::Lt => {
+                let y = s.pop(self);
+                let x = s.pop(self);
+                let cc = match op {
+                    Op::Eq => IntCC::Equal,
+                    Op::Gt => IntCC::SignedGreaterThan,
+                    _ => IntCC::SignedLessThan,
+                };
+                let c = self.b.ins().icmp(cc, x, y);
+                let r = self.b.ins().bmask(T16, c);
+                s.push(self, r);
+            }
+            Op::Neg | Op::Not => {
+                let x = s.pop(self);
+                let r = if op == Op::Neg {
+                    self.b.ins().ineg(x)
+                } else {
+                    self.b.ins().bnot(x)
+                };
+                s.push(self, r);
+            }
+            Op::Divide => {
+                let y = s.pop(self);
+                let x = s.pop(self);
+                // A zero divisor goes through the OS's error path.
+                let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, y, 0);
+                self.guard(ok, before);
+                let q = self.divide(x, y);
+                s.push(self, q);
+            }
+            Op::Goto(t) => {
+                self.end_block(s, before.steps0, blk);
+                self.jump_to(t);
+            }
+            Op::IfGoto(t) => {
+                let x = s.pop(self);
+                let steps0 = before.steps0;
+                self.end_block(s, steps0, blk);
+                let taken = self.block_at[(t - self.start) as usize].expect("a block");
+                let next = self.block_at[(before.pc + 1 - self.start) as usize].expect("a block");
+                let (taken, next) = (self.cl[taken as usize], self.cl[next as usize]);
+                self.b.ins().brif(x, taken, NONE, next, NONE);
+            }
+            Op::Call {
+                callee, nargs, ret, ..
+            } => self.call(FnId::from(callee), nargs, ret, s, before, blk),
+            Op::Return => self.ret(s, before, blk),
+            Op::Function { n_vars, .. } => {
+                // The locals, zeroed (the block's entry test covers them).
+                for _ in 0..n_vars {
+                    let zero = self.c16(0);
+                    s.push(self, zero);
+                }
+            }
+            _ => unreachable!("interpreted instructions end blocks before them"),
+        }
+    }
+
+    /// `Math.divide` of a non-zero divisor under the OS profile.
+    fn divide(&mut self, x: Value, y: Value) -> Value {
+        // In 32 bits, so that -32768 / -1 does not trap (it wraps below).
+        let x32 = self.b.ins().sextend(T32, x);
+        let y32 = self.b.ins().sextend(T32, y);
+        let q = self.b.ins().sdiv(x32, y32);
+        let q = match self.env.profile {
+            Profile::Desktop => q,
+            Profile::Web => {
+                // Round toward minus infinity: one less when the remainder
+                // is non-zero and the signs differ.
+                let r = self.b.ins().srem(x32, y32);
+                let inexact = self.b.ins().icmp_imm_s(IntCC::NotEqual, r, 0);
+                let signs = self.b.ins().bxor(x32, y32);
+                let differ = self.b.ins().icmp_imm_s(IntCC::SignedLessThan, signs, 0);
+                let both = self.b.ins().band(inexact, differ);
+                let one = self.b.ins().uextend(T32, both);
+                self.b.ins().isub(q, one)
+            }
+        };
+        self.b.ins().ireduce(T16, q)
+    }
+
+    /// `call callee nargs`: push the frame in RAM and in the frame stack and
+    /// run the callee's compiled code directly; when it returns here,
+    /// continue with the next block.
+    fn call(
+        &mut self,
+        callee: FnId,
+        n: u16,
+        ret: u16,
+        s: &mut Stack,
+        before: &Before,
+        blk: &Block,
+    ) {
+        let mem = MemFlagsData::trusted();
+        let ctx = self.ctx;
+        let f = &self.env.program.functions[callee as usize];
+        // Where a call's `function` line is a step, the callee's zeroes
+        // its locals; else the call does.
+        let n_vars = if self.env.timing.function_step {
+            0
+        } else {
+            f.n_vars
+        };
+        let entry_flags = f.entry_flags(n);
+        if n_vars > MAX_INLINE_LOCALS {
+            self.exit_before(before);
+            return;
+        }
+        let depth = self
+            .b
+            .ins()
+            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
+        let len = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
+        let cap = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
+        // Inline allowed, native nesting bounded, room in the frame stack,
+        // and the new frame in plain RAM.
+        let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, self.inline, 0);
+        let c = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::UnsignedLessThan, depth, i64::from(NATIVE_DEPTH));
+        let ok = self.b.ins().band(ok, c);
+        let c = self.b.ins().icmp(IntCC::UnsignedLessThan, len, cap);
+        let ok = self.b.ins().band(ok, c);
+        let base = s.sp(self);
+        let base64 = self.b.ins().uextend(T64, base);
+        let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
+        let end = i64::from(self.env.timing.stack_end());
+        let c = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end);
+        let ok = self.b.ins().band(ok, c);
+        let c = self.b.ins().icmp_imm_s(
+            IntCC::UnsignedGreaterThanOrEqual,
+            base64,
+            i64::from(STACK_BASE),
+        );
+        let ok = self.b.ins().band(ok, c);
+        self.guard(ok, before);
+
+        // The frame in RAM: RET, LCL, ARG, THIS, THAT, then zeroed locals.
+        let saved = [
+            self.c16(i64::from(ret)),
+            self.b.use_var(self.v.lcl),
+            self.b.use_var(self.v.arg),
+            self.b.use_var(self.v.this),
+            self.b.use_var(self.v.that),
+        ];
+        let p = self.word(base);
+        for (k, x) in saved.into_iter().enumerate() {
+            self.b.ins().store(mem, x, p, 2 * k as i32);
+        }
+        let zero = self.c16(0);
+        for k in 0..i32::from(n_vars) {
+            self.b.ins().store(mem, zero, p, 10 + 2 * k);
+        }
+        // The frame stack entry.
+        let frames = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames)));
+        let off = self
+            .b
+            .ins()
+            .imul_imm_s(len, std::mem::size_of::<Frame>() as i64);
+        let fp = self.b.ins().iadd(frames, off);
+        let caller = self.c32(i64::from(self.env.id));
+        self.b
+            .ins()
+            .store(mem, caller, fp, field(offset_of!(Frame, caller)));
+        let ret_pc = self.c32(i64::from(before.pc + 1));
+        self.b
+            .ins()
+            .store(mem, ret_pc, fp, field(offset_of!(Frame, ret_pc)));
+        let ret_word = self.c16(i64::from(ret));
+        self.b
+            .ins()
+            .store(mem, ret_word, fp, field(offset_of!(Frame, ret)));
+        let nargs = self.b.use_var(self.v.nargs);
+        self.b
+            .ins()
+            .store(mem, nargs, fp, field(offset_of!(Frame, nargs)));
+        let flags = self.b.use_var(self.v.flags);
+        self.b
+            .ins()
+            .istore8(mem, flags, fp, field(offset_of!(Frame, flags)));
+        let no = self.b.ins().iconst(types::I8, 0);
+        self.b
+            .ins()
+            .store(mem, no, fp, field(offset_of!(Frame, watched)));
+        let len1 = self.b.ins().iadd_imm_s(len, 1);
+        self.b
+            .ins()
+            .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
+
+        // The callee's registers.
+        let n16 = self.c16(i64::from(n));
+        let arg = self.b.ins().isub(base, n16);
+        self.b.def_var(self.v.arg, arg);
+        let lcl = self.b.ins().iadd_imm_s(base, 5);
+        self.b.def_var(self.v.lcl, lcl);
+        let sp = self.b.ins().iadd_imm_s(lcl, i64::from(n_vars));
+        self.b.def_var(self.v.sp, sp);
+        self.b.def_var(self.v.nargs, n16);
+        let fl = self.c32(i64::from(entry_flags));
+        self.b.def_var(self.v.flags, fl);
+        let steps0 = before.steps0;
+        let steps = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
+        self.b.def_var(self.v.steps, steps);
+        self.store_state();
+        let cur = self.c32(i64::from(callee));
+        self.b
+            .ins()
+            .store(mem, cur, ctx, field(offset_of!(Ctx, cur)));
+        let deeper = self.b.ins().iadd_imm_s(depth, 1);
+        self.b
+            .ins()
+            .store(mem, deeper, ctx, field(offset_of!(Ctx, depth)));
+
+        let func = (self.env.callee)(self.b.func, callee);
+        let first = self.c32(0);
+        let call = self.b.ins().call(func, &[ctx, first]);
+        let code = self.b.inst_results(call)[0];
+        self.b
+            .ins()
+            .store(mem, depth, ctx, field(offset_of!(Ctx, depth)));
+        let back = self.b.create_block();
+        let out = self.b.create_block();
+        let returned = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::Equal, code, i64::from(RETURNED));
+        self.b.ins().brif(returned, back, NONE, out, NONE);
+        self.b.switch_to_block(out);
+        // The callee left compiled code: the state is in the context.
+        self.b.ins().return_(&[code]);
+        self.b.switch_to_block(back);
+        self.load_state();
+        s.known.clear();
+        self.jump_to(before.pc + 1);
+    }
+
+    /// `return` to a caller whose frame is on the frame stack with its RET
+    /// word intact: restore its registers and either return to its
+    /// compiled code (it called this one) or to the dispatcher.
+    fn ret(&mut self, s: &mut Stack, before: &Before, blk: &Block) {
+        let mem = MemFlagsData::trusted();
+        let ctx = self.ctx;
+        let len = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
+        let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, self.inline, 0);
+        let c = self.b.ins().icmp_imm_s(IntCC::NotEqual, len, 0);
+        let ok = self.b.ins().band(ok, c);
+        self.guard(ok, before);
+        let frames = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames)));
+        let len1 = self.b.ins().iadd_imm_s(len, -1);
+        let off = self
+            .b
+            .ins()
+            .imul_imm_s(len1, std::mem::size_of::<Frame>() as i64);
+        let fp = self.b.ins().iadd(frames, off);
+        let ret_pc = self
+            .b
+            .ins()
+            .load(T32, mem, fp, field(offset_of!(Frame, ret_pc)));
+        let ok = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::NotEqual, ret_pc, i64::from(HOST as i32));
+        // FRAME = LCL: FRAME-5 ..= FRAME-1 are plain words, and so is ARG.
+        let frame = self.b.use_var(self.v.lcl);
+        let ten = self.c16(-10);
+        let t = self.b.ins().iadd(frame, ten);
+        let lim = self.c16(RAM_SIZE as i64 - 10);
+        let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, t, lim);
+        let ok = self.b.ins().band(ok, c);
+        let arg = self.b.use_var(self.v.arg);
+        let c = self.is_plain(arg);
+        let ok = self.b.ins().band(ok, c);
+        self.guard(ok, before);
+        let fr = self.word(frame);
+        let ret_word = self.b.ins().load(T16, mem, fr, -10);
+        let expected = self
+            .b
+            .ins()
+            .load(T16, mem, fp, field(offset_of!(Frame, ret)));
+        let ok = self.b.ins().icmp(IntCC::Equal, ret_word, expected);
+        self.guard(ok, before);
+
+        // Commit, in the interpreter's order: the value to RAM[ARG], then
+        // the saved registers (which that store may have changed).
+        let x = s.pop(self);
+        self.store_word(arg, x);
+        let sp = self.b.ins().iadd_imm_s(arg, 1);
+        self.b.def_var(self.v.sp, sp);
+        let regs = [
+            (self.v.that, -2),
+            (self.v.this, -4),
+            (self.v.arg, -6),
+            (self.v.lcl, -8),
+        ];
+        for (var, at) in regs {
+            let r = self.b.ins().load(T16, mem, fr, at);
+            self.b.def_var(var, r);
+        }
+        self.b
+            .ins()
+            .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
+        let caller = self
+            .b
+            .ins()
+            .load(T32, mem, fp, field(offset_of!(Frame, caller)));
+        self.b
+            .ins()
+            .store(mem, caller, ctx, field(offset_of!(Ctx, cur)));
+        let nargs = self
+            .b
+            .ins()
+            .load(T16, mem, fp, field(offset_of!(Frame, nargs)));
+        self.b.def_var(self.v.nargs, nargs);
+        let flags = self
+            .b
+            .ins()
+            .uload8(T32, mem, fp, field(offset_of!(Frame, flags)));
+        self.b.def_var(self.v.flags, flags);
+        let steps0 = before.steps0;
+        let steps = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
+        self.b.def_var(self.v.steps, steps);
+        // Back into the caller's compiled code if it is below this one,
+        // else to the dispatcher, which enters the caller at RET's block.
+        let depth = self
+            .b
+            .ins()
+            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
+        let nested = self.b.ins().icmp_imm_s(IntCC::NotEqual, depth, 0);
+        let returned = self.c32(i64::from(RETURNED));
+        let cont = self.c32(i64::from(CONTINUE));
+        let code = self.b.ins().select(nested, returned, cont);
+        self.b.ins().jump(
+            self.leave,
+            &[BlockArg::Value(code), BlockArg::Value(ret_pc)],
+        );
+    }
+}
+
+/// What an instruction's side exit restores: its own index, and the step
+/// count and SP before it.
+struct Before {
+    pc: u32,
+    /// Instructions of the block before it, and SP relative to the entry.
+    k: u64,
+    depth: i32,
+    /// The step count and SP at the block's entry.
+    steps0: Value,
+    sp0: Value,
+}
+
+/// The stack during one block: SP relative to its value at the entry, and
+/// the words the block pushed whose values are still in registers.
+struct Stack {
+    sp0: Value,
+    depth: i32,
+    known: Vec<(i32, Value)>,
+}
+
+impl Stack {
+    fn sp(&self, t: &mut Translator<'_, '_>) -> Value {
+        t.b.ins().iadd_imm_s(self.sp0, i64::from(self.depth))
+    }
+
+    fn push(&mut self, t: &mut Translator<'_, '_>, x: Value) {
+        let a = self.sp(t);
+        t.store_word(a, x);
+        self.known.retain(|&(d, _)| d != self.depth);
+        self.known.push((self.depth, x));
+        self.depth += 1;
+    }
+
+    fn pop(&mut self, t: &mut Translator<'_, '_>) -> Value {
+        self.depth -= 1;
+        if let Some(&(_, x)) = self.known.iter().rev().find(|(d, _)| *d == self.depth) {
+            return x;
+        }
+        let a = self.sp(t);
+        t.load_word(a)
+    }
+}
