@@ -232,6 +232,8 @@ fn command() -> impl Strategy<Value = String> {
     let value = prop_oneof![
         0u16..8,
         250u16..262,
+        // The desktop's stack ends at 2047 ("Stack overflow" past it).
+        2040u16..2050,
         3000u16..3004,
         16380u16..16390,
         24570u16..24578,
