@@ -14,9 +14,11 @@ mod consts;
 mod engine;
 mod float;
 mod float316;
+mod formulation;
 mod pipeline;
 mod scene;
 mod settings;
+mod shadow;
 mod tracer;
 mod vec3;
 
@@ -24,5 +26,11 @@ pub use api::{
     op, trace_op, PixelValue, RefImpl, Reference, RenderedImage, RequestError, Scalar, SdfValue,
     Trace, UnknownImpl,
 };
+pub use engine::{Decision, Engine, Trap, R};
+pub use formulation::{Formulated, Formulation};
 pub use scene::{Camera, Floor, March, Scene, SceneError, Shading, Sphere, Torus};
 pub use settings::{Arith, Settings, UnknownVariant, Variant, VariantKind};
+pub use shadow::{
+    blame, candidate_sites, Blame, DecisionRecord, OutputValue, Sh, ShadowEngine, ShadowOp,
+    ShadowOptions, ShadowOutput, ShadowRun, SiteKey,
+};
