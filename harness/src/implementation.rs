@@ -170,6 +170,16 @@ pub enum ImplError {
     Failed(String),
 }
 
+/// A whole image from an implementation's own render path.
+#[derive(Clone, Debug)]
+pub struct ImageAnswers {
+    /// Each pixel's answer (an [`Answer::Pixel`]), row by row.
+    pub pixels: Vec<Outcome<Answer>>,
+    /// Each pixel's cost in the implementation's unit (the Jack program:
+    /// Hack VM instructions), when it counts one.
+    pub costs: Option<Vec<u64>>,
+}
+
 /// One implementation, as the runner and the localizer see it.
 pub trait Implementation: Send + Sync {
     /// The name printed in reports: the label it was opened under, its
@@ -197,6 +207,28 @@ pub trait Implementation: Send + Sync {
 
     /// Answer every vector of `batch` (all of one level), in order.
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError>;
+
+    /// The whole image by a path of its own that also counts each pixel's
+    /// cost, or `None` (the default): the image is then rendered pixel by
+    /// pixel through [`Implementation::eval`]. `progress`: a bar on a
+    /// terminal.
+    fn render_image(&self, progress: bool) -> Option<Result<ImageAnswers, ImplError>> {
+        let _ = progress;
+        None
+    }
+
+    /// The screen a run of the whole program from its start draws (the
+    /// slow path, against the entry points the levels use), or `None` when
+    /// it has no such path. `expected_cost` (the image's total cost, when
+    /// known) sizes the progress bar.
+    fn program_screen(
+        &self,
+        expected_cost: Option<u64>,
+        progress: bool,
+    ) -> Option<Result<Bitmap, ImplError>> {
+        let _ = (expected_cost, progress);
+        None
+    }
 
     /// The op trace of one input (see `common::trace` for the convention),
     /// or `Unsupported` when the implementation cannot trace.

@@ -28,6 +28,9 @@ pub struct FullRender {
     pub images: RenderImages,
     /// Pixels whose computation trapped (drawn white, shade NaN).
     pub trapped: u64,
+    /// Each pixel's cost, when the implementation counts one (the Jack
+    /// program's VM instructions).
+    pub costs: Option<Grid<u64>>,
 }
 
 impl FullRender {
@@ -87,6 +90,7 @@ impl FullRender {
                 shades: Some(Grid::new(WIDTH, HEIGHT, shades)?),
             },
             trapped,
+            costs: None,
         })
     }
 }
@@ -112,12 +116,20 @@ pub fn render_with(
 ) -> Result<(FullRender, Vec<Outcome<Answer>>)> {
     let label = imp.label();
     let start = Instant::now();
-    let run = runner::run(&[imp], &full_image_set(), RunOptions { progress })
-        .into_iter()
-        .next()
-        .context("the runner returned no run")?;
+    let (answers, costs) = match imp.render_image(progress) {
+        Some(image) => {
+            let image = image.map_err(|e| anyhow!("{label}: {e}"))?;
+            (image.pixels, image.costs)
+        }
+        None => {
+            let run = runner::run(&[imp], &full_image_set(), RunOptions { progress })
+                .into_iter()
+                .next()
+                .context("the runner returned no run")?;
+            (run.answers.map_err(|e| anyhow!("{label}: {e}"))?, None)
+        }
+    };
     let render_s = start.elapsed().as_secs_f64();
-    let answers = run.answers.map_err(|e| anyhow!("{label}: {e}"))?;
     let pixels = answers
         .iter()
         .map(|a| match a {
@@ -126,7 +138,8 @@ pub fn render_with(
             _ => Ok(None),
         })
         .collect::<Result<Vec<_>>>()?;
-    let full = FullRender::from_pixels(&label, setup_s, render_s, pixels)?;
+    let mut full = FullRender::from_pixels(&label, setup_s, render_s, pixels)?;
+    full.costs = costs.map(|c| Grid::new(WIDTH, HEIGHT, c)).transpose()?;
     Ok((full, answers))
 }
 

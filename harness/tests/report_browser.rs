@@ -9,15 +9,17 @@ use harness::cast::Cast;
 use harness::implementation::Implementation;
 use harness::measure;
 use harness::report::model::{Render, RunMeta};
-use harness::report::{stability, PixelLocalizer, ReportBuilder};
+use harness::report::{PixelLocalizer, ReportBuilder};
 use harness::runner::{self, RunOptions};
+use harness::stability;
 use std::process::Command;
 
 const CHROMIUM: &str = "/usr/bin/chromium";
 
 fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
     let cast = Cast::builtin();
-    let mut builder = ReportBuilder::new(&dir.join("report"), RunMeta::collect()).unwrap();
+    let mut builder =
+        ReportBuilder::new(&dir.join("report"), RunMeta::collect(), cast.role_names()).unwrap();
     for label in ["ref-f316", "ref-f64"] {
         let full = measure::render(&cast, label, false).unwrap();
         builder
@@ -38,6 +40,7 @@ fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
         .add_pair(
             "ref-f316",
             "ref-f64",
+            false,
             PixelLocalizer::Impossible("ref-f64 computes with f64".into()),
             |x, y| format!("harness diff ref-f316 ref-f64 --vectors repro/pixel-{x}-{y}.json"),
         )
@@ -53,7 +56,11 @@ fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
         .collect();
     let refs: Vec<&dyn Implementation> = opened.iter().map(|b| b.as_ref()).collect();
     let runs = runner::run(&refs, &set, RunOptions::default());
-    let rows = stability::rows(&set, &runs, &[], |imp, v| {
+    let bases = stability::Bases {
+        oracle: "ref-f64",
+        bit_exact: "ref-f316",
+    };
+    let rows = stability::rows(&set, &runs, &[], bases, |imp, v| {
         Some(format!(
             "harness diff {imp} ref-f64 --vectors repro/{}.json",
             v.slug()

@@ -111,6 +111,15 @@ pub struct Roles {
     pub tracer: bool,
 }
 
+/// The names of the implementations playing the roles, for the reports.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RoleNames {
+    /// The f64 oracle.
+    pub oracle: String,
+    /// The tracer, which is also the base of bit-exact comparisons.
+    pub tracer: String,
+}
+
 /// Where an entry comes from.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Origin {
@@ -463,6 +472,14 @@ impl Cast {
             .iter()
             .find(|e| plays(&e.roles))
             .expect("the built-in entries play every role")
+    }
+
+    /// Who plays the oracle and the tracer.
+    pub fn role_names(&self) -> RoleNames {
+        RoleNames {
+            oracle: self.oracle().name.clone(),
+            tracer: self.tracer().name.clone(),
+        }
     }
 
     /// The bit-exact group: every Float316 entry, the tracer first.

@@ -12,11 +12,13 @@
 
 use crate::cast::file::{FieldError, Fields};
 use crate::cast::{Entry, Kind, Opener, Request, VariantInfo, VariantRole};
-use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
+use crate::implementation::{
+    Answer, Bitmap, ImageAnswers, ImplError, Implementation, Num, Numbers,
+};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{Op, OpValue, Outcome, TraceRecord};
 pub use jack::Profile;
-use jack::{Bindings, BoundProgram, Budgets, JackError, JackProgram};
+use jack::{Bindings, BoundProgram, Budgets, JackError, JackProgram, WholeRun};
 use serde::de::IntoDeserializer;
 use std::path::PathBuf;
 use vectors::{Level, Vector};
@@ -217,11 +219,11 @@ pub struct JackAdapter {
 }
 
 /// The whole image through the pixel statements, pixels in parallel,
-/// with a bar of pixels done when standard error is a terminal.
-pub fn render_with_bar(bound: &BoundProgram) -> Result<jack::Render, JackError> {
+/// with a bar of pixels done when `shown` (on a terminal).
+fn render_with_bar(bound: &BoundProgram, shown: bool) -> Result<jack::Render, JackError> {
     let bar = crate::progress::show(
         crate::progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
-        crate::progress::wanted(),
+        shown,
     );
     let render = bound.render_rows_observed(0..HEIGHT, &|| bar.inc(1));
     bar.finish_and_clear();
@@ -249,7 +251,7 @@ impl JackAdapter {
     /// whole program.
     fn image(&self) -> Result<Vec<bool>, ImplError> {
         if self.bound.has_pixel() {
-            let render = render_with_bar(&self.bound).map_err(failed)?;
+            let render = render_with_bar(&self.bound, crate::progress::wanted()).map_err(failed)?;
             // A pixel whose computation trapped is never drawn: the Hack
             // screen starts white.
             return Ok(render
@@ -338,6 +340,67 @@ impl Implementation for JackAdapter {
 
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
         batch.iter().map(|v| self.answer(v)).collect()
+    }
+
+    /// Every pixel through the pixel statements, with the VM instructions
+    /// each took; `None` when only the whole program is bound.
+    fn render_image(&self, progress: bool) -> Option<Result<ImageAnswers, ImplError>> {
+        if !self.bound.has_pixel() {
+            return None;
+        }
+        Some(
+            render_with_bar(&self.bound, progress)
+                .map_err(failed)
+                .map(|render| ImageAnswers {
+                    costs: Some(render.pixels.iter().map(|p| p.instructions).collect()),
+                    pixels: render
+                        .pixels
+                        .into_iter()
+                        .map(|p| {
+                            p.outcome.map(|s| Answer::Pixel {
+                                shade: Num::F316(s.value),
+                                white: s.white,
+                            })
+                        })
+                        .collect(),
+                }),
+        )
+    }
+
+    /// The Hack screen after the whole program ran from its entry with the
+    /// bound keys; `None` when the bindings do not say how to run it.
+    fn program_screen(
+        &self,
+        expected_cost: Option<u64>,
+        progress: bool,
+    ) -> Option<Result<Bitmap, ImplError>> {
+        if !self.bound.captures_pixels() {
+            return None;
+        }
+        let bar = crate::progress::show(
+            crate::progress::instructions(expected_cost, "Main.main"),
+            progress,
+        );
+        let run = self
+            .bound
+            .run_whole(&[], WHOLE_BUDGET, &mut |n| bar.set_position(n));
+        bar.finish_and_clear();
+        Some(match run {
+            Ok(WholeRun {
+                outcome: Outcome::Value(()),
+                screen,
+                ..
+            }) => Ok(Bitmap {
+                width: WIDTH,
+                height: HEIGHT,
+                white: screen,
+            }),
+            Ok(other) => Err(ImplError::Failed(format!(
+                "the whole program did not finish: {}",
+                other.outcome.map(|_| "screen")
+            ))),
+            Err(e) => Err(failed(e)),
+        })
     }
 
     fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {

@@ -1,6 +1,5 @@
 //! Reports: the model of what a run found ([`model`]), its images
-//! ([`images`]) and charts ([`plot`]), the numerical-stability rows
-//! ([`stability`]), the HTML page ([`html`]), the run history ([`history`])
+//! ([`images`]) and charts ([`plot`]), the HTML page ([`html`]), the run history ([`history`])
 //! and atomic writing ([`atomic`]). [`ReportBuilder`]
 //! ties them together: it writes image files into a staging directory as
 //! results arrive and swaps the finished report into place.
@@ -12,8 +11,8 @@ pub mod images;
 pub mod meta;
 pub mod model;
 pub mod plot;
-pub mod stability;
 
+use crate::cast::RoleNames;
 use anyhow::{ensure, Context, Result};
 use images::{Grid, Palette, Scale};
 use model::*;
@@ -24,8 +23,6 @@ use std::path::{Path, PathBuf};
 pub const BIT_EXACT: &str = "bit-exact";
 /// Policy name of comparisons judged by error figures against an oracle.
 pub const ERROR_FIGURES: &str = "error figures";
-/// The implementation error figures are measured against.
-pub const ORACLE: &str = "ref-f64";
 /// Divergent pixels listed (and marked) per image pair.
 pub const LISTED_PIXELS: usize = 200;
 /// Decades below the largest error that a heat map shows.
@@ -60,6 +57,9 @@ pub struct ReportBuilder {
     stage: atomic::StagingDir,
     report: Report,
     renders: BTreeMap<String, RenderImages>,
+    /// Who the error figures are taken against, and whose variants the
+    /// speed plot's cheapest spec-identical render is looked for among.
+    roles: RoleNames,
 }
 
 /// File-name-safe form of a label (`ref-f316+newton-1` -> `ref-f316_newton-1`).
@@ -78,13 +78,14 @@ fn file_stem(label: &str) -> String {
 
 impl ReportBuilder {
     /// Start a report that will replace `target` when finished.
-    pub fn new(target: &Path, meta: RunMeta) -> Result<Self> {
+    pub fn new(target: &Path, meta: RunMeta, roles: RoleNames) -> Result<Self> {
         let stage = atomic::StagingDir::new(target)?;
         std::fs::create_dir(stage.path().join("images")).context("creating images/")?;
         Ok(ReportBuilder {
             stage,
             report: Report::new(meta),
             renders: BTreeMap::new(),
+            roles,
         })
     }
 
@@ -159,10 +160,13 @@ impl ReportBuilder {
     /// shades) and the list of divergent pixels; `localizer` names the
     /// first divergent operation of each listed pixel or says why it
     /// cannot, `repro(x, y)` gives the command that reproduces a pixel.
+    /// `bit_exact`: the two must agree bit for bit (a differing pixel is a
+    /// divergence that fails the run, [`Report::bit_exact_image_divergences`]).
     pub fn add_pair(
         &mut self,
         a: &str,
         b: &str,
+        bit_exact: bool,
         localizer: PixelLocalizer<'_>,
         repro: impl Fn(usize, usize) -> String,
     ) -> Result<&ImagePair> {
@@ -235,11 +239,12 @@ impl ReportBuilder {
             divergences,
             localization,
             unlisted: differing.len().saturating_sub(LISTED_PIXELS) as u64,
+            bit_exact,
         });
         Ok(self.report.image_pairs.last().expect("just pushed"))
     }
 
-    /// The speed point of a render against the [`ORACLE`] render (which
+    /// The speed point of a render against the oracle's render (which
     /// must have been added, with shades): time per pixel, VM instructions
     /// per pixel, shade errors and dithered flips.
     pub fn speed_point(&self, label: &str) -> Result<SpeedPoint> {
@@ -249,10 +254,13 @@ impl ReportBuilder {
             .iter()
             .find(|r| r.label == label)
             .with_context(|| format!("no render named {label}"))?;
-        let (r, oracle) = (self.render_of(label)?, self.render_of(ORACLE)?);
+        let oracle_label = self.roles.oracle.as_str();
+        let (r, oracle) = (self.render_of(label)?, self.render_of(oracle_label)?);
         let flips = r.bits.positions_where(&oracle.bits, |p, q| p != q)?.len() as u64;
         let errors = match (&r.shades, &oracle.shades) {
-            (Some(s), Some(o)) if label != ORACLE => Some(mean_max(images::abs_diff(s, o)?.data())),
+            (Some(s), Some(o)) if label != oracle_label => {
+                Some(mean_max(images::abs_diff(s, o)?.data()))
+            }
             _ => None,
         };
         let pixels = render.pixels.max(1) as f64;
@@ -301,7 +309,7 @@ impl ReportBuilder {
     /// Returns the report directory.
     pub fn finish(mut self, history_path: &Path) -> Result<PathBuf> {
         let se = &mut self.report.speed_error;
-        se.cheapest_spec_identical = cheapest_spec_identical(&se.points);
+        se.cheapest_spec_identical = cheapest_spec_identical(&se.points, &self.roles.tracer);
         if let Some(svg) = plot::speed_error(&self.report.speed_error.points)? {
             self.report.speed_error.plot = self.write_text("speed-error.svg", &svg)?;
         }
@@ -340,14 +348,15 @@ fn percentiles<const N: usize>(values: &[f64], qs: [f64; N]) -> [f64; N] {
     })
 }
 
-/// The cheapest Float316 reference variant (label `ref-f316` or
-/// `ref-f316+VARIANT`, as the cast labels them) whose dithered
-/// image equals the spec's, with its cost.
-pub fn cheapest_spec_identical(points: &[SpeedPoint]) -> Option<String> {
+/// The cheapest of the tracer and its variants (label `TRACER` or
+/// `TRACER+VARIANT`, as the cast labels them) whose dithered image equals
+/// the spec's, with its cost.
+pub fn cheapest_spec_identical(points: &[SpeedPoint], tracer: &str) -> Option<String> {
+    let variant_prefix = format!("{tracer}+");
     points
         .iter()
         .filter(|p| p.identical_to_spec == Some(true))
-        .filter(|p| p.label == "ref-f316" || p.label.starts_with("ref-f316+"))
+        .filter(|p| p.label == tracer || p.label.starts_with(&variant_prefix))
         .min_by(|a, b| a.time_per_pixel_s.total_cmp(&b.time_per_pixel_s))
         .map(|p| {
             format!(

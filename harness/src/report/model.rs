@@ -193,6 +193,10 @@ pub struct ImagePair {
     pub localization: String,
     /// How many divergent pixels are not listed.
     pub unlisted: u64,
+    /// Both renders come from implementations that must agree bit for
+    /// bit: a differing pixel or shade is a divergence.
+    #[serde(default)]
+    pub bit_exact: bool,
 }
 
 /// A heat map image and its colour bar.
@@ -390,6 +394,16 @@ impl Report {
             .iter()
             .filter(|c| c.policy == crate::report::BIT_EXACT)
             .map(|c| c.divergences)
+            .sum()
+    }
+
+    /// Differing pixels or shades (whichever is more) over the image pairs
+    /// that must agree bit for bit.
+    pub fn bit_exact_image_divergences(&self) -> u64 {
+        self.image_pairs
+            .iter()
+            .filter(|p| p.bit_exact)
+            .map(|p| p.differing_pixels.max(p.differing_shades.unwrap_or(0)))
             .sum()
     }
 

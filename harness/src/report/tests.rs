@@ -19,6 +19,7 @@ fn images(bits: &[u8], shades: Option<&[f64]>) -> RenderImages {
     }
 }
 
+const ORACLE: &str = "ref-f64";
 const ORACLE_SHADES: [f64; 8] = [0.1, 0.9, 0.2, 0.8, 0.3, 0.7, 0.4, 0.6];
 
 fn builder(target: &Path) -> ReportBuilder {
@@ -28,6 +29,7 @@ fn builder(target: &Path) -> ReportBuilder {
             started_at: "2026-11-21T00:00:00Z".into(),
             ..RunMeta::default()
         },
+        crate::cast::Cast::builtin().role_names(),
     )
     .unwrap();
     b.add_render(
@@ -63,6 +65,7 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
         .add_pair(
             ORACLE,
             "ref-f316",
+            false,
             PixelLocalizer::Traced {
                 method: "by hand".into(),
                 first_op: Box::new(|x, y| format!("op at {x},{y}")),
@@ -94,7 +97,9 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
         assert!(b.stage.path().join(rel).is_file(), "{rel} not written");
     }
     let no_shades = b
-        .add_pair("ref-f316", "jack", impossible(), |_, _| String::new())
+        .add_pair("ref-f316", "jack", false, impossible(), |_, _| {
+            String::new()
+        })
         .unwrap();
     assert_eq!(
         (no_shades.differing_pixels, no_shades.differing_shades),
@@ -104,7 +109,9 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
     assert_eq!(no_shades.localization, "not localizable: no traces");
     assert!(no_shades.heat.is_none());
     assert!(b
-        .add_pair("ref-f316", "gpu-f32", impossible(), |_, _| String::new())
+        .add_pair("ref-f316", "gpu-f32", false, impossible(), |_, _| {
+            String::new()
+        })
         .is_err());
 }
 
@@ -118,7 +125,7 @@ fn identical_shades_give_no_heat_map() {
     )
     .unwrap();
     let pair = b
-        .add_pair(ORACLE, "ref-f32", impossible(), |_, _| String::new())
+        .add_pair(ORACLE, "ref-f32", false, impossible(), |_, _| String::new())
         .unwrap();
     assert_eq!((pair.differing_pixels, pair.differing_shades), (0, Some(0)));
     assert!(pair.heat.is_none() && pair.divergences.is_empty());
@@ -176,14 +183,14 @@ fn cheapest_variant_is_the_fastest_identical_float316_reference() {
         p("ref-f64", 1e-8, Some(true)),
     ];
     assert_eq!(
-        cheapest_spec_identical(&points).as_deref(),
+        cheapest_spec_identical(&points, "ref-f316").as_deref(),
         Some("ref-f316+mul-low-product (2.0 µs per pixel)")
     );
     // The labels are those the nightly renders its variants under.
     assert!(crate::cast::Cast::builtin()
         .open("ref-f316+mul-low-product")
         .is_ok());
-    assert_eq!(cheapest_spec_identical(&points[1..2]), None);
+    assert_eq!(cheapest_spec_identical(&points[1..2], "ref-f316"), None);
 }
 
 #[test]
@@ -193,7 +200,7 @@ fn finish_writes_everything_then_swaps_and_appends_history() {
     let history = history::path_for(&target);
     for run in 0..2 {
         let mut b = builder(&target);
-        b.add_pair(ORACLE, "ref-f316", impossible(), |x, y| {
+        b.add_pair(ORACLE, "ref-f316", false, impossible(), |x, y| {
             format!("harness diff ref-f64 ref-f316 --vectors repro/pixel-{x}-{y}.json")
         })
         .unwrap();

@@ -2,21 +2,27 @@
 //! vector set (the hard-case catalogue of the op vectors, the scene's hard
 //! places of the SDF and pixel sets), how each implementation's answers
 //! ended (value, `Sys.error`, hang, out of domain), how many differ from
-//! `ref-f316` bit for bit, and the worst error against `ref-f64`.
+//! the tracer (`ref-f316`) bit for bit, and the worst error against the
+//! oracle (`ref-f64`).
 //! Built from answers and comparisons the runner already produced: nothing
 //! is evaluated here.
 
-use super::model::{OutcomeTally, StabilityRow, WorstError};
-use super::ORACLE;
 use crate::compare::{answer_error, Comparison, PointError, Policy};
 use crate::implementation::{Answer, Numbers};
+use crate::report::model::{OutcomeTally, StabilityRow, WorstError};
 use crate::runner::ImplRun;
 use common::{Outcome, OutcomeKind};
 use std::collections::BTreeMap;
 use vectors::{Level, Vector, VectorSet};
 
-/// The implementation bit-exact divergences are counted against.
-pub const BIT_EXACT_BASE: &str = "ref-f316";
+/// Whom the rows measure against.
+#[derive(Clone, Copy, Debug)]
+pub struct Bases<'a> {
+    /// The f64 oracle of the worst errors.
+    pub oracle: &'a str,
+    /// The implementation bit-exact divergences are counted against.
+    pub bit_exact: &'a str,
+}
 
 /// The categories of a set, in order of first appearance.
 fn categories(set: &VectorSet) -> Vec<&str> {
@@ -29,19 +35,18 @@ fn categories(set: &VectorSet) -> Vec<&str> {
     seen
 }
 
-/// Vectors of `category` on which `label` differs from [`BIT_EXACT_BASE`],
-/// from the bit-exact comparisons of the runner (their groups count every
+/// Vectors of `category` on which `label` differs from `base`, from the
+/// bit-exact comparisons of the runner (their groups count every
 /// divergence, kept or not).
-fn diverging(label: &str, category: &str, exact: &[Comparison]) -> Option<u64> {
-    if label == BIT_EXACT_BASE {
+fn diverging(base: &str, label: &str, category: &str, exact: &[Comparison]) -> Option<u64> {
+    if label == base {
         return Some(0);
     }
     exact
         .iter()
         .find(|c| {
             c.policy == Policy::Exact
-                && ((c.a == BIT_EXACT_BASE && c.b == label)
-                    || (c.b == BIT_EXACT_BASE && c.a == label))
+                && ((c.a == base && c.b == label) || (c.b == base && c.a == label))
         })
         .map(|c| {
             c.groups
@@ -68,15 +73,17 @@ fn tally<'a>(answers: impl Iterator<Item = &'a Outcome<Answer>>) -> OutcomeTally
 /// The stability rows of one set. `runs` are every implementation's
 /// answers to `set` (those without answers are left out: the runner's
 /// report lists them); `exact` are the runner's comparisons of the Float316
-/// group with `ref-f316`; `repro(implementation, vector)` gives a command
+/// group with `bases.bit_exact`; `repro(implementation, vector)` gives a command
 /// that reproduces a worst error. Sets of the image level have no
 /// categories to speak of and give no rows.
 pub fn rows(
     set: &VectorSet,
     runs: &[ImplRun],
     exact: &[Comparison],
+    bases: Bases<'_>,
     mut repro: impl FnMut(&str, &Vector) -> Option<String>,
 ) -> Vec<StabilityRow> {
+    let oracle_label = bases.oracle;
     if set.level == Level::Image {
         return Vec::new();
     }
@@ -87,7 +94,7 @@ pub fn rows(
         .collect();
     let oracle = answered
         .iter()
-        .find(|(r, _)| r.label == ORACLE && r.numbers == Numbers::F64)
+        .find(|(r, _)| r.label == oracle_label && r.numbers == Numbers::F64)
         .map(|(_, a)| *a);
     categories(set)
         .into_iter()
@@ -101,11 +108,11 @@ pub fn rows(
             for (k, (run, answers)) in answered.iter().enumerate() {
                 let mut t = tally(indices.iter().map(|&i| &answers[i]));
                 t.diverging = match run.numbers {
-                    Numbers::Float316 => diverging(&run.label, category, exact),
+                    Numbers::Float316 => diverging(bases.bit_exact, &run.label, category, exact),
                     Numbers::F64 | Numbers::F32 | Numbers::Ieee { .. } => None,
                 };
                 outcomes.insert(run.label.clone(), t);
-                let Some(oracle) = oracle.filter(|_| run.label != ORACLE) else {
+                let Some(oracle) = oracle.filter(|_| run.label != oracle_label) else {
                     continue;
                 };
                 for &i in &indices {
@@ -134,7 +141,7 @@ pub fn rows(
                     implementation: run.label.clone(),
                     case: vector.to_string(),
                     vector: format!("{} #{i}", set.name),
-                    answers: format!("{} vs {ORACLE} {oracle_answer}", answers[i]),
+                    answers: format!("{} vs {oracle_label} {oracle_answer}", answers[i]),
                     abs: e.abs,
                     rel: e.rel,
                     repro: repro(&run.label, vector),
@@ -249,7 +256,11 @@ mod tests {
         ];
         let exact = compare_runs(&set, &runs[..2]);
         let mut reproduced = Vec::new();
-        let rows = rows(&set, &runs, &exact, |imp, v| {
+        let bases = Bases {
+            oracle: "ref-f64",
+            bit_exact: "ref-f316",
+        };
+        let rows = rows(&set, &runs, &exact, bases, |imp, v| {
             reproduced.push((imp.to_string(), v.to_string()));
             Some(format!("repro {imp}"))
         });

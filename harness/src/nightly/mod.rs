@@ -1,0 +1,282 @@
+//! The nightly job: a list of typed steps ([`steps::all`]) run in order
+//! over the cast. Each step reads what the steps before it left in the
+//! [`Night`] (the opened implementations, the renders) and adds its
+//! results to the report being built; the [`Summary`] decides the exit
+//! status from the report: every bit-exact divergence (at any level, and
+//! between the images of Float316 implementations, a program's own screen
+//! included), every render that failed and a failed self-test fail the
+//! night.
+//!
+//! # Adding a step
+//! Write a unit struct implementing [`steps::Step`] (its `key` selects it
+//! with `--steps`, its `name` is its line in the log and the report's
+//! timings, `run` does the work through the [`Night`]) and add it to
+//! [`steps::all`] where it belongs in the order. A step that can find a
+//! failure must make it count in [`Summary`]: a bit-exact comparison row,
+//! a gated image pair, a failed render, or a new field here.
+
+mod pairs;
+pub mod steps;
+
+use crate::cast::{Cast, Entry};
+use crate::implementation::Implementation;
+use crate::report::model::{RunMeta, StepTiming};
+use crate::report::ReportBuilder;
+use anyhow::Result;
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// What the night is asked to do.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// The report directory (replaced atomically when the run completes).
+    pub out: PathBuf,
+    /// The exhaustive unary checks give a slow implementation (an
+    /// emulator) every N-th input.
+    pub slow_unary_step: usize,
+    /// The steps to run, by key (`None`: all).
+    pub steps: Option<Vec<String>>,
+    /// The implementations to open, by name (`None`: the whole cast); the
+    /// oracle and the tracer are always opened.
+    pub implementations: Option<Vec<String>>,
+    /// Progress bars on a terminal.
+    pub progress: bool,
+}
+
+/// An implementation of the cast, opened for the night.
+pub struct Opened<'c> {
+    pub entry: &'c Entry,
+    pub imp: Box<dyn Implementation>,
+    /// Seconds it took to open.
+    pub open_s: f64,
+}
+
+/// A render in the report, and what it may be compared with.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rendered {
+    pub label: String,
+    /// It belongs to the bit-exact group (a Float316 entry with no variant
+    /// in its label): a difference from another such render fails the
+    /// night.
+    pub bit_exact: bool,
+    /// For the screen of a whole-program run, the label of the
+    /// implementation whose entry points answer for its pixels.
+    pub screen_of: Option<String>,
+}
+
+/// What the steps share.
+pub struct Night<'c> {
+    pub cast: &'c Cast,
+    pub options: &'c Options,
+    /// The implementations that opened, in the cast's order.
+    pub opened: Vec<Opened<'c>>,
+    /// Variants opened by a step (the tracer's precision variants).
+    pub variants: Vec<Box<dyn Implementation>>,
+    pub builder: ReportBuilder,
+    pub rendered: Vec<Rendered>,
+    /// Renders that failed, one line each (also problems of the report).
+    pub failed_renders: Vec<String>,
+}
+
+impl<'c> Night<'c> {
+    /// The opened implementation or variant labelled `label`.
+    pub fn find(&self, label: &str) -> Option<&dyn Implementation> {
+        lookup(&self.opened, &self.variants, label)
+    }
+
+    /// The opened ones among `names`, in that order.
+    pub fn opened_of(&self, names: &[&str]) -> Vec<&dyn Implementation> {
+        names.iter().filter_map(|n| self.find(n)).collect()
+    }
+
+    /// The names of the opened entries that satisfy `which`.
+    pub fn names_where(&self, which: impl Fn(&Entry) -> bool) -> Vec<&'c str> {
+        self.opened
+            .iter()
+            .filter(|o| which(o.entry))
+            .map(|o| o.entry.name.as_str())
+            .collect()
+    }
+
+    /// Record a problem of the report.
+    pub fn problem(&mut self, line: String) {
+        self.builder.report_mut().problems.push(line);
+    }
+}
+
+/// The implementation labelled `label` among `opened` and `variants`.
+fn lookup<'a>(
+    opened: &'a [Opened<'_>],
+    variants: &'a [Box<dyn Implementation>],
+    label: &str,
+) -> Option<&'a dyn Implementation> {
+    opened
+        .iter()
+        .map(|o| o.imp.as_ref())
+        .chain(variants.iter().map(|v| v.as_ref()))
+        .find(|i| i.label() == label)
+}
+
+/// How the night ended.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Summary {
+    /// Divergences of bit-exact level comparisons.
+    pub bit_exact: u64,
+    /// Differing pixels between the images of bit-exact implementations.
+    pub image_divergences: u64,
+    /// Renders that failed.
+    pub failed_renders: usize,
+    /// Whether the self-test passed (`None`: not run).
+    pub selftest: Option<bool>,
+    pub problems: usize,
+    pub duration_s: f64,
+}
+
+impl Summary {
+    /// Whether the night passed: no bit-exact divergence at any level or in
+    /// any image, no failed render, no failed self-test.
+    pub fn passed(&self) -> bool {
+        self.bit_exact == 0
+            && self.image_divergences == 0
+            && self.failed_renders == 0
+            && self.selftest != Some(false)
+    }
+
+    /// The one line printed at the end.
+    pub fn line(&self) -> String {
+        format!(
+            "{} bit-exact divergences, {} differing pixels between bit-exact images, {} failed renders, self-test {}, {} problems, {:.0} s",
+            self.bit_exact,
+            self.image_divergences,
+            self.failed_renders,
+            match self.selftest {
+                Some(true) => "passed",
+                Some(false) => "FAILED",
+                None => "not run",
+            },
+            self.problems,
+            self.duration_s
+        )
+    }
+}
+
+/// Times the steps of the run.
+struct Timer {
+    list: Vec<StepTiming>,
+    last: Instant,
+}
+
+impl Timer {
+    /// Record `step` as finished now, and say so on standard error (the
+    /// long steps have progress bars; this line is the log of the run).
+    fn done(&mut self, step: &str) {
+        let seconds = self.last.elapsed().as_secs_f64();
+        eprintln!("nightly: {step}: {seconds:.1} s");
+        self.list.push(StepTiming {
+            step: step.into(),
+            seconds,
+        });
+        self.last = Instant::now();
+    }
+}
+
+/// Run the night's steps over the cast, write the report and the history
+/// line; returns the summary and the report directory.
+pub fn run(cast: &Cast, options: &Options) -> Result<(Summary, PathBuf)> {
+    let started = Instant::now();
+    let mut timer = Timer {
+        list: Vec::new(),
+        last: Instant::now(),
+    };
+    let builder = ReportBuilder::new(&options.out, RunMeta::collect(), cast.role_names())?;
+    let mut night = Night {
+        cast,
+        options,
+        opened: Vec::new(),
+        variants: Vec::new(),
+        builder,
+        rendered: Vec::new(),
+        failed_renders: Vec::new(),
+    };
+    for step in steps::all() {
+        let wanted = options
+            .steps
+            .as_ref()
+            .is_none_or(|keys| keys.iter().any(|k| k == step.key()));
+        if step.always() || wanted {
+            step.run(&mut night)?;
+            timer.done(&step.name());
+        }
+    }
+    let failed_renders = night.failed_renders.len();
+    let report = night.builder.report_mut();
+    let mut summary = Summary {
+        bit_exact: report.bit_exact_divergences(),
+        image_divergences: report.bit_exact_image_divergences(),
+        failed_renders,
+        selftest: report.selftest.as_ref().map(|s| s.passed),
+        problems: report.problems.len(),
+        duration_s: 0.0,
+    };
+    timer.done("summary");
+    report.meta.steps = timer.list;
+    report.meta.duration_s = started.elapsed().as_secs_f64();
+    summary.duration_s = report.meta.duration_s;
+    let history = options
+        .out
+        .parent()
+        .unwrap_or_else(|| std::path::Path::new("."))
+        .join("history.jsonl");
+    let dir = night.builder.finish(&history)?;
+    Ok((summary, dir))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn summary() -> Summary {
+        Summary {
+            bit_exact: 0,
+            image_divergences: 0,
+            failed_renders: 0,
+            selftest: Some(true),
+            problems: 3,
+            duration_s: 1.0,
+        }
+    }
+
+    #[test]
+    fn a_bit_exact_image_divergence_or_a_failed_render_fails_the_night() {
+        assert!(
+            summary().passed(),
+            "problems alone (an unavailable GPU) do not fail it"
+        );
+        let broken = [
+            Summary {
+                image_divergences: 1,
+                ..summary()
+            },
+            Summary {
+                failed_renders: 1,
+                ..summary()
+            },
+            Summary {
+                bit_exact: 1,
+                ..summary()
+            },
+            Summary {
+                selftest: Some(false),
+                ..summary()
+            },
+        ];
+        for s in broken {
+            assert!(!s.passed(), "{}", s.line());
+        }
+        assert!(Summary {
+            selftest: None,
+            ..summary()
+        }
+        .passed());
+    }
+}

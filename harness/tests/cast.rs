@@ -1,0 +1,267 @@
+//! An implementation declared only in a project file is used by every
+//! command, with no change to the harness's code: `harness.toml` in the
+//! current directory declares a clean copy of ref-f316 (`my-port`), one
+//! with a one-operation fault (`my-bad`: mul keeps the low product) and an
+//! f32 one (`my-f32`); each is found by cast, diff, localize, check, bench
+//! and nightly, in the group its number type decides.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+const PROJECT: &str = r#"
+[impl.my-port]
+kind = "reference"
+numbers = "float316"
+
+[impl.my-bad]
+kind = "reference"
+numbers = "float316"
+variants = ["mul-keep-low"]
+
+[impl.my-f32]
+kind = "reference"
+numbers = "f32"
+"#;
+
+/// The harness run in `dir`, where the project file lies.
+fn harness(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_harness"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn project() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("harness.toml"), PROJECT).unwrap();
+    dir
+}
+
+#[test]
+fn cast_lists_the_declared_implementations_with_their_group() {
+    let dir = project();
+    let o = harness(dir.path(), &["cast", "--json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let list: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let find = |name: &str| {
+        list.as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["name"] == name)
+            .unwrap_or_else(|| panic!("{name} in {list}"))
+            .clone()
+    };
+    let port = find("my-port");
+    assert_eq!(port["kind"], "reference");
+    assert_eq!(port["numbers"], "float316");
+    assert_eq!(port["bit_exact_group"], true);
+    assert_eq!(port["available"], true);
+    assert_eq!(port["origin"], "harness.toml:2");
+    assert_eq!(find("my-f32")["bit_exact_group"], false);
+    assert_eq!(find("ref-f64")["oracle"], true);
+    // --cast names another file; a malformed one names file, line, field.
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "[impl.x]\nkind = \"reference\"\nnumbers = 64\n").unwrap();
+    let o = harness(dir.path(), &["--cast", "bad.toml", "cast"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("bad.toml:3:11: impl.x.numbers: expected a string, found integer"),
+        "{}",
+        text(&o)
+    );
+    // Under check, an unreadable project file is undecidable.
+    let o = harness(
+        dir.path(),
+        &[
+            "--cast",
+            "bad.toml",
+            "check",
+            "--no-divergence",
+            "ref-f316",
+            "my-port",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(125), "{}", text(&o));
+}
+
+#[test]
+fn diff_localize_and_check_use_a_declared_implementation() {
+    let dir = project();
+    let d = dir.path();
+    let o = harness(d, &["diff", "ref-f316", "my-port", "--level", "ops"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let o = harness(d, &["diff", "ref-f316", "my-bad", "--level", "ops"]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let out = text(&o);
+    let command = out
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("localize: harness "))
+        .unwrap_or_else(|| panic!("a localize command in {out}"));
+    assert!(
+        command.starts_with("localize ref-f316 my-bad --op mul "),
+        "{command}"
+    );
+    let args: Vec<&str> = command.split_whitespace().collect();
+    let o = harness(d, &args);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("origin: mul("), "{}", text(&o));
+    let o = harness(
+        d,
+        &[
+            "check",
+            "--no-divergence",
+            "ref-f316",
+            "my-port",
+            "--level",
+            "ops",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let o = harness(
+        d,
+        &[
+            "check",
+            "--no-divergence",
+            "ref-f316",
+            "my-bad",
+            "--level",
+            "ops",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(
+        text(&o).starts_with("bad: ref-f316 and my-bad diverge"),
+        "{}",
+        text(&o)
+    );
+    // A variant a declared entry does not take is refused.
+    let o = harness(
+        d,
+        &["diff", "ref-f316", "my-f32+newton-3", "--level", "ops"],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("my-f32 has no variant or fault `newton-3`"),
+        "{}",
+        text(&o)
+    );
+}
+
+#[test]
+fn bench_renders_a_declared_implementation() {
+    let dir = project();
+    let o = harness(dir.path(), &["bench", "my-f32"]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let row = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .find(|l| l.starts_with("my-f32 "))
+        .map(String::from)
+        .unwrap_or_else(|| panic!("a my-f32 row in {}", text(&o)));
+    // ref-f32 gives the same dithered image as ref-f64: 0 flips.
+    assert!(row.trim_end().ends_with(" 0"), "{row}");
+}
+
+#[test]
+fn the_nightly_compares_declared_implementations_in_their_group_and_fails_on_a_bad_image() {
+    let dir = project();
+    let out = dir.path().join("reports/nightly");
+    let o = harness(
+        dir.path(),
+        &[
+            "nightly",
+            "--impls",
+            "my-port,my-bad,my-f32",
+            "--steps",
+            "levels,renders,pairs",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let comparison = |level: &str, b: &str| {
+        report["comparisons"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["level"] == level && c["b"] == b)
+            .unwrap_or_else(|| panic!("a {level} comparison with {b}"))
+            .clone()
+    };
+    let port = comparison("ops", "my-port");
+    assert_eq!(
+        (port["a"].as_str(), port["policy"].as_str()),
+        (Some("ref-f316"), Some("bit-exact"))
+    );
+    assert_eq!(port["divergences"], 0);
+    let bad = comparison("ops", "my-bad");
+    assert!(bad["divergences"].as_u64().unwrap() > 0, "{bad}");
+    // The float group is compared with the oracle by error figures (the
+    // subject first, the oracle second).
+    let f32 = report["comparisons"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["level"] == "sdf" && c["a"] == "my-f32")
+        .unwrap_or_else(|| panic!("an sdf comparison of my-f32"))
+        .clone();
+    assert_eq!(
+        (f32["b"].as_str(), f32["policy"].as_str()),
+        (Some("ref-f64"), Some("error figures"))
+    );
+    let pair = |b: &str| {
+        report["image_pairs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["a"] == "ref-f316" && p["b"] == b)
+            .unwrap_or_else(|| panic!("an image pair ref-f316 / {b}"))
+            .clone()
+    };
+    assert_eq!(pair("my-port")["bit_exact"], true);
+    assert_eq!(pair("my-port")["differing_pixels"], 0);
+    let bad = pair("my-bad");
+    assert_eq!(bad["bit_exact"], true);
+    assert!(bad["differing_shades"].as_u64().unwrap() > 0, "{bad}");
+    assert_eq!(pair("my-f32")["bit_exact"], false);
+    assert_eq!(pair("ref-f316+newton-3")["bit_exact"], false);
+    let line = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        line.contains("differing pixels between bit-exact images"),
+        "{line}"
+    );
+}
+
+#[test]
+fn the_nightly_passes_with_a_clean_declared_implementation() {
+    let dir = project();
+    let out = dir.path().join("reports/nightly");
+    let o = harness(
+        dir.path(),
+        &[
+            "nightly",
+            "--impls",
+            "my-port",
+            "--steps",
+            "levels,renders,pairs",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let line = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        line.contains("0 bit-exact divergences, 0 differing pixels between bit-exact images, 0 failed renders"),
+        "{line}"
+    );
+}
