@@ -23,7 +23,9 @@ pub enum Trap {
 
 /// A branch decision of the pipeline, as [`Engine::decide`] reports it.
 /// These are where two precisions' runs of one pixel can part.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum Decision {
     /// `union(a, b)`: `a` kept when `gt(b.sd, a.sd)`.

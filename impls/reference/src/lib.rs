@@ -31,6 +31,6 @@ pub use formulation::{Formulated, Formulation};
 pub use scene::{Camera, Floor, March, Scene, SceneError, Shading, Sphere, Torus};
 pub use settings::{Arith, Settings, UnknownVariant, Variant, VariantKind};
 pub use shadow::{
-    blame, candidate_sites, Blame, DecisionRecord, OutputValue, Sh, ShadowEngine, ShadowOp,
+    blame, candidate_sites, Blame, DecisionRecord, Follow, OutputValue, Sh, ShadowEngine, ShadowOp,
     ShadowOptions, ShadowOutput, ShadowRun, SiteKey,
 };

@@ -136,6 +136,19 @@ pub struct ShadowOptions {
     pub record_ops: bool,
     /// Flip this site's local errors (see the module documentation).
     pub flip: Option<SiteKey>,
+    /// Take another run's branches (see [`Follow`]).
+    pub follow: Option<Follow>,
+}
+
+/// Another run's decisions, to take its branches from position `from` on
+/// (counting from 0) while this run makes the same decisions (kind and
+/// full call path) at the same positions; once it does not, it goes its
+/// own way.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Follow {
+    pub from: usize,
+    /// Kind, full call path and branch of each decision of the other run.
+    pub decisions: Vec<(Decision, String, bool)>,
 }
 
 /// A frame of a full call path.
@@ -299,6 +312,8 @@ pub struct ShadowEngine<E> {
     paths: Paths,
     ops: Vec<ShadowOp>,
     decisions: Vec<DecisionRecord>,
+    /// Whether the run still makes the followed run's decisions.
+    in_step: bool,
 }
 
 /// The records of one shadowed run and what it produced.
@@ -356,6 +371,7 @@ impl<E: Formulated> ShadowEngine<E> {
             paths,
             ops,
             decisions: Vec::with_capacity(256),
+            in_step: true,
         }
     }
 
@@ -525,6 +541,20 @@ impl<E: Formulated> Engine for ShadowEngine<E> {
     }
 
     fn decide(&mut self, decision: Decision, operands: [Sh<E::N>; 2], taken: bool) -> bool {
+        let mut taken = taken;
+        if let (true, Some(follow)) = (self.in_step, &self.options.follow) {
+            let at = self.decisions.len();
+            match follow.decisions.get(at) {
+                Some((d, path, other))
+                    if *d == decision && *path == self.paths.full_path(self.paths.current().0) =>
+                {
+                    if at >= follow.from {
+                        taken = *other;
+                    }
+                }
+                _ => self.in_step = false,
+            }
+        }
         self.decisions.push(DecisionRecord {
             decision,
             path: self.paths.current().0,

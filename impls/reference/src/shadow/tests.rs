@@ -6,6 +6,7 @@ fn recorded() -> ShadowOptions {
     ShadowOptions {
         record_ops: true,
         flip: None,
+        follow: None,
     }
 }
 
@@ -111,6 +112,7 @@ fn a_cancellation_is_blamed_on_its_sub() {
         run_cancelling(&ShadowOptions {
             record_ops: false,
             flip: Some(site.clone()),
+            follow: None,
         })
     };
     let blamed = blame(&base, usize::MAX, flipped, error);
@@ -154,6 +156,7 @@ fn blaming_a_seed_pixel_reruns_each_site() {
             &ShadowOptions {
                 record_ops: false,
                 flip: Some(site.clone()),
+                follow: None,
             },
         )
     };
