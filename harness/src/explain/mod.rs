@@ -181,6 +181,10 @@ pub struct Explanation {
     pub error_of: String,
     /// The largest contributors to it, largest first.
     pub causes: Vec<RootCause>,
+    /// Sites flipped to find them, and how many of those runs could not
+    /// measure the error (they trapped, or no longer reached the decision).
+    pub sites: usize,
+    pub unmeasured: usize,
 }
 
 impl Explanation {
@@ -331,6 +335,8 @@ impl Explainer {
             error: 0.0,
             error_of: output.to_string(),
             causes: Vec::new(),
+            sites: 0,
+            unmeasured: 0,
         };
         let (Some(lo), Some(or)) = (base.output(output), oracle.output(output)) else {
             e.why = format!(
@@ -456,7 +462,10 @@ impl Explainer {
                 ..ShadowOptions::default()
             })
         };
-        e.causes = blame(&base, usize::MAX, flipped, error)
+        let blamed = blame(&base, usize::MAX, flipped, error);
+        e.unmeasured = blamed.iter().filter(|b| !b.measured).count();
+        e.sites = blamed.len();
+        e.causes = blamed
             .into_iter()
             .filter(|b| b.contribution > 0.0)
             .take(ROOT_CAUSES)
@@ -491,16 +500,22 @@ fn margin(decision: Decision, operands: [f64; 2], oracle: [f64; 2]) -> f64 {
 /// The error of the changed decision's margin in run `r` (low minus
 /// oracle), `None` when `r` no longer reaches that decision.
 fn margin_error(r: &ShadowRun, change: &DecisionChange, base: &ShadowRun) -> Option<f64> {
-    let d = if change.decision == Decision::Dither {
-        r.decisions.last()?
+    let here = if change.decision == Decision::Dither {
+        r.decisions.last()
     } else {
-        r.decisions.get(change.index)?
+        r.decisions.get(change.index)
     };
-    let same =
-        d.decision == change.decision && (std::ptr::eq(r, base) || r.path(d.path) == change.path);
-    if !same {
-        return None;
-    }
+    let same = |d: &&reference::DecisionRecord| {
+        d.decision == change.decision && (std::ptr::eq(r, base) || r.path(d.path) == change.path)
+    };
+    // Where the run's earlier decisions went otherwise, the same decision
+    // (kind and call path) further on or before.
+    let d = here.filter(same).or_else(|| {
+        r.decisions
+            .iter()
+            .filter(|d| d.decision == change.decision)
+            .find(|d| r.path(d.path) == change.path)
+    })?;
     let oracle = change.oracle.operands;
     Some(margin(d.decision, d.operands, oracle) - margin(d.decision, oracle, oracle))
 }

@@ -1,6 +1,6 @@
 //! An explanation as a few lines of text (`harness explain`).
 
-use super::{Class, DecisionChange, Explanation, RootCause, Summary, THRESHOLD_MARGIN};
+use super::{Class, DecisionChange, Explanation, RootCause, Summary};
 use reference::Decision;
 use std::fmt::Write;
 
@@ -117,15 +117,14 @@ pub fn story(e: &Explanation) -> String {
     if matches!(e.class, Class::Agree | Class::Unexplained) {
         return s;
     }
-    let _ = writeln!(
-        s,
-        "error of {}: {} (threshold margin {})",
-        e.error_of,
-        number(e.error),
-        number(THRESHOLD_MARGIN)
-    );
+    let _ = writeln!(s, "error of {}: {}", e.error_of, number(e.error));
     if e.causes.is_empty() {
-        s.push_str("root cause: no single site's rounding moves the error\n");
+        let _ = writeln!(
+            s,
+            "root cause: none of the {} sites, flipped alone, moves the error towards \
+             {oracle}'s ({} of those runs no longer reach what it is of)",
+            e.sites, e.unmeasured
+        );
     }
     for (i, c) in e.causes.iter().enumerate() {
         let _ = writeln!(s, "{}", cause_line(i, c));

@@ -397,10 +397,7 @@ fn shadow_sdf_of<E: Formulated>(
             ShadowEngine::<E>::from_triple(p[1])?,
             ShadowEngine::<E>::from_triple(p[2])?,
         );
-        let s = e.frame(
-            || format!("sdf({},{},{})", p[0].to_f64(), p[1].to_f64(), p[2].to_f64()),
-            |e| pipeline::sdf(e, k, point),
-        )?;
+        let s = e.frame(|| "sdf".into(), |e| pipeline::sdf(e, k, point))?;
         Ok(ShadowOutput {
             values: vec![output::<E>("sd", s.sd), output::<E>("col", s.col)],
             white: None,

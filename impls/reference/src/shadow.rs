@@ -611,6 +611,9 @@ pub struct Blame {
     pub contribution: f64,
     /// `contribution` over the error (1: all of it).
     pub share: f64,
+    /// Whether the flipped run's error could be measured (it may trap, or
+    /// no longer reach what the error is of).
+    pub measured: bool,
     /// The site's operation with the largest local error.
     pub worst: ShadowOp,
     /// Its full call path.
@@ -664,9 +667,10 @@ pub fn blame(
         .into_iter()
         .take(candidates)
         .map(|(site, worst, count)| {
-            let contribution =
-                error(&rerun(&site)).map_or(0.0, |after| direction * (before - after) / 2.0);
+            let after = error(&rerun(&site));
+            let contribution = after.map_or(0.0, |after| direction * (before - after) / 2.0);
             Blame {
+                measured: after.is_some(),
                 contribution,
                 share: if before == 0.0 {
                     0.0
