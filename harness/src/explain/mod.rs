@@ -662,7 +662,7 @@ impl Summary {
             .collect();
         causes.sort_by(|a, b| b.pixels.cmp(&a.pixels).then(a.site.cmp(&b.site)));
         let mut decisions: Vec<(Decision, u64)> = decisions.into_iter().collect();
-        decisions.sort_by(|a, b| b.1.cmp(&a.1));
+        decisions.sort_by_key(|d| std::cmp::Reverse(d.1));
         Summary {
             classes: Class::ALL
                 .iter()

@@ -58,7 +58,10 @@ fn every_divergent_seed_pixel_of_ref_f316_is_explained() {
         }
     }
     assert!(large > 0, "the seed has pixels off by more than 0.25");
-    assert!(without_cause <= 3, "{without_cause} pixels without a root cause");
+    assert!(
+        without_cause <= 3,
+        "{without_cause} pixels without a root cause"
+    );
 }
 
 /// ref-f32 differs from ref-f64 in no dithered bit: its largest shade
@@ -74,7 +77,11 @@ fn ref_f32_largest_shade_differences_are_explained() {
         eprintln!("{}", story(e));
         assert!(error > 0.0 && error <= previous, "{}", e.input);
         previous = error;
-        assert!(matches!(e.class, Class::Accumulated | Class::ControlFlow), "{}", story(e));
+        assert!(
+            matches!(e.class, Class::Accumulated | Class::ControlFlow),
+            "{}",
+            story(e)
+        );
         assert!(!e.causes.is_empty(), "{}", story(e));
     }
 }
@@ -120,9 +127,14 @@ fn the_story_names_class_decision_and_root_cause() {
     let d = e.decision.as_ref().unwrap();
     assert_eq!((d.decision, d.step), (Decision::MarchHit, Some(19)));
     assert!(text.contains("class: control-flow divergence"), "{text}");
-    assert!(text.contains("decision: march-hit at pixel(106,93) > march step 19"), "{text}");
+    assert!(
+        text.contains("decision: march-hit at pixel(106,93) > march step 19"),
+        "{text}"
+    );
     assert!(text.contains("root cause: "), "{text}");
-    assert!(e.one_line().starts_with("control-flow divergence at march-hit"));
+    assert!(e
+        .one_line()
+        .starts_with("control-flow divergence at march-hit"));
 }
 
 /// The explanation of a Float316 implementation is ref-f316's, and holds
@@ -132,7 +144,10 @@ fn an_explanation_holds_only_where_the_implementation_agrees() {
     let cast = Cast::builtin();
     let spec = cast.open("ref-f316").unwrap();
     let faulty = cast.open("ref-f316+mul-keep-low").unwrap();
-    assert_eq!(reference_label(faulty.as_ref()).unwrap(), "ref-f316+mul-keep-low");
+    assert_eq!(
+        reference_label(faulty.as_ref()).unwrap(),
+        "ref-f316+mul-keep-low"
+    );
     let f64 = cast.open("ref-f64").unwrap();
     assert!(reference_label(f64.as_ref()).is_err());
     let pixel = |x, y| {
@@ -144,7 +159,9 @@ fn an_explanation_holds_only_where_the_implementation_agrees() {
     };
     // Row 87 has pixels the fault flips.
     let row: Vec<vectors::Vector> = (0..512).map(|x| pixel(x, 87)).collect();
-    let why = holds_for(faulty.as_ref(), spec.as_ref(), &row).unwrap().unwrap();
+    let why = holds_for(faulty.as_ref(), spec.as_ref(), &row)
+        .unwrap()
+        .unwrap();
     assert!(why.contains("does not agree with ref-f316"), "{why}");
     assert_eq!(holds_for(spec.as_ref(), spec.as_ref(), &row).unwrap(), None);
 }
@@ -154,5 +171,10 @@ fn an_sdf_query_is_explained() {
     let p = [1.5, 0.3, 1.0].map(|x| F316::from_f64_truncating(x).unwrap());
     let e = Explainer::new("ref-f316").unwrap().point(p);
     assert_eq!(e.class, Class::Accumulated, "{}", story(&e));
-    assert_eq!(e.causes[0].site.path, "sdf > scene > torus", "{}", story(&e));
+    assert_eq!(
+        e.causes[0].site.path,
+        "sdf > scene > torus",
+        "{}",
+        story(&e)
+    );
 }

@@ -426,6 +426,9 @@ fn pairs(h: &mut String, r: &Report) {
             );
         }
         h.push_str("</div>");
+        if let Some(e) = &p.explanation {
+            explanation(h, e);
+        }
         if !p.divergences.is_empty() {
             let _ = write!(
                 h,
@@ -446,6 +449,7 @@ fn pairs(h: &mut String, r: &Report) {
                     td(esc(d
                         .first_op
                         .as_deref()
+                        .or(d.explained.as_deref())
                         .unwrap_or("not localizable (see above)"))),
                     td_code(&d.repro),
                 ];
@@ -460,6 +464,75 @@ fn pairs(h: &mut String, r: &Report) {
         h.push_str("</details>\n");
     }
     h.push_str("</section>\n");
+}
+
+/// Why a lower precision differs from the oracle: classes, decisions,
+/// root causes and the class map.
+fn explanation(h: &mut String, e: &PairExplanation) {
+    let _ = write!(
+        h,
+        "<h4>Why they differ</h4><p>Explained by <code>{}</code>: {}, in {} s; {}.</p><div class=figs>",
+        esc(&e.explained_by),
+        esc(&e.inputs),
+        short_number(e.seconds),
+        esc(&e.holds)
+    );
+    table_head(h, ["class", "pixels"]);
+    for c in &e.classes {
+        row(h, &[td(esc(&c.name)), td_n(c.count)]);
+    }
+    for d in &e.decisions {
+        row(
+            h,
+            &[
+                td(format!("&nbsp;&nbsp;at {}", esc(&d.name))),
+                td_n(d.count),
+            ],
+        );
+    }
+    h.push_str("</table>");
+    if !e.class_map.is_empty() {
+        let key: Vec<String> = e
+            .colours
+            .iter()
+            .map(|c| {
+                format!(
+                    "<span style=\"color:#{:06x}\">■</span> {}",
+                    c.count,
+                    esc(&c.name)
+                )
+            })
+            .collect();
+        let _ = write!(
+            h,
+            "<figure><img class=px src=\"{}\" alt=\"pixels by class\"><figcaption>explained pixels by class: {}</figcaption></figure>",
+            esc(&e.class_map),
+            key.join(", ")
+        );
+    }
+    h.push_str("</div>");
+    table_head(
+        h,
+        ["root cause (largest contributor)", "pixels", "mean share"],
+    );
+    for c in &e.causes {
+        row(
+            h,
+            &[
+                td_code(&c.site),
+                td_n(c.pixels),
+                td_n(format!("{:.0}%", 100.0 * c.mean_share)),
+            ],
+        );
+    }
+    h.push_str("</table>");
+    if !e.examples.is_empty() {
+        h.push_str("<ul>");
+        for line in &e.examples {
+            let _ = write!(h, "<li>{}</li>", esc(line));
+        }
+        h.push_str("</ul>");
+    }
 }
 
 fn pixel_text(white: bool, shade: Option<f64>) -> String {
