@@ -826,6 +826,52 @@ mod tests {
     use super::*;
 
     #[test]
+    fn an_explained_pair_shows_classes_causes_and_each_pixel() {
+        let mut r = Report::new(RunMeta::default());
+        r.image_pairs.push(ImagePair {
+            a: "ref-f64".into(),
+            b: "ref-f316".into(),
+            differing_pixels: 1,
+            divergences: vec![PixelDivergence {
+                explained: Some(
+                    "threshold flip; root cause inv_sqrt in pixel(*,*) > normalize (90%)".into(),
+                ),
+                ..PixelDivergence::default()
+            }],
+            explanation: Some(PairExplanation {
+                explained_by: "ref-f316".into(),
+                holds: "ref-f316 is the explained implementation".into(),
+                inputs: "every pixel whose dithered bit differs (1)".into(),
+                classes: vec![NamedCount {
+                    name: "threshold flip".into(),
+                    count: 1,
+                }],
+                causes: vec![CauseRow {
+                    site: "inv_sqrt in pixel(*,*) > normalize".into(),
+                    pixels: 1,
+                    mean_share: 0.9,
+                }],
+                class_map: "images/classes.png".into(),
+                colours: vec![NamedCount {
+                    name: "threshold flip".into(),
+                    count: 0xffd200,
+                }],
+                ..PairExplanation::default()
+            }),
+            ..ImagePair::default()
+        });
+        let page = render(&r, &History::default());
+        assert!(page.contains("<h4>Why they differ</h4><p>Explained by <code>ref-f316</code>"));
+        assert!(page.contains("<tr><td>threshold flip</td><td class=n>1</td></tr>"));
+        assert!(page.contains("<td><code>inv_sqrt in pixel(*,*) &gt; normalize</code></td><td class=n>1</td><td class=n>90%</td>"));
+        assert!(page.contains("<span style=\"color:#ffd200\">■</span> threshold flip"));
+        assert!(page.contains(
+            "<td>threshold flip; root cause inv_sqrt in pixel(*,*) &gt; normalize (90%)</td>"
+        ));
+        assert!(!page.contains("not localizable (see above)"));
+    }
+
+    #[test]
     fn escapes_markup() {
         assert_eq!(esc("a<b>&\"c'"), "a&lt;b&gt;&amp;&quot;c&#39;");
     }
