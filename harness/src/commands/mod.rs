@@ -10,6 +10,7 @@ pub mod localize;
 pub mod merge;
 pub mod nightly;
 pub mod render;
+pub mod render_scene;
 pub mod selftest;
 pub mod sweep;
 pub mod vectors;

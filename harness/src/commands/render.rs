@@ -20,7 +20,8 @@ pub struct RenderArgs {
     /// jack, gpu-f316, ref-f316+newton-3.
     #[arg(long = "impl", value_name = "IMPL")]
     pub implementation: String,
-    /// Scene parameters (JSON); the seed scene when left out.
+    /// A scene description (docs/scenes.md, e.g. vectors/scenes/rtdemo.json),
+    /// or the seed scene's parameters (JSON); the seed scene when left out.
     #[arg(long, value_name = "FILE")]
     pub scene: Option<PathBuf>,
     /// A precision variant or injected fault (repeatable), e.g. newton-3,
@@ -103,6 +104,21 @@ pub fn write_png(path: &Path, white: &[bool]) -> Result<()> {
 
 /// Render an image.
 pub fn run(args: RenderArgs, cast: &Cast) -> Result<ExitCode> {
+    if let Some(path) = &args.scene {
+        if scene::is_description(&scene::read(path)?) {
+            let described = scene::load(path)?;
+            let seed_on_jack = args.implementation == "jack" && scene::is_seed(&described);
+            if !seed_on_jack {
+                return super::render_scene::run(&args, &described, path);
+            }
+            // The hand-written Jack program is the seed scene.
+            let args = RenderArgs {
+                scene: None,
+                ..args
+            };
+            return run(args, cast);
+        }
+    }
     let scene = match &args.scene {
         Some(path) => Some(Scene::from_file(path)?),
         None => None,

@@ -8,6 +8,10 @@
 //!   16-bit semantics, bit-exact with `ref-f316` ([`Gpu::f316_ops`],
 //!   [`Gpu::f316_sdf`], [`Gpu::f316_pixels`], [`Gpu::render_f316`]).
 //!
+//! - kernels generated from any scene description ([`Gpu::scene_kernel`],
+//!   [`scene_wgsl`]): the scene's intermediate form, one WGSL statement per
+//!   statement, with only the library functions the scene uses.
+//!
 //! [`Gpu::new`] picks an adapter (any real GPU, else Mesa's lavapipe on the
 //! CPU), opens the device and compiles every kernel once: that is the
 //! set-up cost, measured apart from the renders. Every call batches its
@@ -25,15 +29,34 @@ mod float316;
 mod float32;
 mod image;
 mod kernel;
+mod scene_kernel;
+mod scene_wgsl;
 pub mod shader;
 
 pub use context::{AdapterDescription, Gpu};
 pub use error::GpuError;
 pub use image::all_pixels;
+pub use scene_kernel::{GpuNum, GpuPixel, SceneKernel};
+pub use scene_wgsl::generate as scene_wgsl;
 
 /// Set this environment variable (to any value) to skip the GPU leg where no
 /// adapter can be had. Without it, a missing adapter is an error.
 pub const SKIP_ENV: &str = "F316_SKIP_GPU";
+
+/// Say on standard error that a GPU check was skipped because [`SKIP_ENV`]
+/// is set, naming the running test (its thread's name) and `why`. Written
+/// straight to the stream, past `cargo test`'s output capture (which takes
+/// only the print macros), so that a passing run without a GPU shows each
+/// skipped check and is not mistaken for a verified one.
+pub fn report_skipped(why: &str) {
+    use std::io::Write;
+    let thread = std::thread::current();
+    let test = thread.name().unwrap_or("a GPU check");
+    let _ = writeln!(
+        std::io::stderr(),
+        "SKIPPED (no GPU, {SKIP_ENV} is set): {test}: {why}"
+    );
+}
 
 impl Gpu {
     /// [`Gpu::new`], except that a failure gives `Ok(None)` when the

@@ -222,6 +222,7 @@ impl Reference {
         scene: &Scene,
         settings: Settings,
     ) -> Result<Self, SceneError> {
+        scene.check()?;
         let fault = settings.dither_threshold;
         let consts = match implementation {
             RefImpl::F316 => {

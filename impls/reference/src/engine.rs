@@ -128,6 +128,12 @@ pub trait Engine {
     fn double(&mut self, a: Self::N) -> R<Self::N>;
     /// `a / 4`.
     fn quarter(&mut self, a: Self::N) -> R<Self::N>;
+    /// `a` to the power `b`. Only IEEE engines have it: a Float316 program
+    /// raises to integer powers by multiplying, so the default is a trap.
+    fn pow(&mut self, a: Self::N, b: Self::N) -> R<Self::N> {
+        let _ = (a, b);
+        Err(Trap::OutOfDomain)
+    }
     /// The same value with its sign flipped (not a traced operation).
     fn negate(a: Self::N) -> Self::N;
     /// Whether the sign bit is set (negative or -0).

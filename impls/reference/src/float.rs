@@ -139,6 +139,10 @@ impl<T: IeeeFloat> Engine for FloatEngine<T> {
         Ok(a * lit(0.25))
     }
 
+    fn pow(&mut self, a: T, b: T) -> R<T> {
+        Ok(a.powf(b))
+    }
+
     fn negate(a: T) -> T {
         -a
     }

@@ -7,14 +7,18 @@
 //! Entry points: [`Reference`] (an implementation with a scene: `sdf`,
 //! `pixel`, `render`, `trace_pixel`, `trace_sdf`), [`op`] and [`trace_op`]
 //! (one Float316 operation), [`Scene`] (the parameters, serde), [`Settings`]
-//! and [`Variant`] (variants and faults by name).
+//! and [`Variant`] (variants and faults by name); [`Described`]: any scene
+//! description, lowered to the scene crate's intermediate form and
+//! interpreted on the same engines.
 
 mod api;
 mod consts;
+mod described;
 mod engine;
 mod float;
 mod float316;
 mod formulation;
+mod interp;
 mod pipeline;
 mod scene;
 mod settings;
@@ -26,6 +30,7 @@ pub use api::{
     op, trace_op, PixelValue, RefImpl, Reference, RenderedImage, RequestError, Scalar, SdfValue,
     Trace, UnknownImpl,
 };
+pub use described::{Described, DescribedError, SceneImage, ScenePixel};
 pub use engine::{Decision, Engine, Trap, R};
 pub use formulation::{Formulated, Formulation};
 pub use scene::{Camera, Floor, March, Scene, SceneError, Shading, Sphere, Torus};

@@ -25,6 +25,9 @@ pub enum SceneError {
         value: f64,
         reason: &'static str,
     },
+    /// The file is not a JSON object (`[]`, a number, ...).
+    #[error("scene file {path}: a scene is a JSON object of fields")]
+    NotAnObject { path: String },
     /// Evaluating the camera basis (done once per image) trapped.
     #[error("the camera basis cannot be computed: {0}")]
     Camera(String),
@@ -187,12 +190,62 @@ impl Scene {
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
         let shown = path.display().to_string();
         let text = common::input::read_text(path)?;
-        serde_json::from_str(&text).map_err(|source| SceneError::Parse {
+        if !text.trim_start().starts_with('{') {
+            return Err(SceneError::NotAnObject { path: shown });
+        }
+        let scene: Scene = serde_json::from_str(&text).map_err(|source| SceneError::Parse {
             path: shown,
             source,
-        })
+        })?;
+        scene.check()?;
+        Ok(scene)
+    }
+
+    /// The limits every run relies on: march steps in 1..=[`MAX_STEPS`] (a
+    /// render is bounded), a camera with a direction and an up vector that
+    /// is not parallel to it (else the image is silently black).
+    pub fn check(&self) -> Result<(), SceneError> {
+        let m = &self.march;
+        for (field, steps) in [
+            ("march.view_steps", m.view_steps),
+            ("march.shadow_steps", m.shadow_steps),
+        ] {
+            if !(1..=MAX_STEPS).contains(&steps) {
+                return Err(SceneError::Field {
+                    field: field.into(),
+                    value: f64::from(steps),
+                    reason: "must lie in 1..=1024",
+                });
+            }
+        }
+        let c = &self.camera;
+        let f: Vec<f64> = (0..3).map(|i| c.position[i] - c.look_at[i]).collect();
+        if f.iter().all(|&x| x == 0.0) {
+            return Err(SceneError::Field {
+                field: "camera.look_at".into(),
+                value: c.look_at[0],
+                reason: "equals camera.position: the camera has no direction",
+            });
+        }
+        let u = c.up;
+        let cross = [
+            u[1] * f[2] - u[2] * f[1],
+            u[2] * f[0] - u[0] * f[2],
+            u[0] * f[1] - u[1] * f[0],
+        ];
+        if cross.iter().all(|&x| x == 0.0) {
+            return Err(SceneError::Field {
+                field: "camera.up".into(),
+                value: u[1],
+                reason: "is zero or parallel to the viewing direction",
+            });
+        }
+        Ok(())
     }
 }
+
+/// The most steps a march may take.
+pub const MAX_STEPS: u32 = 1024;
 
 #[cfg(test)]
 mod tests {

@@ -7,5 +7,6 @@ mod f316_image;
 mod f316_ops;
 mod f316_vs_reference;
 mod f32_errors;
+mod scenes;
 mod support;
 mod user_shader;

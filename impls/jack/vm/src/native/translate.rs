@@ -5,8 +5,8 @@
 //! argument count and the step count in registers, and returns a code (see
 //! `native::RETURNED`, `native::CONTINUE`; a code >= 0 is the instruction
 //! the interpreter must run next). Every block first checks that its whole
-//! step count fits under the stop and that its stack accesses stay in plain
-//! RAM above 256; otherwise, and wherever an instruction meets a case that
+//! step count fits under the stop and that its stack accesses stay between
+//! 256 and the profile's stack end (`Timing::stack_end`); otherwise, and wherever an instruction meets a case that
 //! only the interpreter handles (a register or an address outside RAM
 //! through a computed address, a failed segment check, a division by zero,
 //! a built-in), it stores the exact state before that instruction and
@@ -14,10 +14,11 @@
 //! itself is popped from a register unless a computed store might have
 //! overwritten it.
 
-use super::blocks::{self, Block, Kind};
+use super::blocks::{self, Block, Kind, MAX_INLINE_LOCALS};
 use super::{Ctx, Fault, CONTINUE, NATIVE_DEPTH, RETURNED};
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
+use crate::timing::{Timing, STACK_BASE};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{
     self, types, BlockArg, FuncRef, InstBuilder, JumpTableData, MemFlagsData, Value,
@@ -25,10 +26,6 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, Variable};
 use jack_os::{Profile, RAM_SIZE};
 use std::mem::offset_of;
-
-/// A call frame's locals are zeroed by straight-line stores up to this
-/// many; a callee with more is called by the interpreter.
-const MAX_INLINE_LOCALS: u16 = 64;
 
 const T16: ir::Type = types::I16;
 const T32: ir::Type = types::I32;
@@ -57,6 +54,12 @@ struct Vars {
 /// What the translation of one function needs from its surroundings.
 pub(crate) struct Env<'a> {
     pub program: &'a Program,
+    /// The profile's plain instructions.
+    pub code: &'a [Op],
+    /// The function's first instruction in `code` (where a call lands).
+    pub start: u32,
+    /// The profile's step and stack rules.
+    pub timing: Timing,
     pub id: FnId,
     /// The function's blocks, and the block starting at each instruction
     /// (relative to the function's start), from [`blocks::blocks`].
@@ -84,12 +87,38 @@ struct Translator<'a, 'b> {
     start: u32,
     /// Stores the state and returns (code, pc).
     leave: ir::Block,
+    /// The highest `local` and `argument` index the function uses, where
+    /// one test of LCL (ARG) on entering compiled code and after each call
+    /// covers every such access (None: each access tests its address).
+    reach: [Option<u16>; 2],
+    /// The this/that flags already known set in the current block (tested
+    /// or set by `pop pointer`), whose accesses need no test.
+    flags_known: u8,
+}
+
+/// Index in `Translator::reach`.
+const LOCAL: usize = 0;
+const ARGUMENT: usize = 1;
+
+/// The highest index of each of `local` and `argument` used in `code`, if
+/// any, and if small enough that a plain LCL (ARG) below it is testable.
+fn reach(code: &[Op]) -> [Option<u16>; 2] {
+    let mut top = [None; 2];
+    for op in code {
+        let (seg, i) = match *op {
+            Op::PushLocal(i) | Op::PopLocal(i) => (LOCAL, i),
+            Op::PushArg(i) | Op::PopArg(i) => (ARGUMENT, i),
+            _ => continue,
+        };
+        top[seg] = Some(top[seg].map_or(i, |t: u16| t.max(i)));
+    }
+    top.map(|t| t.filter(|&t| usize::from(t) + 6 < RAM_SIZE))
 }
 
 /// Build the IR of function `env.id` into `b` (signature: ctx pointer,
 /// block index; returns the code).
 pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
-    let start = env.program.functions[env.id as usize].start;
+    let start = env.start;
     let (vm_blocks, block_at) = (env.blocks, env.block_at);
 
     let entry = b.create_block();
@@ -113,6 +142,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let inline = b
         .ins()
         .uload8(T32, mem, ctx, field(offset_of!(Ctx, inline)));
+    let reach =
+        reach(&env.code[start as usize..vm_blocks.last().map_or(start, |b| b.end) as usize]);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
     let leave = b.create_block();
     b.append_block_param(leave, T32);
@@ -129,11 +160,33 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         block_at,
         start,
         leave,
+        reach,
+        flags_known: 0,
     };
     t.load_state();
     // Dispatch on the block index; an index out of range (never passed)
     // leaves at once with the pc the caller gave.
     let default = t.b.create_block();
+    if let Some(ok) = t.frame_ok() {
+        // LCL or ARG such that some access of the function would not be
+        // a plain word: the interpreter runs from the block's start.
+        let (run, bad) = (t.b.create_block(), t.b.create_block());
+        t.b.ins().brif(ok, run, NONE, bad, NONE);
+        t.b.switch_to_block(bad);
+        t.b.set_cold_block(bad);
+        let exits: Vec<_> = vm_blocks
+            .iter()
+            .map(|blk| {
+                let pc = t.c32(i64::from(blk.start));
+                let args = [BlockArg::Value(pc), BlockArg::Value(pc)];
+                t.b.func.dfg.block_call(leave, &args)
+            })
+            .collect();
+        let def = t.b.func.dfg.block_call(default, NONE);
+        let table = t.b.create_jump_table(JumpTableData::new(def, &exits));
+        t.b.ins().br_table(which, table);
+        t.b.switch_to_block(run);
+    }
     let calls: Vec<_> =
         t.cl.iter()
             .map(|&blk| t.b.func.dfg.block_call(blk, NONE))
@@ -294,6 +347,7 @@ impl Translator<'_, '_> {
 
     fn block(&mut self, index: usize, blk: &Block) {
         self.b.switch_to_block(self.cl[index]);
+        self.flags_known = 0;
         let steps0 = self.b.use_var(self.v.steps);
         let sp0 = self.b.use_var(self.v.sp);
         if blk.steps == 0 {
@@ -303,22 +357,24 @@ impl Translator<'_, '_> {
                 .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
             return;
         }
-        // The whole block fits under the stop, and its stack stays in
-        // plain RAM with no pop at SP = 256.
+        // The whole block fits under the stop, and its stack stays where
+        // no stack rule applies: from 256 (no pop at SP = 256) up to the
+        // profile's stack end.
         let last = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
         let mut ok = self
             .b
             .ins()
             .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at);
-        if blk.min_depth < 0 || blk.max_depth > 0 {
+        if blk.checks_stack {
             // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1).
-            let low = self.c16(256 - i64::from(blk.min_depth));
+            let low = self.c16(i64::from(STACK_BASE) - i64::from(blk.min_depth));
             let c = self
                 .b
                 .ins()
                 .icmp(IntCC::UnsignedGreaterThanOrEqual, sp0, low);
             ok = self.b.ins().band(ok, c);
-            let high = self.c16(RAM_SIZE as i64 - i64::from(blk.max_depth));
+            let end = i64::from(self.env.timing.stack_end());
+            let high = self.c16(end - i64::from(blk.max_depth));
             let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, sp0, high);
             ok = self.b.ins().band(ok, c);
         }
@@ -337,7 +393,7 @@ impl Translator<'_, '_> {
             known: Vec::new(),
         };
         for pc in blk.start..blk.end {
-            let op = self.env.program.plain[pc as usize];
+            let op = self.env.code[pc as usize];
             let before = Before {
                 pc,
                 k: u64::from(pc - blk.start),
@@ -347,7 +403,7 @@ impl Translator<'_, '_> {
             };
             self.op(op, &mut s, &before, blk);
         }
-        if blocks::kind(self.env.program.plain[blk.end as usize - 1]) == Kind::Straight {
+        if blocks::kind(self.env.code[blk.end as usize - 1]) == Kind::Straight {
             // Falls through into the next block (or the interpreted
             // instruction that ends this one).
             self.end_block(&s, steps0, blk);
@@ -391,8 +447,64 @@ impl Translator<'_, '_> {
     }
 
     fn flag_ok(&mut self, bit: u8, before: &Before) {
-        let ok = self.flag_set(bit);
-        self.guard(ok, before);
+        if self.flags_known & bit == 0 {
+            let ok = self.flag_set(bit);
+            self.guard(ok, before);
+            self.flags_known |= bit;
+        }
+    }
+
+    /// Whether LCL and ARG leave every `local` and `argument` access of the
+    /// function (up to `reach`) on a plain word, without wrapping (None if
+    /// no access is covered so).
+    fn frame_ok(&mut self) -> Option<Value> {
+        let mut ok = None;
+        for (var, top) in [
+            (self.v.lcl, self.reach[LOCAL]),
+            (self.v.arg, self.reach[ARGUMENT]),
+        ] {
+            let Some(top) = top else { continue };
+            // 5 <= base <= RAM_SIZE - 1 - top.
+            let base = self.b.use_var(var);
+            let minus5 = self.c16(-5);
+            let t = self.b.ins().iadd(base, minus5);
+            let limit = self.c16(RAM_SIZE as i64 - 5 - i64::from(top));
+            let c = self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit);
+            ok = Some(match ok {
+                None => c,
+                Some(o) => self.b.ins().band(o, c),
+            });
+        }
+        ok
+    }
+
+    /// RAM[base + i] of segment `seg` (`base` its register).
+    fn seg_read(&mut self, seg: usize, var: Variable, i: u16, before: &Before) -> Value {
+        let a = self.seg_addr(var, i);
+        if self.reach[seg].is_some() {
+            self.load_word(a)
+        } else {
+            self.read(a, before)
+        }
+    }
+
+    /// RAM[base + i] = x, for segment `seg` (`base` its register).
+    fn seg_write(
+        &mut self,
+        seg: usize,
+        var: Variable,
+        i: u16,
+        x: Value,
+        s: &mut Stack,
+        before: &Before,
+    ) {
+        let a = self.seg_addr(var, i);
+        if self.reach[seg].is_some() {
+            self.store_word(a, x);
+            s.known.clear();
+        } else {
+            self.write(a, x, s, before);
+        }
     }
 
     fn op(&mut self, op: Op, s: &mut Stack, before: &Before, blk: &Block) {
@@ -402,14 +514,12 @@ impl Translator<'_, '_> {
                 s.push(self, x);
             }
             Op::PushLocal(i) => {
-                let a = self.seg_addr(self.v.lcl, i);
-                let x = self.read(a, before);
+                let x = self.seg_read(LOCAL, self.v.lcl, i, before);
                 s.push(self, x);
             }
             Op::PushArg(i) => {
                 self.arg_ok(i, before);
-                let a = self.seg_addr(self.v.arg, i);
-                let x = self.read(a, before);
+                let x = self.seg_read(ARGUMENT, self.v.arg, i, before);
                 s.push(self, x);
             }
             Op::PushThis(i) | Op::PushThisChk(i) => {
@@ -441,14 +551,12 @@ impl Translator<'_, '_> {
             }
             Op::PopLocal(i) => {
                 let x = s.pop(self);
-                let a = self.seg_addr(self.v.lcl, i);
-                self.write(a, x, s, before);
+                self.seg_write(LOCAL, self.v.lcl, i, x, s, before);
             }
             Op::PopArg(i) => {
                 self.arg_ok(i, before);
                 let x = s.pop(self);
-                let a = self.seg_addr(self.v.arg, i);
-                self.write(a, x, s, before);
+                self.seg_write(ARGUMENT, self.v.arg, i, x, s, before);
             }
             Op::PopThis(i) | Op::PopThisChk(i) => {
                 if matches!(op, Op::PopThisChk(_)) {
@@ -482,13 +590,14 @@ impl Translator<'_, '_> {
             }
             Op::PopPtr(p) => {
                 let x = s.pop(self);
-                if p == 0 {
-                    self.b.def_var(self.v.this, x);
-                    self.set_flag(THIS_OK);
+                let (var, bit) = if p == 0 {
+                    (self.v.this, THIS_OK)
                 } else {
-                    self.b.def_var(self.v.that, x);
-                    self.set_flag(THAT_OK);
-                }
+                    (self.v.that, THAT_OK)
+                };
+                self.b.def_var(var, x);
+                self.set_flag(bit);
+                self.flags_known |= bit;
             }
             Op::Add | Op::Sub | Op::And | Op::Or | Op::Multiply => {
                 let y = s.pop(self);
@@ -550,6 +659,13 @@ impl Translator<'_, '_> {
                 callee, nargs, ret, ..
             } => self.call(FnId::from(callee), nargs, ret, s, before, blk),
             Op::Return => self.ret(s, before, blk),
+            Op::Function { n_vars, .. } => {
+                // The locals, zeroed (the block's entry test covers them).
+                for _ in 0..n_vars {
+                    let zero = self.c16(0);
+                    s.push(self, zero);
+                }
+            }
             _ => unreachable!("interpreted instructions end blocks before them"),
         }
     }
@@ -592,7 +708,14 @@ impl Translator<'_, '_> {
         let mem = MemFlagsData::trusted();
         let ctx = self.ctx;
         let f = &self.env.program.functions[callee as usize];
-        let (n_vars, entry_flags) = (f.n_vars, f.entry_flags(n));
+        // Where a call's `function` line is a step, the callee's zeroes
+        // its locals; else the call does.
+        let n_vars = if self.env.timing.function_step {
+            0
+        } else {
+            f.n_vars
+        };
+        let entry_flags = f.entry_flags(n);
         if n_vars > MAX_INLINE_LOCALS {
             self.exit_before(before);
             return;
@@ -622,15 +745,17 @@ impl Translator<'_, '_> {
         let base = s.sp(self);
         let base64 = self.b.ins().uextend(T64, base);
         let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
+        let end = i64::from(self.env.timing.stack_end());
         let c = self
             .b
             .ins()
-            .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, RAM_SIZE as i64);
+            .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end);
         let ok = self.b.ins().band(ok, c);
-        let c = self
-            .b
-            .ins()
-            .icmp_imm_s(IntCC::UnsignedGreaterThanOrEqual, base64, 256);
+        let c = self.b.ins().icmp_imm_s(
+            IntCC::UnsignedGreaterThanOrEqual,
+            base64,
+            i64::from(STACK_BASE),
+        );
         let ok = self.b.ins().band(ok, c);
         self.guard(ok, before);
 
@@ -732,6 +857,19 @@ impl Translator<'_, '_> {
         self.b.ins().return_(&[code]);
         self.b.switch_to_block(back);
         self.load_state();
+        if let Some(ok) = self.frame_ok() {
+            // The return restored LCL and ARG from RAM, which the callee
+            // may have changed: the same test as on entry.
+            let (cont, bad) = (self.b.create_block(), self.b.create_block());
+            self.b.ins().brif(ok, cont, NONE, bad, NONE);
+            self.b.switch_to_block(bad);
+            self.b.set_cold_block(bad);
+            let pc = self.c32(i64::from(before.pc + 1));
+            self.b
+                .ins()
+                .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+            self.b.switch_to_block(cont);
+        }
         s.known.clear();
         self.jump_to(before.pc + 1);
     }

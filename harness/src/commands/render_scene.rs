@@ -1,0 +1,136 @@
+//! `harness render --scene FILE` for a scene description (docs/scenes.md):
+//! the reference implementations and the GPU kernels are made from the
+//! description; the hand-written Jack program answers the seed scene only.
+
+use super::render::{write_atomically, RenderArgs};
+use anyhow::{bail, Context, Result};
+use common::Outcome;
+use reference::{Described, RefImpl, Scalar, SceneImage, ScenePixel, Settings};
+use serde::Serialize;
+use std::path::Path;
+use std::process::ExitCode;
+
+/// Render the description `scene` (read from `file`) as `args` ask.
+pub fn run(args: &RenderArgs, scene: &scene::Checked, file: &Path) -> Result<ExitCode> {
+    let mut settings = Settings::default();
+    for v in &args.variants {
+        let variant: reference::Variant = v.parse()?;
+        settings = variant.apply(settings);
+    }
+    let (name, variants) = match args.implementation.split_once('+') {
+        Some((n, v)) => (n, Some(v)),
+        None => (args.implementation.as_str(), None),
+    };
+    for v in variants.into_iter().flat_map(|v| v.split('+')) {
+        let variant: reference::Variant = v.parse()?;
+        settings = variant.apply(settings);
+    }
+    let image = render(name, scene, file, settings)?;
+    write(
+        &args.implementation,
+        scene,
+        &image,
+        &args.out,
+        args.values.as_deref(),
+    )?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The `--values` file of a described scene.
+#[derive(Serialize)]
+struct ValuesFile<'a> {
+    implementation: &'a str,
+    scene: &'a str,
+    width: usize,
+    height: usize,
+    levels: u8,
+    /// Row by row.
+    pixels: &'a [Outcome<ScenePixel>],
+}
+
+/// Render `scene` (read from `file`) with the implementation `name`.
+pub fn render(
+    name: &str,
+    scene: &scene::Checked,
+    file: &Path,
+    settings: Settings,
+) -> Result<SceneImage> {
+    if let Ok(imp) = name.parse::<RefImpl>() {
+        return Ok(Described::new(imp, scene, settings)?.render());
+    }
+    match name {
+        "gpu-f316" | "gpu-f32" => {
+            if settings != Settings::default() {
+                bail!("{name} has no variants (no --variant)");
+            }
+            let imp = if name == "gpu-f316" {
+                RefImpl::F316
+            } else {
+                RefImpl::F32
+            };
+            let program = Described::new(imp, scene, settings)?.program().clone();
+            let gpu = gpu::Gpu::new()?;
+            let kernel = gpu.scene_kernel(&program)?;
+            let pixels = kernel
+                .render(&gpu)?
+                .into_iter()
+                .map(|o| {
+                    o.map(|p| ScenePixel {
+                        value: Scalar {
+                            value: p.value.value,
+                            triple: p.value.triple,
+                        },
+                        level: p.level,
+                    })
+                })
+                .collect();
+            Ok(SceneImage {
+                width: program.pixels.width as usize,
+                height: program.pixels.height as usize,
+                levels: program.pixels.levels,
+                pixels,
+            })
+        }
+        "jack" => bail!(
+            "jack: the hand-written Jack program renders the seed scene only, and {} (`{}`) is another scene; a Jack program generated from a description does not exist yet",
+            file.display(),
+            scene.description.name
+        ),
+        _ => bail!(
+            "unknown implementation `{name}` (expected ref-f316, ref-f64, ref-f32, jack, gpu-f316 or gpu-f32)"
+        ),
+    }
+}
+
+/// Write the image as an 8-bit grey PNG, and its values when asked.
+pub fn write(
+    name: &str,
+    scene: &scene::Checked,
+    image: &SceneImage,
+    out: &Path,
+    values: Option<&Path>,
+) -> Result<()> {
+    let img = image::GrayImage::from_raw(image.width as u32, image.height as u32, image.gray8())
+        .context("the image has the wrong number of pixels")?;
+    write_atomically(out, |tmp| {
+        img.save_with_format(tmp, image::ImageFormat::Png)
+            .with_context(|| format!("cannot write {}", tmp.display()))
+    })?;
+    if let Some(path) = values {
+        let file = ValuesFile {
+            implementation: name,
+            scene: &scene.description.name,
+            width: image.width,
+            height: image.height,
+            levels: image.levels,
+            pixels: &image.pixels,
+        };
+        write_atomically(path, |tmp| {
+            let f = std::fs::File::create(tmp)
+                .with_context(|| format!("cannot create {}", tmp.display()))?;
+            serde_json::to_writer(std::io::BufWriter::new(f), &file)
+                .with_context(|| format!("cannot write {}", tmp.display()))
+        })?;
+    }
+    Ok(())
+}

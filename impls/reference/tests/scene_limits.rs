@@ -1,0 +1,47 @@
+//! The seed scene's parameter files are checked before a render: every
+//! run is bounded and a camera without a direction is an error (issue 20,
+//! findings 2 and 8).
+
+use reference::{RefImpl, Reference, Scene, Settings};
+
+fn load(name: &str, text: &str) -> Result<Scene, String> {
+    let path =
+        std::env::temp_dir().join(format!("scene-limits-{}-{name}.json", std::process::id()));
+    std::fs::write(&path, text).unwrap();
+    let r = Scene::from_file(&path).map_err(|e| e.to_string());
+    std::fs::remove_file(&path).unwrap();
+    r
+}
+
+#[test]
+fn unbounded_marches_are_refused() {
+    let e = load("a", r#"{"march":{"precision":0.0,"view_steps":100000}}"#).unwrap_err();
+    assert!(
+        e.contains("march.view_steps") && e.contains("1..=1024"),
+        "{e}"
+    );
+    let e = load("b", r#"{"march":{"view_steps":4294967295}}"#).unwrap_err();
+    assert!(e.contains("march.view_steps"), "{e}");
+    let e = load("c", r#"{"march":{"shadow_steps":0}}"#).unwrap_err();
+    assert!(e.contains("march.shadow_steps"), "{e}");
+    assert!(load("d", r#"{"march":{"view_steps":1024}}"#).is_ok());
+}
+
+#[test]
+fn a_file_that_is_not_an_object_is_refused() {
+    for text in ["[]", "3", "\"seed\""] {
+        let e = load("e", text).unwrap_err();
+        assert!(e.contains("a scene is a JSON object"), "{text}: {e}");
+    }
+}
+
+#[test]
+fn a_camera_without_direction_is_refused() {
+    let e = load("f", r#"{"camera":{"position":[0,0,0],"look_at":[0,0,0]}}"#).unwrap_err();
+    assert!(e.contains("camera.look_at"), "{e}");
+    let e = load("g", r#"{"camera":{"up":[0,1.5,4]}}"#).unwrap_err();
+    assert!(e.contains("camera.up"), "{e}");
+    let mut s = Scene::default();
+    s.camera.look_at = s.camera.position;
+    assert!(Reference::new(RefImpl::F316, &s, Settings::default()).is_err());
+}

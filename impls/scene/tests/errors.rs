@@ -1,0 +1,176 @@
+//! Bad scene files are rejected before anything runs, with the field named:
+//! an unknown shape, a missing parameter, a negative radius, a cycle, a
+//! combination without children, a camera without direction, unbounded runs.
+
+use serde_json::{json, Value};
+
+fn seed() -> Value {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../vectors/scenes/seed.json"
+    );
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// The error for the seed scene changed by `edit`.
+fn error(edit: impl FnOnce(&mut Value)) -> String {
+    let mut v = seed();
+    edit(&mut v);
+    let text = serde_json::to_string_pretty(&v).unwrap();
+    match scene::parse(&text) {
+        Ok(_) => panic!("accepted: {text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn expect(e: &str, parts: &[&str]) {
+    for p in parts {
+        assert!(e.contains(p), "`{p}` not in: {e}");
+    }
+}
+
+#[test]
+fn the_seed_scene_is_accepted() {
+    let c = scene::parse(&seed().to_string()).unwrap();
+    assert_eq!(c.materials, ["matte", "checker"]);
+    assert_eq!(
+        c.shapes.iter().copied().collect::<Vec<_>>(),
+        ["plane", "sphere", "torus"]
+    );
+}
+
+#[test]
+fn unknown_shape() {
+    let e =
+        error(|v| v["nodes"]["sphere"] = json!({"spere": {"radius": 1.0, "material": "matte"}}));
+    expect(&e, &["nodes.sphere", "unknown variant `spere`", "line "]);
+}
+
+#[test]
+fn missing_parameter() {
+    let e = error(|v| v["nodes"]["sphere"] = json!({"sphere": {"material": "matte"}}));
+    expect(&e, &["nodes.sphere.sphere", "missing field `radius`"]);
+}
+
+#[test]
+fn unknown_parameter() {
+    let e = error(|v| v["nodes"]["torus"]["torus"]["radius"] = json!(1.0));
+    expect(&e, &["nodes.torus.torus", "unknown field `radius`"]);
+}
+
+#[test]
+fn negative_radius() {
+    let e = error(|v| v["nodes"]["sphere"]["sphere"]["radius"] = json!(-1.0));
+    expect(
+        &e,
+        &["nodes.sphere.sphere.radius", "must be positive, is -1"],
+    );
+}
+
+#[test]
+fn cycle() {
+    let e = error(|v| v["nodes"]["objects"]["union"]["children"] = json!(["sphere", "scene"]));
+    expect(
+        &e,
+        &[
+            "nodes.objects.union.children[1]",
+            "a cycle: scene -> objects -> scene",
+        ],
+    );
+}
+
+#[test]
+fn combination_without_children() {
+    let e = error(|v| v["nodes"]["objects"]["union"]["children"] = json!([]));
+    expect(
+        &e,
+        &["nodes.objects.union.children", "at least 1 children, has 0"],
+    );
+    let e = error(|v| v["nodes"]["objects"] = json!({"subtraction": {"children": ["sphere"]}}));
+    expect(&e, &["nodes.objects.subtraction.children", "exactly 2"]);
+}
+
+#[test]
+fn missing_node_and_material() {
+    let e = error(|v| v["nodes"]["objects"]["union"]["children"][0] = json!("ball"));
+    expect(
+        &e,
+        &["nodes.objects.union.children[0]", "no node named `ball`"],
+    );
+    let e = error(|v| v["nodes"]["torus"]["torus"]["material"] = json!("gold"));
+    expect(&e, &["nodes.torus.material", "no material named `gold`"]);
+    let e = error(|v| v["root"] = json!("world"));
+    expect(&e, &["root", "no node named `world`"]);
+}
+
+#[test]
+fn camera_without_direction() {
+    let e = error(|v| v["image"]["camera"]["look_at"]["target"] = json!([0.0, 1.5, 4.0]));
+    expect(&e, &["image.camera.look_at.target", "equals the position"]);
+    let e = error(|v| v["image"]["camera"]["look_at"]["up"] = json!([0.0, 1.5, 4.0]));
+    expect(&e, &["image.camera.look_at.up", "parallel"]);
+}
+
+#[test]
+fn every_run_is_bounded() {
+    let e = error(|v| v["method"]["sphere_trace"]["steps"] = json!(100000));
+    expect(&e, &["method.sphere_trace.steps", "outside 1..=1024"]);
+    let e = error(|v| v["method"]["sphere_trace"]["steps"] = json!(4294967295u32));
+    expect(&e, &["method.sphere_trace.steps"]);
+    let e = error(|v| v["method"]["sphere_trace"]["hit_distance"] = json!(0.0));
+    expect(
+        &e,
+        &["method.sphere_trace.hit_distance", "must be positive"],
+    );
+    let e = error(|v| v["shadow"]["steps"] = json!(0));
+    expect(&e, &["shadow.steps"]);
+    let e = error(|v| v["image"]["size"] = json!([100000, 2]));
+    expect(&e, &["image.size[0]"]);
+}
+
+#[test]
+fn not_a_scene() {
+    for text in ["[]", "{}", "3"] {
+        assert!(scene::parse(text).is_err(), "{text}");
+    }
+    let e = error(|v| v["version"] = json!(2));
+    expect(&e, &["version", "version 2 is not supported"]);
+}
+
+#[test]
+fn mirrors_need_analytic_spheres() {
+    let e = error(|v| v["materials"]["matte"] = json!({"mirror": {}}));
+    expect(&e, &["materials.matte.mirror", "analytic_spheres"]);
+}
+
+#[test]
+fn every_shipped_scene_loads_and_lowers_to_a_valid_program() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../vectors/scenes");
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            continue;
+        }
+        let c = scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+        for form in [scene::Formulation::Float316, scene::Formulation::Ieee] {
+            scene::lower(&c, form).validate().unwrap();
+        }
+        names.push(c.description.name.clone());
+    }
+    names.sort();
+    assert_eq!(names, ["rtdemo", "sdf-engine", "seed", "toon"]);
+}
+
+#[test]
+fn the_seed_is_recognised_under_other_names_only() {
+    let mut v = seed();
+    let renamed = v["nodes"]["sphere"].take();
+    v["nodes"]["ball"] = renamed;
+    v["nodes"].as_object_mut().unwrap().remove("sphere");
+    v["nodes"]["objects"]["union"]["children"][0] = json!("ball");
+    v["name"] = json!("renamed");
+    assert!(scene::is_seed(&scene::parse(&v.to_string()).unwrap()));
+    v["nodes"]["ball"]["sphere"]["radius"] = json!(1.01);
+    assert!(!scene::is_seed(&scene::parse(&v.to_string()).unwrap()));
+}
