@@ -178,8 +178,4 @@ impl<T: IeeeFloat> Formulated for FloatEngine<T> {
     fn inv_sqrt(&mut self, x: T) -> R<T> {
         Ok(lit::<T>(1.0) / x.sqrt())
     }
-
-    fn pow(&mut self, x: T, p: T) -> R<T> {
-        Ok(x.powf(p))
-    }
 }

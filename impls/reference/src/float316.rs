@@ -629,11 +629,6 @@ impl<Rec: Recorder, A: ArithSource> Formulated for F316Engine<Rec, A> {
     fn inv_sqrt(&mut self, x: F316) -> R<F316> {
         F316Engine::inv_sqrt(self, x)
     }
-
-    /// Float316 has no `pow`: out of domain.
-    fn pow(&mut self, _: F316, _: F316) -> R<F316> {
-        Err(Trap::OutOfDomain)
-    }
 }
 
 #[cfg(test)]

@@ -17,16 +17,13 @@ pub enum Formulation {
     Ieee,
 }
 
-/// An engine with a formulation and the two operations that only one
+/// An engine with a formulation, and the operation only the Float316
 /// formulation's hooks use.
 pub trait Formulated: Engine {
     /// The formulation of its hooks.
     const FORMULATION: Formulation;
     /// `1/sqrt(x)` as one operation (Float316: the spec's `invSqrt`).
     fn inv_sqrt(&mut self, x: Self::N) -> R<Self::N>;
-    /// `x` raised to `p` (IEEE `pow`; Float316 has no such operation and
-    /// answers out of domain).
-    fn pow(&mut self, x: Self::N, p: Self::N) -> R<Self::N>;
 }
 
 /// `normalize(v)`: Float316 scales by `invSqrt(dot(v, v))`; floats divide

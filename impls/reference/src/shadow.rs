@@ -518,6 +518,11 @@ impl<E: Formulated> Engine for ShadowEngine<E> {
         Ok(self.op("quarter", &[a], lo, |x| x[0] * 0.25))
     }
 
+    fn pow(&mut self, x: Sh<E::N>, p: Sh<E::N>) -> R<Sh<E::N>> {
+        let lo = self.inner.pow(x.lo, p.lo)?;
+        Ok(self.op("pow", &[x, p], lo, |v| v[0].powf(v[1])))
+    }
+
     fn negate(a: Sh<E::N>) -> Sh<E::N> {
         Sh {
             lo: E::negate(a.lo),
@@ -592,11 +597,6 @@ impl<E: Formulated> Formulated for ShadowEngine<E> {
     fn inv_sqrt(&mut self, x: Sh<E::N>) -> R<Sh<E::N>> {
         let lo = self.inner.inv_sqrt(x.lo)?;
         Ok(self.op("inv_sqrt", &[x], lo, |v| 1.0 / v[0].sqrt()))
-    }
-
-    fn pow(&mut self, x: Sh<E::N>, p: Sh<E::N>) -> R<Sh<E::N>> {
-        let lo = self.inner.pow(x.lo, p.lo)?;
-        Ok(self.op("pow", &[x, p], lo, |v| v[0].powf(v[1])))
     }
 }
 
