@@ -94,6 +94,57 @@ struct Translator<'a, 'b> {
     /// The this/that flags already known set in the current block (tested
     /// or set by `pop pointer`), whose accesses need no test.
     flags_known: u8,
+    /// The address test of each `this`/`that` access of the current block,
+    /// by instruction index relative to `block_start`.
+    ptr_tests: Vec<PtrTest>,
+    block_start: u32,
+}
+
+/// How a `this` or `that` access of a block tests its address.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum PtrTest {
+    /// On its own (an index too large for a span test).
+    Each,
+    /// The first access while the pointer keeps its value in the block:
+    /// it tests the span of every index of those accesses, up to this one.
+    First(u16),
+    /// Covered by the first access's test.
+    Covered,
+}
+
+/// The address tests of the `this`/`that` accesses of `code` (one block):
+/// the accesses between two `pop pointer`s of one pointer share one test.
+fn ptr_tests(code: &[Op]) -> Vec<PtrTest> {
+    let mut tests = vec![PtrTest::Each; code.len()];
+    // The first access of each pointer's open run.
+    let mut run: [Option<usize>; 2] = [None; 2];
+    for (k, op) in code.iter().enumerate() {
+        let (p, i) = match *op {
+            Op::PushThis(i) | Op::PushThisChk(i) | Op::PopThis(i) | Op::PopThisChk(i) => (0, i),
+            Op::PushThat(i) | Op::PushThatChk(i) | Op::PopThat(i) | Op::PopThatChk(i) => (1, i),
+            Op::PopPtr(p) => {
+                run[usize::from(p)] = None;
+                continue;
+            }
+            _ => continue,
+        };
+        if usize::from(i) + 6 >= RAM_SIZE {
+            continue;
+        }
+        match run[p] {
+            Some(first) => {
+                if let PtrTest::First(top) = &mut tests[first] {
+                    *top = (*top).max(i);
+                }
+                tests[k] = PtrTest::Covered;
+            }
+            None => {
+                tests[k] = PtrTest::First(i);
+                run[p] = Some(k);
+            }
+        }
+    }
+    tests
 }
 
 /// Index in `Translator::reach`.
@@ -162,6 +213,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         leave,
         reach,
         flags_known: 0,
+        ptr_tests: Vec::new(),
+        block_start: 0,
     };
     t.load_state();
     // Dispatch on the block index; an index out of range (never passed)
@@ -348,6 +401,8 @@ impl Translator<'_, '_> {
     fn block(&mut self, index: usize, blk: &Block) {
         self.b.switch_to_block(self.cl[index]);
         self.flags_known = 0;
+        self.ptr_tests = ptr_tests(&self.env.code[blk.start as usize..blk.end as usize]);
+        self.block_start = blk.start;
         let steps0 = self.b.use_var(self.v.steps);
         let sp0 = self.b.use_var(self.v.sp);
         if blk.steps == 0 {
@@ -464,18 +519,51 @@ impl Translator<'_, '_> {
             (self.v.arg, self.reach[ARGUMENT]),
         ] {
             let Some(top) = top else { continue };
-            // 5 <= base <= RAM_SIZE - 1 - top.
-            let base = self.b.use_var(var);
-            let minus5 = self.c16(-5);
-            let t = self.b.ins().iadd(base, minus5);
-            let limit = self.c16(RAM_SIZE as i64 - 5 - i64::from(top));
-            let c = self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit);
+            let c = self.span_ok(var, top);
             ok = Some(match ok {
                 None => c,
                 Some(o) => self.b.ins().band(o, c),
             });
         }
         ok
+    }
+
+    /// Whether `var + 0 ..= var + top` are all plain words, with no
+    /// wrapping: 5 <= var <= RAM_SIZE - 1 - top.
+    fn span_ok(&mut self, var: Variable, top: u16) -> Value {
+        let base = self.b.use_var(var);
+        let minus5 = self.c16(-5);
+        let t = self.b.ins().iadd(base, minus5);
+        let limit = self.c16(RAM_SIZE as i64 - 5 - i64::from(top));
+        self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit)
+    }
+
+    /// The address of `this i` or `that i` (pointer register `var`), tested
+    /// as the block's span tests decided (`false`: the caller tests it).
+    fn ptr_addr(&mut self, var: Variable, i: u16, before: &Before) -> (Value, bool) {
+        let test = self.ptr_tests[(before.pc - self.block_start) as usize];
+        if let PtrTest::First(top) = test {
+            let ok = self.span_ok(var, top);
+            self.guard(ok, before);
+        }
+        (self.seg_addr(var, i), test != PtrTest::Each)
+    }
+
+    fn ptr_read(&mut self, var: Variable, i: u16, before: &Before) -> Value {
+        match self.ptr_addr(var, i, before) {
+            (a, true) => self.load_word(a),
+            (a, false) => self.read(a, before),
+        }
+    }
+
+    fn ptr_write(&mut self, var: Variable, i: u16, x: Value, s: &mut Stack, before: &Before) {
+        match self.ptr_addr(var, i, before) {
+            (a, true) => {
+                self.store_word(a, x);
+                s.known.clear();
+            }
+            (a, false) => self.write(a, x, s, before),
+        }
     }
 
     /// RAM[base + i] of segment `seg` (`base` its register).
@@ -526,16 +614,14 @@ impl Translator<'_, '_> {
                 if matches!(op, Op::PushThisChk(_)) {
                     self.flag_ok(THIS_OK, before);
                 }
-                let a = self.seg_addr(self.v.this, i);
-                let x = self.read(a, before);
+                let x = self.ptr_read(self.v.this, i, before);
                 s.push(self, x);
             }
             Op::PushThat(i) | Op::PushThatChk(i) => {
                 if matches!(op, Op::PushThatChk(_)) {
                     self.flag_ok(THAT_OK, before);
                 }
-                let a = self.seg_addr(self.v.that, i);
-                let x = self.read(a, before);
+                let x = self.ptr_read(self.v.that, i, before);
                 s.push(self, x);
             }
             Op::PushAbs(a) => {
@@ -563,16 +649,14 @@ impl Translator<'_, '_> {
                     self.flag_ok(THIS_OK, before);
                 }
                 let x = s.pop(self);
-                let a = self.seg_addr(self.v.this, i);
-                self.write(a, x, s, before);
+                self.ptr_write(self.v.this, i, x, s, before);
             }
             Op::PopThat(i) | Op::PopThatChk(i) => {
                 if matches!(op, Op::PopThatChk(_)) {
                     self.flag_ok(THAT_OK, before);
                 }
                 let x = s.pop(self);
-                let a = self.seg_addr(self.v.that, i);
-                self.write(a, x, s, before);
+                self.ptr_write(self.v.that, i, x, s, before);
             }
             Op::PopAbs(a) => {
                 // 5..=255: never a stack word.
