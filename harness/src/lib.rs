@@ -14,6 +14,7 @@ pub mod commands;
 pub mod compare;
 pub mod contain;
 pub mod exhaustive;
+pub mod explain;
 pub mod implementation;
 pub mod impls;
 pub mod localize;
