@@ -13,6 +13,7 @@ pub mod cli;
 pub mod commands;
 pub mod compare;
 pub mod exhaustive;
+pub mod explain;
 pub mod implementation;
 pub mod impls;
 pub mod localize;

@@ -6,9 +6,11 @@ use crate::consts::Consts;
 use crate::engine::{outcome, Engine};
 use crate::float::FloatEngine;
 use crate::float316::F316Engine;
+use crate::formulation::Formulated;
 use crate::pipeline::{self, Shaded};
 use crate::scene::{Scene, SceneError};
 use crate::settings::{Arith, Settings};
+use crate::shadow::{OutputValue, Sh, ShadowEngine, ShadowOptions, ShadowOutput, ShadowRun};
 use crate::tracer::Tracer;
 use crate::vec3::V3;
 use common::image_consts::{HEIGHT, WIDTH};
@@ -167,6 +169,8 @@ pub struct Reference {
     implementation: RefImpl,
     settings: Settings,
     consts: Prepared,
+    /// The scene, for the shadowed runs' constants.
+    scene: Scene,
 }
 
 fn sdf_at<E: Engine>(e: &mut E, k: &Consts<E::N>, p: [F316; 3]) -> Outcome<SdfValue> {
@@ -240,6 +244,7 @@ impl Reference {
             implementation,
             settings,
             consts,
+            scene: scene.clone(),
         })
     }
 
@@ -333,6 +338,96 @@ impl Reference {
             Some(format!("sdf({:?},{:?},{:?})", p[0], p[1], p[2])),
             |e, k| sdf_at(e, k, p),
         )
+    }
+}
+
+/// Run `body` on a shadow of `inner` with the scene's constants (built by
+/// the same engine, so the camera basis is shadowed and correctable too).
+fn shadowed<E: Formulated>(
+    inner: E,
+    scene: &Scene,
+    settings: Settings,
+    options: &ShadowOptions,
+    body: impl FnOnce(&mut ShadowEngine<E>, &Consts<Sh<E::N>>) -> crate::engine::R<ShadowOutput>,
+) -> ShadowRun {
+    let mut e = ShadowEngine::new(inner, options.clone());
+    // The scene was accepted by `Reference::new` with the same low
+    // precision encoding and camera computation, so it is accepted here.
+    let k = Consts::build(scene, &mut e, settings.dither_threshold)
+        .expect("the scene was checked when the reference was made");
+    let r = body(&mut e, &k);
+    e.finish(outcome(r))
+}
+
+fn output<E: Engine>(name: &'static str, v: Sh<E::N>) -> OutputValue {
+    OutputValue {
+        name,
+        lo: E::to_f64(v.lo),
+        hi: v.hi,
+    }
+}
+
+fn shadow_pixel_of<E: Formulated>(
+    inner: E,
+    r: &Reference,
+    (x, y): (usize, usize),
+    options: &ShadowOptions,
+) -> ShadowRun {
+    shadowed(inner, &r.scene, r.settings, options, |e, k| {
+        // The image loop's counters are exact integers in every precision.
+        let counter = |n: usize| {
+            ShadowEngine::<E>::constant(n as f64).ok_or(crate::engine::Trap::OutOfDomain)
+        };
+        let s = pipeline::pixel(e, k, (x, y), (counter(x)?, counter(y)?))?;
+        Ok(ShadowOutput {
+            values: vec![output::<E>("shade", s.value)],
+            white: Some(s.white),
+        })
+    })
+}
+
+fn shadow_sdf_of<E: Formulated>(
+    inner: E,
+    r: &Reference,
+    p: [F316; 3],
+    options: &ShadowOptions,
+) -> ShadowRun {
+    shadowed(inner, &r.scene, r.settings, options, |e, k| {
+        let point = V3::new(
+            ShadowEngine::<E>::from_triple(p[0])?,
+            ShadowEngine::<E>::from_triple(p[1])?,
+            ShadowEngine::<E>::from_triple(p[2])?,
+        );
+        let s = e.frame(|| "sdf".into(), |e| pipeline::sdf(e, k, point))?;
+        Ok(ShadowOutput {
+            values: vec![output::<E>("sd", s.sd), output::<E>("col", s.col)],
+            white: None,
+        })
+    })
+}
+
+impl Reference {
+    /// Pixel (x, y) with every value shadowed in f64 (see
+    /// [`crate::ShadowEngine`]): its decisions, and its operations when
+    /// `options.record_ops`. The low-precision answer is this
+    /// implementation's, bit for bit.
+    pub fn shadow_pixel(&self, x: usize, y: usize, options: &ShadowOptions) -> ShadowRun {
+        let arith = self.settings.arith;
+        match &self.consts {
+            Prepared::F316(_) => shadow_pixel_of(F316Engine::new(arith), self, (x, y), options),
+            Prepared::F64(_) => shadow_pixel_of(FloatEngine::<f64>::new(), self, (x, y), options),
+            Prepared::F32(_) => shadow_pixel_of(FloatEngine::<f32>::new(), self, (x, y), options),
+        }
+    }
+
+    /// One SDF query, shadowed (see [`Reference::shadow_pixel`]).
+    pub fn shadow_sdf(&self, p: [F316; 3], options: &ShadowOptions) -> ShadowRun {
+        let arith = self.settings.arith;
+        match &self.consts {
+            Prepared::F316(_) => shadow_sdf_of(F316Engine::new(arith), self, p, options),
+            Prepared::F64(_) => shadow_sdf_of(FloatEngine::<f64>::new(), self, p, options),
+            Prepared::F32(_) => shadow_sdf_of(FloatEngine::<f32>::new(), self, p, options),
+        }
     }
 }
 
