@@ -16,6 +16,7 @@
 //! a gated image pair, a failed render, or a new field here.
 
 mod pairs;
+pub mod scenes;
 pub mod steps;
 
 use crate::cast::{Cast, Entry};
@@ -41,6 +42,8 @@ pub struct Options {
     pub implementations: Option<Vec<String>>,
     /// Progress bars on a terminal.
     pub progress: bool,
+    /// The described scenes of the scene step (files).
+    pub scenes: Vec<PathBuf>,
 }
 
 /// An implementation of the cast, opened for the night.
