@@ -705,4 +705,51 @@ mod tests {
         assert_eq!(odd_one_out(&[&x, &y]), None);
         assert_eq!(odd_one_out(&[&x, &x, &x]), None);
     }
+
+    /// Only two Float316 sides are compared bit for bit (mutation testing
+    /// found `&&` -> `||` uncaught by the unit tests).
+    #[test]
+    fn only_float316_pairs_get_the_exact_policy() {
+        use crate::implementation::Numbers::{Float316, F32, F64};
+        assert!(matches!(
+            Policy::for_pair(Float316, Float316),
+            Policy::Exact
+        ));
+        for (subject, oracle) in [(Float316, F64), (F64, Float316), (F32, F64), (F64, F64)] {
+            assert!(
+                matches!(Policy::for_pair(subject, oracle), Policy::Error { .. }),
+                "{subject:?} against {oracle:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn difference_kinds_have_their_names() {
+        let names: Vec<String> = [
+            DiffKind::Value,
+            DiffKind::OutcomeKind,
+            DiffKind::ErrorCode,
+            DiffKind::Hang,
+            DiffKind::Flip,
+        ]
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+        assert_eq!(
+            names,
+            ["value", "outcome kind", "error code", "hang", "pixel flip"]
+        );
+    }
+
+    /// Distances in f32 units in the last place, at 1, at a power of two
+    /// (the ulp above it), and at zero (the smallest normal as the unit).
+    #[test]
+    fn f32_ulps_are_exact() {
+        let ulp_at_one = f64::from(f32::EPSILON);
+        assert_eq!(ulps_f32(1.0 + ulp_at_one, 1.0), 1.0);
+        assert_eq!(ulps_f32(1.0 - 3.0 * ulp_at_one, 1.0), 3.0);
+        assert_eq!(ulps_f32(-4.0 - 8.0 * ulp_at_one, -4.0), 2.0);
+        let tiny = f64::from(f32::MIN_POSITIVE);
+        assert_eq!(ulps_f32(2.5 * tiny, 0.0), 2.5);
+    }
 }

@@ -41,6 +41,11 @@ pub struct Fault {
     pub expect: Expect,
 }
 
+/// The control of a reference fault: the clean ref-f316 against the Jack
+/// program, an independent implementation (ref-f316 against itself could
+/// never raise a false alarm, so it would control nothing).
+const REF_CLEAN: [&str; 2] = ["ref-f316", "jack"];
+
 /// The catalogue of faults.
 pub fn catalogue() -> Vec<Fault> {
     vec![
@@ -48,7 +53,7 @@ pub fn catalogue() -> Vec<Fault> {
             name: "sqrt-floor-div",
             description: "reference: sqrt's start exponent as (e-127)/2+127 with a floor division",
             faulty: ["ref-f316+sqrt-floor-div", "ref-f316"],
-            clean: ["ref-f316", "ref-f316"],
+            clean: REF_CLEAN,
             set: "ops-small",
             expect: Expect::Op(&[Op::Sqrt]),
         },
@@ -58,13 +63,14 @@ pub fn catalogue() -> Vec<Fault> {
             faulty: ["jack+web-divide", "ref-f316"],
             clean: ["jack", "ref-f316"],
             set: "ops-small",
-            expect: Expect::Op(&[Op::Sqrt, Op::InvSqrt]),
+            // The first divergent vector of ops-small is a sqrt.
+            expect: Expect::Op(&[Op::Sqrt]),
         },
         Fault {
             name: "add-align-off-by-one",
             description: "reference: add shifts the smaller mantissa once too often",
             faulty: ["ref-f316+add-align-off-by-one", "ref-f316"],
-            clean: ["ref-f316", "ref-f316"],
+            clean: REF_CLEAN,
             set: "ops-small",
             expect: Expect::Op(&[Op::Add]),
         },
@@ -72,7 +78,7 @@ pub fn catalogue() -> Vec<Fault> {
             name: "mul-keep-low",
             description: "reference: mul keeps the low*low partial product",
             faulty: ["ref-f316+mul-keep-low", "ref-f316"],
-            clean: ["ref-f316", "ref-f316"],
+            clean: REF_CLEAN,
             set: "ops-small",
             expect: Expect::Op(&[Op::Mul]),
         },
@@ -80,7 +86,7 @@ pub fn catalogue() -> Vec<Fault> {
             name: "dither-threshold",
             description: "reference: a pixel is white when its dithered value is not below 0.5",
             faulty: ["ref-f316+dither-threshold", "ref-f316"],
-            clean: ["ref-f316", "ref-f316"],
+            clean: REF_CLEAN,
             set: "pixels-small",
             expect: Expect::After(Op::Gt),
         },
@@ -88,7 +94,7 @@ pub fn catalogue() -> Vec<Fault> {
             name: "add-carry-bit",
             description: "reference: add tests its carry by bit 14 (missed by the committed sets)",
             faulty: ["ref-f316+add-carry-bit", "ref-f316"],
-            clean: ["ref-f316", "jack"],
+            clean: REF_CLEAN,
             set: "testfloat-2-add",
             expect: Expect::Op(&[Op::Add]),
         },
@@ -96,7 +102,7 @@ pub fn catalogue() -> Vec<Fault> {
             name: "add-drop-far",
             description: "reference: add drops an operand 14 exponents below (missed by the committed sets)",
             faulty: ["ref-f316+add-drop-far", "ref-f316"],
-            clean: ["ref-f316", "jack"],
+            clean: REF_CLEAN,
             set: "testfloat-2-add",
             expect: Expect::Op(&[Op::Add]),
         },
@@ -104,7 +110,7 @@ pub fn catalogue() -> Vec<Fault> {
             name: "div-normalise-once",
             description: "reference: div normalises its quotient by one doubling (missed by the committed sets)",
             faulty: ["ref-f316+div-normalise-once", "ref-f316"],
-            clean: ["ref-f316", "jack"],
+            clean: REF_CLEAN,
             set: "testfloat-2-div",
             expect: Expect::Op(&[Op::Div]),
         },

@@ -131,7 +131,6 @@ fn localize_prints_the_first_divergent_operation() {
         "{}",
         text(&float)
     );
-    assert!(Path::new(env!("CARGO_BIN_EXE_harness")).exists());
 }
 
 #[test]
@@ -197,8 +196,23 @@ fn jack_compile_then_run_prints_the_count_the_end_and_the_screen() {
     );
     let screen = image::open(&png).unwrap().to_luma8();
     assert_eq!(screen.dimensions(), (512, 256));
-    // "-4" in the top-left character cell: some black pixels there.
-    assert!((0..16).any(|x| (0..11).any(|y| screen.get_pixel(x, y).0[0] == 0)));
+    // Exactly the font's glyphs of "-4" in the first two 8x11 character
+    // cells, and nothing else black; the desktop profile (the default)
+    // starts text at pixel row 1 (its START_ADDRESS, docs/timing.md).
+    let font: serde_json::Value =
+        serde_json::from_str(include_str!("../../impls/jack/os/hack-font.json")).unwrap();
+    let glyph = |c: char, x: u32, y: u32| {
+        font["glyphs"][(c as u32).to_string()][y as usize]
+            .as_str()
+            .unwrap()
+            .as_bytes()[x as usize]
+            == b'#'
+    };
+    for (x, y, p) in screen.enumerate_pixels() {
+        let black =
+            x < 16 && (1..12).contains(&y) && glyph(['-', '4'][(x / 8) as usize], x % 8, y - 1);
+        assert_eq!(p.0[0] == 0, black, "pixel ({x},{y})");
+    }
 }
 
 #[test]
@@ -213,6 +227,95 @@ fn jack_compile_errors_name_file_line_and_column() {
     );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("Main.jack:3:"), "{}", text(&o));
+}
+
+/// A copy of the project 8 test folder `name` (its .tst, .cmp and .vm files).
+fn vm_test_folder(name: &str) -> tempfile::TempDir {
+    let from = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../impls/jack/vm/tests/scripts/project08")
+        .join(name);
+    let to = tempfile::tempdir().unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let p = e.unwrap().path();
+        std::fs::copy(&p, to.path().join(p.file_name().unwrap())).unwrap();
+    }
+    to
+}
+
+#[test]
+fn jack_test_runs_a_course_script_and_compares_like_the_official_tools() {
+    let dir = vm_test_folder("FibonacciElement");
+    let tst = dir
+        .path()
+        .join("FibonacciElementVME.tst")
+        .display()
+        .to_string();
+    for profile in ["desktop", "web"] {
+        let o = harness(&["jack", "test", &tst, "--profile", profile]);
+        assert!(o.status.success(), "{}", text(&o));
+        assert!(
+            text(&o).contains("Comparison ended successfully"),
+            "{}",
+            text(&o)
+        );
+    }
+    let out = std::fs::read_to_string(dir.path().join("FibonacciElement.out")).unwrap();
+    assert_eq!(out, "| RAM[0] |RAM[261]|\n|    262 |      3 |\n");
+    // A compare file that disagrees: exit 1 at its first differing line.
+    std::fs::write(
+        dir.path().join("FibonacciElement.cmp"),
+        "| RAM[0] |RAM[261]|\n|    262 |      5 |\n",
+    )
+    .unwrap();
+    let o = harness(&["jack", "test", &tst]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(
+        text(&o).contains("comparison failure at line 2"),
+        "{}",
+        text(&o)
+    );
+    // A script that cannot run: exit 2, with its line and column.
+    std::fs::write(&tst, "load,\nvmstep;\nfrobnicate;\n").unwrap();
+    let o = harness(&["jack", "test", &tst]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("FibonacciElementVME.tst:3:1: unknown"),
+        "{}",
+        text(&o)
+    );
+}
+
+#[test]
+fn jack_run_sets_words_before_and_prints_ram_ranges_after() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Main.vm"),
+        "function Main.main 0\npush constant 5000\ncall Memory.peek 1\npop static 0\npush constant 0\nreturn\n",
+    )
+    .unwrap();
+    let o = jack(
+        "run",
+        dir.path(),
+        &["--set", "5000=77", "--ram", "16..16", "--ram", "256..272"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let t = text(&o);
+    assert!(t.contains("RAM[16..16]: 77\n"), "{t}");
+    // The desktop start-up: the hidden call's frame at 256 (RET 11: six
+    // command lines and five invisible ones), the OS inits' zeros, Main.main's
+    // frame at 266, where its return value 0 landed; 7 steps in all.
+    assert!(t.contains("instructions: 7\n"), "{t}");
+    assert!(
+        t.contains("RAM[256..271]: 11 0 0 0 0 0 0 0 0 0 0 261 256 0 0 0\n"),
+        "{t}"
+    );
+    assert!(t.contains("RAM[272..272]: "), "{t}");
+    let o = jack("run", dir.path(), &["--ram", "10..5"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("the range is empty"), "{}", text(&o));
+    let o = jack("run", dir.path(), &["--set", "24577=1"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("outside RAM"), "{}", text(&o));
 }
 
 #[test]
@@ -244,7 +347,8 @@ fn compare_profiles_names_the_first_call_whose_result_differs() {
     assert!(o.status.success(), "{}", text(&o));
     let t = text(&o);
     assert!(
-        t.contains("call traces: same") && t.contains("screens: same"),
+        t.contains("call traces: same")
+            && t.contains("screens: same, the desktop's one pixel row lower"),
         "{t}"
     );
 }

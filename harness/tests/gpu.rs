@@ -18,7 +18,7 @@ fn gpu_f316() -> Option<Box<dyn Implementation>> {
         Err(OpenError::Impl(ImplError::Unavailable(why)))
             if std::env::var_os(gpu::SKIP_ENV).is_some() =>
         {
-            eprintln!("GPU leg skipped: {why}");
+            gpu::report_skipped(&why);
             None
         }
         Err(e) => panic!("gpu-f316: {e} (set {} to skip)", gpu::SKIP_ENV),

@@ -285,3 +285,52 @@ fn fifos_and_devices_are_refused_as_inputs() {
         assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
     }
 }
+
+/// Every test marked ignore is run by the nightly job: `scripts/nightly.sh`
+/// runs `cargo test --release -p CRATE -- --ignored` for each crate that
+/// has one (two such tests once ran nowhere).
+#[test]
+fn the_nightly_runs_every_ignored_test() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let nightly = std::fs::read_to_string(root.join("scripts/nightly.sh")).unwrap();
+    let mut crates = Vec::new();
+    let mut stack = vec![root.clone()];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if path.is_dir() && !name.starts_with('.') && name != "target" {
+                stack.push(path);
+            } else if name.ends_with(".rs")
+                && std::fs::read_to_string(&path)
+                    .unwrap_or_default()
+                    .contains(concat!("#[", "ignore"))
+            {
+                let manifest = path
+                    .ancestors()
+                    .find(|a| a.join("Cargo.toml").exists())
+                    .unwrap()
+                    .join("Cargo.toml");
+                let text = std::fs::read_to_string(&manifest).unwrap();
+                let package = text
+                    .lines()
+                    .find_map(|l| l.strip_prefix("name = \""))
+                    .map(|n| n.trim_end_matches('"').to_string())
+                    .unwrap();
+                crates.push((package, path));
+            }
+        }
+    }
+    assert!(
+        !crates.is_empty(),
+        "the jack crate has ignored whole-image tests"
+    );
+    for (package, file) in crates {
+        let run = format!("cargo test --release --locked -p {package} -- --ignored");
+        assert!(
+            nightly.contains(&run),
+            "{}: `{run}` is not in scripts/nightly.sh",
+            file.display()
+        );
+    }
+}

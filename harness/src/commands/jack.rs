@@ -3,6 +3,7 @@
 
 mod compile;
 mod run;
+mod test;
 
 /// Jack subcommands.
 #[derive(Debug, clap::Subcommand)]
@@ -11,6 +12,8 @@ pub enum JackCommand {
     Compile(compile::CompileArgs),
     /// Run a VM program on the Hack VM emulator (compiling .jack files first).
     Run(run::RunArgs),
+    /// Run a course VM emulator test script (.tst), compared with its .cmp.
+    Test(test::TestArgs),
 }
 
 /// Run a Jack subcommand.
@@ -18,5 +21,6 @@ pub fn run(cmd: JackCommand) -> anyhow::Result<std::process::ExitCode> {
     match cmd {
         JackCommand::Compile(args) => compile::run(args),
         JackCommand::Run(args) => run::run(args),
+        JackCommand::Test(args) => test::run(args),
     }
 }

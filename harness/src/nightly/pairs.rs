@@ -215,9 +215,35 @@ mod tests {
         assert!(pair
             .localization
             .starts_with("first divergent Float316 operation"));
+        let reference = reference::Reference::seed(reference::RefImpl::F316);
+        let keep_low = reference::Variant::MulKeepLow
+            .apply(reference::Settings::default())
+            .arith;
         for d in &pair.divergences {
             let op = d.first_op.as_deref().unwrap();
-            assert!(op.starts_with("mul("), "pixel ({}, {}): {op}", d.x, d.y);
+            // The true origin: the first mul of the clean trace whose result
+            // the fault changes (every operation before it is the same).
+            let trace = reference.trace_pixel(d.x as usize, d.y as usize).unwrap();
+            let (index, origin) = trace
+                .records
+                .iter()
+                .enumerate()
+                .find(|(_, r)| {
+                    r.op == common::Op::Mul
+                        && reference::op(common::Op::Mul, &r.args, keep_low).unwrap() != r.result
+                })
+                .expect("the fault changes a mul of a flipped pixel");
+            let expected = format!("mul({}, {}) = ", origin.args[0], origin.args[1]);
+            assert!(
+                op.starts_with(&expected),
+                "pixel ({}, {}): {op}, expected {expected}",
+                d.x,
+                d.y
+            );
+            assert!(
+                op.contains(&format!(", record {index} [")),
+                "{op}: record {index}"
+            );
             assert!(op.contains("(ref-f316+mul-keep-low)"), "{op}");
             assert_eq!(
                 d.repro,

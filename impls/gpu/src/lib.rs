@@ -43,6 +43,21 @@ pub use scene_wgsl::generate as scene_wgsl;
 /// adapter can be had. Without it, a missing adapter is an error.
 pub const SKIP_ENV: &str = "F316_SKIP_GPU";
 
+/// Say on standard error that a GPU check was skipped because [`SKIP_ENV`]
+/// is set, naming the running test (its thread's name) and `why`. Written
+/// straight to the stream, past `cargo test`'s output capture (which takes
+/// only the print macros), so that a passing run without a GPU shows each
+/// skipped check and is not mistaken for a verified one.
+pub fn report_skipped(why: &str) {
+    use std::io::Write;
+    let thread = std::thread::current();
+    let test = thread.name().unwrap_or("a GPU check");
+    let _ = writeln!(
+        std::io::stderr(),
+        "SKIPPED (no GPU, {SKIP_ENV} is set): {test}: {why}"
+    );
+}
+
 impl Gpu {
     /// [`Gpu::new`], except that a failure gives `Ok(None)` when the
     /// environment variable [`SKIP_ENV`] says the GPU leg is skipped.

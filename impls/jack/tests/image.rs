@@ -78,8 +78,8 @@ fn pixels_outside_the_image_are_refused() {
 }
 
 /// The whole image through the entry points (about 20 billion VM
-/// instructions: a minute or more on two cores, so the nightly job runs it:
-/// `cargo test --release -p jack -- --ignored`).
+/// instructions: a minute or more on two cores, so `scripts/nightly.sh`
+/// runs it: `cargo test --release -p jack -- --ignored`).
 #[test]
 #[ignore = "full image: nightly"]
 fn the_whole_image_matches_the_reference() {
@@ -101,7 +101,8 @@ fn the_whole_image_matches_the_reference() {
 }
 
 /// `Main.main` run unattended (SPACE scripted), read from screen memory:
-/// the slow path of `harness jack run impls/jack/raymarcher --keys SPACE`.
+/// the slow path of `harness jack run impls/jack/raymarcher --keys SPACE`
+/// (run by `scripts/nightly.sh`).
 #[test]
 #[ignore = "full program run: nightly"]
 fn the_whole_program_draws_the_reference() {

@@ -83,6 +83,11 @@ fn an_sdf_trace_starts_with_the_floor() {
         "{:?}",
         records[0].path
     );
+    // The distance and colour are ref-f316's, bit for bit.
     let sdf = jack().sdf(p).unwrap();
-    assert!(matches!(sdf.outcome, Outcome::Value(_)));
+    let Outcome::Value(want) = reference::Reference::seed(reference::RefImpl::F316).sdf(p) else {
+        panic!("ref-f316 answers at {p:?}");
+    };
+    let triples = (want.sd.triple.unwrap(), want.col.triple.unwrap());
+    assert_eq!(sdf.outcome, Outcome::Value(triples));
 }

@@ -744,21 +744,55 @@ mod tests {
         });
     }
 
-    /// `mul` equals Jack's order (zero test first) for every mantissa word
-    /// against zero, small, normalised, out-of-range and related mantissas,
-    /// with edge exponents, zero operands and sign pairings.
+    /// Jack's `Float316.mul` transcribed statement by statement (zero test
+    /// first, the halves' products, the doubling loop): the model `mul`
+    /// is checked against. It shares no helper with `mul` (not
+    /// `mul_any`, which `mul` falls back to).
+    fn mul_in_jack_order(arith: &Arith, a: F316, b: F316) -> F316 {
+        let rs = j::and(j::add(a.s, b.s), 1);
+        if (a.e | a.m) == 0 || (b.e | b.m) == 0 {
+            return F316::new(rs, 0, 0);
+        }
+        let mut re = j::sub(j::add(a.e, b.e), 126);
+        let ah = j::div(a.m, 128).unwrap();
+        let bh = j::div(b.m, 128).unwrap();
+        let mut mid = j::add(j::mul(ah, j::and(b.m, 127)), j::mul(j::and(a.m, 127), bh));
+        if arith.mul_keeps_low_product {
+            let low = j::mul(j::and(a.m, 127), j::and(b.m, 127));
+            mid = j::add(mid, j::div(low, 128).unwrap());
+        }
+        let mut rm = j::add(j::mul(ah, bh), j::div(mid, 128).unwrap());
+        if rm > 0 {
+            while rm < M_MIN {
+                rm = j::add(rm, rm);
+                re = j::sub(re, 1);
+            }
+        }
+        F316::new(rs, re, rm)
+    }
+
+    /// `mul` equals Jack's order for every mantissa word against zero,
+    /// small, normalised, out-of-range and related mantissas, with edge
+    /// exponents, zero operands and sign pairings, with and without the
+    /// low product.
     #[test]
     fn mul_equals_jack_order() {
         let exponents = [i16::MIN, 0, 127, i16::MAX];
         let signs = [(0, 0), (0, 1), (1, 1), (2, 3)];
         let others = |ma: i16| [ma, ma ^ 1, 0, 1, 127, 128, M_MIN, M_MAX, 16384, -1];
-        each_operand_pair(others, &exponents, &signs, |a, b| {
-            assert_eq!(
-                mul(&Arith::SPEC, a, b),
-                mul_any(&Arith::SPEC, a, b),
-                "{a:?} * {b:?}"
-            );
-        });
+        for keep in [false, true] {
+            let arith = Arith {
+                mul_keeps_low_product: keep,
+                ..Arith::SPEC
+            };
+            each_operand_pair(others, &exponents, &signs, |a, b| {
+                assert_eq!(
+                    mul(&arith, a, b),
+                    mul_in_jack_order(&arith, a, b),
+                    "{a:?} * {b:?}, keep = {keep}"
+                );
+            });
+        }
     }
 
     /// The shift-only mantissa product equals Jack's for every pair of
@@ -807,6 +841,18 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The fast paths' guard: exactly the mantissas 8192..=16383 (mutation
+    /// testing found `is_normalised -> false`, which only turns the fast
+    /// paths off, uncaught by the results).
+    #[test]
+    fn normalised_mantissas_are_8192_to_16383() {
+        let normalised: Vec<i16> = (i16::MIN..=i16::MAX)
+            .filter(|&m| is_normalised(m))
+            .collect();
+        assert_eq!(normalised.len(), 8192);
+        assert_eq!((normalised[0], normalised[8191]), (8192, 16383));
     }
 
     /// The closed forms used for speed equal Jack's loops for every word.

@@ -98,11 +98,13 @@ fn each_arithmetic_variant_changes_an_operation() {
         let spec = op(o, &args, Settings::default().arith).unwrap();
         let varied = op(o, &args, v.apply(Settings::default()).arith).unwrap();
         assert_ne!(spec, varied, "{v}");
-        let steps = trace_op(o, &args, v.apply(Settings::default()).arith)
-            .unwrap()
-            .records
-            .len();
-        assert!(steps >= 1);
+        // The trace records the varied operation itself, with its operands
+        // and the varied result.
+        let trace = trace_op(o, &args, v.apply(Settings::default()).arith).unwrap();
+        let first = &trace.records[0];
+        assert_eq!((first.op, &first.args), (o, &args), "{v}");
+        assert_eq!(first.result, varied, "{v}");
+        assert_eq!(trace.outcome, varied, "{v}");
     }
 }
 

@@ -118,7 +118,36 @@ fn f32_error_figures() {
         col_vs_f64: figures(&col, &col64, None),
     };
     eprintln!("adapter {}: {report:#?}", gpu.adapter_info());
+    assert_within_tolerance(&report);
     if gpu.adapter_info().driver == "llvmpipe" {
         insta::assert_yaml_snapshot!("f32_error_figures_lavapipe", report);
+    }
+}
+
+/// Bounds every adapter must meet (WGSL lets `sqrt`, division and `pow`
+/// be less accurate than IEEE, so a real GPU's figures differ from
+/// lavapipe's snapshot): about 50 times lavapipe's shade and distance
+/// errors against ref-f64, and at most 0.1 % of the image's pixels flipped.
+fn assert_within_tolerance(r: &Report) {
+    let bounds = [
+        ("shade", &r.shade_vs_f64, 1e-3, 2e-5),
+        ("sd", &r.sd_vs_f64, 2e-5, 2e-6),
+        ("col", &r.col_vs_f64, 3e-6, 1e-6),
+    ];
+    for (what, f, max_abs, mean_abs) in bounds {
+        assert!(
+            f.max_abs <= max_abs,
+            "{what}: max |err| {} > {max_abs}",
+            f.max_abs
+        );
+        assert!(
+            f.mean_abs <= mean_abs,
+            "{what}: mean |err| {} > {mean_abs}",
+            f.mean_abs
+        );
+    }
+    let pixels = common::image_consts::WIDTH * common::image_consts::HEIGHT;
+    for flips in [r.flips_vs_f32, r.flips_vs_f64] {
+        assert!(flips * 1000 <= pixels, "{flips} of {pixels} pixels flipped");
     }
 }

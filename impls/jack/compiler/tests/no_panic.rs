@@ -21,9 +21,28 @@ const VALID: &str = r#"class Main {
     }
 }"#;
 
+/// Compiles `src` under both profiles: code comes with a Jack position
+/// per line, and every error names `Main.jack` and a line and column
+/// inside the text (`Main.jack:LINE:COL: ...`).
 fn compile_both(src: &str) {
+    let lines = src.split('\n').count() as u32;
     for profile in [Profile::Desktop, Profile::Web] {
-        let _ = compile_sources(&[("Main.jack", src)], profile);
+        match compile_sources(&[("Main.jack", src)], profile) {
+            Ok(classes) => {
+                for c in classes {
+                    assert_eq!(c.lines.len(), c.code.lines().count());
+                }
+            }
+            Err(errors) => {
+                assert!(!errors.0.is_empty());
+                for e in errors.0 {
+                    assert_eq!(e.file, "Main.jack");
+                    assert!((1..=lines).contains(&e.pos.line) && e.pos.col >= 1, "{e}");
+                    let at = format!("Main.jack:{}:{}: ", e.pos.line, e.pos.col);
+                    assert!(e.to_string().starts_with(&at), "{e}");
+                }
+            }
+        }
     }
 }
 

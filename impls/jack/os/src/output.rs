@@ -1,5 +1,7 @@
 //! `Output` (spec section 3.5): a 23x64 character grid over the screen,
-//! cell (r, c) at pixel (8c, 11r).
+//! cell (r, c) at pixel (8c, 11r) in the web IDE and (8c, 11r + 1) in the
+//! desktop VM emulator, whose text starts at screen word 32 (its
+//! `START_ADDRESS`, spec section 6).
 
 use crate::context::{decimal, Ctx};
 use crate::font::{glyph, GLYPH_COLS};
@@ -10,19 +12,32 @@ const LAST_ROW: i32 = 22;
 /// Columns 0..=63.
 const COLUMNS: i32 = 64;
 
+/// Pixel row of the top of row 0's cells, per profile.
+const fn first_row_y(profile: Profile) -> i32 {
+    match profile {
+        Profile::Desktop => 1,
+        Profile::Web => 0,
+    }
+}
+
 impl Ctx<'_> {
+    /// The top pixel row of the cursor's cell.
+    fn cell_top(&self) -> i32 {
+        self.os.row * 11 + first_row_y(self.profile())
+    }
+
     /// Fill the cell white, 9x12 pixels inclusive: x in [8c, 8c+8], y in
-    /// [11r, 11r+11], so it also erases the next cell's first column and the
+    /// [top, top+11], so it also erases the next cell's first column and the
     /// first row of the cell below (and wraps to column 0 at c = 63).
     pub fn clear_char(&mut self) {
-        let (x, y) = (self.os.col * 8, self.os.row * 11);
+        let (x, y) = (self.os.col * 8, self.cell_top());
         self.draw_rect(x, y, x + 8, y + 11, false);
     }
 
     /// The cursor: clearChar, then a black 5x8 box.
     pub fn draw_cursor(&mut self) {
         self.clear_char();
-        let (x, y) = (self.os.col * 8, self.os.row * 11);
+        let (x, y) = (self.os.col * 8, self.cell_top());
         self.draw_rect(x + 2, y + 2, x + 6, y + 9, true);
     }
 
@@ -56,7 +71,7 @@ impl Ctx<'_> {
     pub fn print_char(&mut self, k: i32) {
         if let Some(g) = glyph(k) {
             self.clear_char();
-            let (x, y) = (self.os.col * 8, self.os.row * 11);
+            let (x, y) = (self.os.col * 8, self.cell_top());
             for (dy, bits) in (0..).zip(g.iter()) {
                 for dx in 0..GLYPH_COLS as i32 {
                     if bits >> dx & 1 == 1 {

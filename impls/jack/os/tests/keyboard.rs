@@ -31,7 +31,8 @@ fn read_char_waits_for_the_release_and_echoes() {
     assert_eq!(m.clock, 30);
     // Enter draws nothing: the cursor box drawn before the wait stays.
     assert_eq!(m.os.cursor(), (0, 2));
-    assert!(m.black(8 + 2, 2) && m.black(8 + 6, 9));
+    let top = m.cell_y(0);
+    assert!(m.black(8 + 2, top + 2) && m.black(8 + 6, top + 9));
     assert_eq!(
         m.call("Keyboard.readChar", &[]).stop,
         Some(Stop::BlockedForever)

@@ -35,9 +35,10 @@ fn clear_char_erases_9_by_12_pixels() {
     m.blacken();
     m.ok("Output.moveCursor", &[1, 1]);
     m.ok("Output.printChar", &[32]);
+    let top = m.cell_y(1);
     for x in 0..24 {
         for y in 0..36 {
-            let cleared = (8..=16).contains(&x) && (11..=22).contains(&y);
+            let cleared = (8..=16).contains(&x) && (top..=top + 11).contains(&y);
             assert_eq!(m.black(x, y), !cleared, "({x},{y})");
         }
     }
@@ -50,11 +51,12 @@ fn clear_char_at_column_63_wraps_to_column_0_of_the_next_rows() {
         m.blacken();
         m.ok("Output.moveCursor", &[2, 63]);
         m.ok("Output.printChar", &[32]);
-        // x = 512 paints (0, y+1) for y = 22..=33.
-        assert!(m.black(0, 22));
-        assert!((23..=34).all(|y| !m.black(0, y)));
-        assert!(m.black(0, 35));
-        assert!(m.black(1, 23));
+        // x = 512 paints (0, y+1) for y = top..=top+11 (top 22 web, 23 desktop).
+        let top = m.cell_y(2);
+        assert!(m.black(0, top));
+        assert!((top + 1..=top + 12).all(|y| !m.black(0, y)));
+        assert!(m.black(0, top + 13));
+        assert!(m.black(1, top + 1));
         assert_eq!(m.os.cursor(), (3, 0));
     }
 }
@@ -97,10 +99,10 @@ fn print_int_and_print_string() {
 }
 
 fn assert_cursor_box(m: &Machine, r: usize, c: usize) {
+    let top = m.cell_y(r);
     for x in 8 * c..8 * c + 8 {
-        for y in 11 * r..11 * r + 11 {
-            let inside =
-                (8 * c + 2..=8 * c + 6).contains(&x) && (11 * r + 2..=11 * r + 9).contains(&y);
+        for y in top..top + 11 {
+            let inside = (8 * c + 2..=8 * c + 6).contains(&x) && (top + 2..=top + 9).contains(&y);
             assert_eq!(m.black(x, y), inside, "({x},{y})");
         }
     }
@@ -159,4 +161,19 @@ fn backspace_clears_steps_back_and_draws_the_cursor() {
     m.ok("Output.backSpace", &[]);
     assert_eq!(m.os.cursor(), (0, 0));
     assert_cursor_box(&m, 0, 0);
+}
+
+#[test]
+fn desktop_text_starts_at_screen_row_1_and_web_text_at_row_0() {
+    for (profile, top) in [(Profile::Desktop, 1), (Profile::Web, 0)] {
+        let mut m = Machine::new(profile);
+        // 'T' is black in its glyph row 0.
+        m.ok("Output.printChar", &[i16::from(b'T')]);
+        assert!(m.shows(0, 0, 'T'));
+        let first_black_row = (0..256).find(|&y| (0..8).any(|x| m.black(x, y)));
+        assert_eq!(first_black_row, Some(top), "{profile}");
+        // The desktop's START_ADDRESS is screen word 32 (pixel row 1): its
+        // screen word 0 stays white.
+        assert_eq!(m.ram.read(16384) == 0, profile == Profile::Desktop);
+    }
 }

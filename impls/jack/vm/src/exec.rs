@@ -7,7 +7,8 @@ use crate::exit::Exit;
 use crate::machine::{
     Frame, Machine, Watcher, ARG_OK, HOST, LOCAL_OK, MAX_DEPTH, THAT_OK, THIS_OK,
 };
-use crate::program::{Bin, Op, Operand, Program, ARG, CONST, LCL, PTR, THAT, THIS};
+use crate::program::{Bin, Code, Op, Operand, Program, ARG, CONST, LCL, PTR, THAT, THIS};
+use crate::timing::{Timing, STACK_BASE, STACK_LAST};
 use jack_os::{math, Builtin, Ram, Stop, RAM_SIZE};
 
 /// The VM registers RAM[0..=4], cached: SP, and LCL, ARG, THIS, THAT in
@@ -101,9 +102,36 @@ pub(crate) enum Flow {
 }
 
 /// Fused instructions need `MIN_SP <= SP <= MAX_SP`: the stack words they
-/// touch are ordinary RAM and none of their pops happens at SP = 256.
+/// touch are inside the stack segment and none of their pops happens at
+/// SP = 256, so neither profile's stack rules can apply to them.
 const MIN_SP: u16 = 258;
-const MAX_SP: u16 = (RAM_SIZE - 9) as u16;
+const MAX_SP: u16 = STACK_LAST - 9;
+
+/// Zero `n` words from `sp` (mod 2^16) for the web profile, whose stack has
+/// no bounds: words outside RAM are dropped, so this writes at most
+/// `RAM_SIZE` words however large `n` is. Returns the new SP.
+#[cold]
+#[inline(never)]
+fn zero_unbounded(w: &mut Words, seg: &mut [u16; 8], sp: u16, n: u16) -> u16 {
+    let (mut a, mut left) = (sp, u32::from(n));
+    while left > 0 {
+        let at = usize::from(a);
+        let run = if plain_word(at) {
+            let run = (RAM_SIZE - at).min(left as usize);
+            w[at..at + run].fill(0);
+            run as u32
+        } else if at < 5 {
+            write_slow(sp, seg, a, 0);
+            1
+        } else {
+            // Past the end of RAM: on to the wrap-around at 65536.
+            (0x1_0000 - at as u32).min(left)
+        };
+        a = a.wrapping_add(run as u16);
+        left -= run;
+    }
+    sp.wrapping_add(n)
+}
 
 #[inline(always)]
 fn fast_sp(sp: u16) -> bool {
@@ -138,14 +166,16 @@ const ARG_OOB: &str = "Argument offset out of bounds";
 const LOCAL_OOB: &str = "Local offset out of bounds";
 const THIS_UNINIT: &str = "The this segment cannot be accessed since it was not initialized";
 const THAT_UNINIT: &str = "The that segment cannot be accessed since it was not initialized";
+const STACK_OVERFLOW: &str = "Stack overflow";
 
 impl Machine {
-    /// Run instructions of `code` (the fused or the plain array) until the
-    /// step count reaches `stop_at` (None) or the run ends (Some).
+    /// Run instructions of `code` (its fused array if `fused`, else its plain
+    /// one) until the step count reaches `stop_at` (None) or the run ends (Some).
     pub(crate) fn exec<const W: bool>(
         &mut self,
         program: &Program,
-        code: &[Op],
+        code: &Code,
+        fused: bool,
         stop_at: u64,
         watch: &mut Option<(&[bool], &mut dyn Watcher)>,
     ) -> Flow {
@@ -162,14 +192,16 @@ impl Machine {
         let mut profile_mark = self.profile_mark;
         let scratch = &mut self.scratch;
         let os_profile = os.profile();
+        let timing = Timing::of(os_profile);
+        let (function_step, stack_check) = (timing.function_step, timing.stack_check);
+        let plain = &code.plain[..];
+        let ops = if fused { &code.fused[..] } else { plain };
         let mut w = words(ram);
         // SP apart from the segment table, so that it stays in a register.
         let Regs {
             mut sp,
             base: mut seg,
         } = Regs::load(w);
-        // Fused code may run a few commands more per dispatch (MAX_FUSED_STEPS).
-        let fused = std::ptr::eq(code, &program.fused[..]);
 
         let halt: Option<Halt> = 'run: loop {
             macro_rules! rd {
@@ -193,20 +225,61 @@ impl Machine {
                     }
                 }};
             }
+            // Inside the stack segment (256 <= SP < 2047) with one test;
+            // elsewhere each profile's rule (crate::timing).
             macro_rules! push {
                 ($v:expr) => {{
                     let v: i16 = $v;
-                    wr!(sp, v);
-                    sp = sp.wrapping_add(1);
+                    let at = usize::from(sp);
+                    if at.wrapping_sub(usize::from(STACK_BASE))
+                        < usize::from(STACK_LAST - STACK_BASE)
+                    {
+                        w[at] = v;
+                        sp += 1;
+                    } else {
+                        wr!(sp, v);
+                        if stack_check && !(STACK_BASE..=STACK_LAST).contains(&sp.wrapping_add(1)) {
+                            break 'run Some(Halt::Error(STACK_OVERFLOW.into()));
+                        }
+                        sp = sp.wrapping_add(1);
+                    }
                 }};
             }
             macro_rules! pop {
                 () => {{
-                    if sp == 256 {
-                        break 'run Some(Halt::Error(POP_BELOW.into()));
+                    let at = usize::from(sp);
+                    if at.wrapping_sub(usize::from(STACK_BASE) + 1)
+                        < usize::from(STACK_LAST - STACK_BASE)
+                    {
+                        sp -= 1;
+                        w[at - 1]
+                    } else {
+                        if stack_check {
+                            if !(STACK_BASE..=STACK_LAST).contains(&sp.wrapping_sub(1)) {
+                                break 'run Some(Halt::Error(STACK_OVERFLOW.into()));
+                            }
+                        } else if sp == STACK_BASE {
+                            break 'run Some(Halt::Error(POP_BELOW.into()));
+                        }
+                        sp = sp.wrapping_sub(1);
+                        rd!(sp)
                     }
-                    sp = sp.wrapping_sub(1);
-                    rd!(sp)
+                }};
+            }
+            // The zeroed locals of a function: desktop, inside the stack
+            // segment or "Stack overflow" before any write; web, anywhere.
+            macro_rules! zero_locals {
+                ($n:expr) => {{
+                    let n: u16 = $n;
+                    let (from, to) = (usize::from(sp), usize::from(sp) + usize::from(n));
+                    if from >= usize::from(STACK_BASE) && to <= usize::from(STACK_LAST) {
+                        w[from..to].fill(0);
+                        sp = to as u16;
+                    } else if stack_check {
+                        break 'run Some(Halt::Error(STACK_OVERFLOW.into()));
+                    } else {
+                        sp = zero_unbounded(w, &mut seg, sp, n);
+                    }
                 }};
             }
             macro_rules! binary {
@@ -244,7 +317,9 @@ impl Machine {
                     // Through a copy, so that `steps` itself can stay in a register.
                     let mut clock = steps;
                     let c = os.call(b, &args[..n], ram, &mut clock);
-                    steps = clock;
+                    // The web IDE's hand-over step of a blocking built-in.
+                    steps =
+                        clock + u64::from(timing.handover_step && b.blocks() && c.stop.is_none());
                     w = words(ram);
                     Regs { sp, base: seg } = Regs::load(w);
                     push!(c.value);
@@ -407,7 +482,7 @@ impl Machine {
                     // `do f(..)` drops the value with `pop temp 0`: in fused
                     // code that pop runs here, not in a dispatch of its own.
                     if fused {
-                        if let Op::PopAbs(a) = program.plain[pc] {
+                        if let Op::PopAbs(a) = plain[pc] {
                             if fast_sp(sp) {
                                 steps += 1;
                                 pc += 1;
@@ -423,7 +498,7 @@ impl Machine {
                 break None;
             }
             // By reference: each arm reads only the fields it needs.
-            let op = &code[pc];
+            let op = &ops[pc];
             pc += 1;
             steps += 1;
             match *op {
@@ -590,8 +665,8 @@ impl Machine {
                     push!(seg[THAT] as i16);
                     seg[ARG] = base.wrapping_sub(n);
                     seg[LCL] = base.wrapping_add(5);
-                    for _ in 0..f.n_vars {
-                        push!(0);
+                    if !function_step {
+                        zero_locals!(f.n_vars);
                     }
                     frames.push(Frame {
                         caller: cur,
@@ -605,7 +680,10 @@ impl Machine {
                     nargs = n;
                     flags = f.entry_flags(n);
                     pc = f.start as usize;
-                    if method && fast_sp(sp) {
+                    if function_step {
+                        // Desktop: the callee's `function` line is the next step.
+                        pc -= 1;
+                    } else if method && fast_sp(sp) {
                         // The method's `push argument 0; pop pointer 0`.
                         let this = rd!(seg[ARG]);
                         w[usize::from(sp)] = this;
@@ -616,6 +694,18 @@ impl Machine {
                     }
                 }
                 Op::Return => do_return!(),
+                Op::Function { n_vars, method } => {
+                    zero_locals!(n_vars);
+                    if method && nargs >= 1 && fast_sp(sp) {
+                        // The method's `push argument 0; pop pointer 0`.
+                        let this = rd!(seg[ARG]);
+                        w[usize::from(sp)] = this;
+                        seg[THIS] = this as u16;
+                        flags |= THIS_OK;
+                        steps += 2;
+                        pc += 2;
+                    }
+                }
                 Op::Halt => {
                     steps -= 1;
                     break Some(Halt::Exit(Exit::Halted));

@@ -2,13 +2,73 @@
 
 use std::fmt;
 
-/// Jack call stack: function names, outermost first, innermost last.
+/// Jack call stack, outermost first, innermost last, with consecutive
+/// frames of one function collapsed into a run (a deep recursion is one
+/// entry, printed `Main.main x 1048576`).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct CallStack(pub Vec<String>);
+pub struct CallStack {
+    runs: Vec<(String, u64)>,
+}
+
+impl CallStack {
+    /// Add a frame of `name` on top.
+    pub fn push(&mut self, name: &str) {
+        self.push_run(name, 1);
+    }
+
+    /// Add `count` frames of `name` on top.
+    pub fn push_run(&mut self, name: &str, count: u64) {
+        match self.runs.last_mut() {
+            Some((last, n)) if last == name => *n += count,
+            _ => self.runs.push((name.to_string(), count)),
+        }
+    }
+
+    /// The runs: a function and how many consecutive frames it has.
+    pub fn runs(&self) -> &[(String, u64)] {
+        &self.runs
+    }
+
+    /// Number of frames.
+    pub fn depth(&self) -> u64 {
+        self.runs.iter().map(|r| r.1).sum()
+    }
+
+    /// The running function.
+    pub fn innermost(&self) -> Option<&str> {
+        self.runs.last().map(|r| r.0.as_str())
+    }
+
+    /// Every frame's function name, outermost first.
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.runs
+            .iter()
+            .flat_map(|(name, n)| std::iter::repeat_n(name.as_str(), *n as usize))
+    }
+}
+
+impl<S: AsRef<str>> FromIterator<S> for CallStack {
+    fn from_iter<I: IntoIterator<Item = S>>(names: I) -> Self {
+        let mut stack = CallStack::default();
+        for n in names {
+            stack.push(n.as_ref());
+        }
+        stack
+    }
+}
 
 impl fmt::Display for CallStack {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0.join(" > "))
+        for (i, (name, n)) in self.runs.iter().enumerate() {
+            if i > 0 {
+                f.write_str(" > ")?;
+            }
+            f.write_str(name)?;
+            if *n > 1 {
+                write!(f, " x {n}")?;
+            }
+        }
+        Ok(())
     }
 }
 

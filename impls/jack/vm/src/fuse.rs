@@ -33,6 +33,10 @@ pub(crate) fn fuse(plain: &[Op], starts: &[u32]) -> Vec<Op> {
                 ret,
                 method: true,
             },
+            Op::Function { n_vars, .. } if opens_as_method(plain, i as u32 + 1) => Op::Function {
+                n_vars,
+                method: true,
+            },
             _ => longest(&plain[i..]),
         })
         .collect()

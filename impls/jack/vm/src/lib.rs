@@ -26,13 +26,17 @@ mod machine;
 mod native;
 mod parse;
 mod program;
+mod script;
+mod timing;
 mod trace_diff;
 
 pub use error::LoadError;
 pub use exit::{CallStack, Exit};
-pub use jack_os::{Builtin, Completion, KeyScript, Profile, Ram, Stop};
+pub use jack_os::{Builtin, Completion, KeyScript, Profile, Ram, Stop, RAM_SIZE};
 pub use load::IMPLICIT;
 pub use machine::{Config, Machine, Register, UnknownFunction, Watcher, MAX_DEPTH};
 pub use native::Engine;
 pub use program::{FnId, Function, Program};
+pub use script::{run_script, Mismatch, ScriptError, ScriptReport};
+pub use timing::Timing;
 pub use trace_diff::{compare_call_traces, CallEvent, TraceComparison, TraceDivergence};

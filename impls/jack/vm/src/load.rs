@@ -4,7 +4,7 @@
 
 use crate::error::LoadError;
 use crate::parse::{self, Arith, Command, Line, Segment};
-use crate::program::{FnId, Function, Op, Program};
+use crate::program::{Code, FnId, Function, Op, Program};
 use jack_os::Builtin;
 use std::collections::HashMap;
 use std::path::Path;
@@ -80,13 +80,15 @@ impl Program {
     ) -> Result<Arc<Program>, LoadError> {
         let multi = sources.len() > 1;
         let mut raw: Vec<RawFunction> = Vec::new();
+        let mut command_lines = 0;
         for (file, text) in sources {
             let file = file.as_ref();
             let lines = parse::parse(file, text.as_ref())?;
+            command_lines += lines.len();
             split_functions(file, lines, multi, &mut raw)?;
         }
         let raw = dedupe(raw)?;
-        build(raw).map(Arc::new)
+        build(raw, command_lines).map(Arc::new)
     }
 }
 
@@ -207,10 +209,12 @@ enum Target {
     Os(Builtin),
 }
 
-fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
+fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, LoadError> {
     // Entry errors are reported after the checks of the functions' code.
+    let before = raw.len();
     let chosen = choose_entry(&mut raw);
     let entry = *chosen.as_ref().unwrap_or(&FnId::MAX);
+    let synthetic_entry = raw.len() > before;
     if raw.len() > u16::MAX as usize {
         return Err(LoadError::Program(format!(
             "too many functions ({})",
@@ -227,18 +231,29 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
     let mut messages: Vec<String> = Vec::new();
     let mut plain: Vec<Op> = Vec::new();
     let mut functions = Vec::with_capacity(raw.len());
+    // Desktop jump targets that differ from the web ones: (instruction, target).
+    // and the desktop's static addresses: (instruction, desktop instruction).
+    let mut desktop_ops: Vec<(usize, Op)> = Vec::new();
+    let static_base = desktop_static_bases(&raw);
 
     for (id, f) in raw.iter().enumerate() {
         let id = id as FnId;
         let class = f.name.split('.').next().unwrap_or(&f.name).to_string();
+        plain.push(Op::Function {
+            n_vars: f.n_vars,
+            method: false,
+        });
         let start = plain.len() as u32;
 
         // Pass 1: instruction positions of labels and of each command index.
         let first_index = usize::from(f.has_header);
         let mut labels: HashMap<&str, u32> = HashMap::new();
+        // Labels directly followed by a label: a desktop jump there wastes
+        // a step (crate::timing), taken by a `Goto` placed after the function.
+        let mut paired: Vec<&str> = Vec::new();
         let mut resume = vec![u32::MAX; first_index];
         let mut pc = start;
-        for l in &f.body {
+        for (k, l) in f.body.iter().enumerate() {
             resume.push(pc);
             match &l.command {
                 Command::Label(name) => {
@@ -249,11 +264,27 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
                             format!("Cannot redeclare label {name}"),
                         ));
                     }
+                    if matches!(
+                        f.body.get(k + 1),
+                        Some(Line {
+                            command: Command::Label(_),
+                            ..
+                        })
+                    ) {
+                        paired.push(name);
+                    }
                 }
                 _ => pc += 1,
             }
         }
         resume.push(pc); // one past the last command: the trailing Halt
+                         // The wasted-step jumps follow the Halt at `pc`.
+        let wasted_jump = |name: &str| {
+            paired
+                .iter()
+                .position(|p| *p == name)
+                .map(|j| pc + 1 + j as u32)
+        };
 
         // Pass 2: decode.
         for (k, l) in f.body.iter().enumerate() {
@@ -269,6 +300,16 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
                     let target = *labels
                         .get(name.as_str())
                         .ok_or_else(|| err(format!("Undeclared label {name}")))?;
+                    if let Some(t) = wasted_jump(name) {
+                        desktop_ops.push((
+                            plain.len(),
+                            if matches!(l.command, Command::Goto(_)) {
+                                Op::Goto(t)
+                            } else {
+                                Op::IfGoto(t)
+                            },
+                        ));
+                    }
                     if matches!(l.command, Command::Goto(_)) {
                         Op::Goto(target)
                     } else {
@@ -332,6 +373,19 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
                         Segment::Temp if push => Op::PushAbs(5 + i),
                         Segment::Temp => Op::PopAbs(5 + i),
                         Segment::Static => {
+                            let address =
+                                16 + u32::from(static_base[f.file.as_str()]) + u32::from(i);
+                            let desktop = if address > 255 {
+                                fail(
+                                    &mut messages,
+                                    format!("Out of segment space: {}'s static {i} would be RAM[{address}]", f.file),
+                                )
+                            } else if push {
+                                Op::PushAbs(address as u16)
+                            } else {
+                                Op::PopAbs(address as u16)
+                            };
+                            desktop_ops.push((plain.len(), desktop));
                             let next = statics.len();
                             let slot = *statics.entry((class.clone(), i)).or_insert(next);
                             if slot >= STATIC_SLOTS {
@@ -359,10 +413,14 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
             .max()
             .unwrap_or(0);
         plain.push(Op::Halt);
+        for name in &paired {
+            plain.push(Op::Goto(labels[name]));
+        }
         functions.push(Function {
             name: f.name.clone(),
             file: f.file.clone(),
             n_vars: f.n_vars,
+            headed: f.has_header,
             arg_reach,
             start,
             resume,
@@ -377,17 +435,58 @@ fn build(mut raw: Vec<RawFunction>) -> Result<Program, LoadError> {
     chosen?;
     let statics = statics.len().min(STATIC_SLOTS);
     let starts: Vec<u32> = functions.iter().map(|f| f.start).collect();
-    let fused = crate::fuse::fuse(&plain, &starts);
+    let mut desktop = plain.clone();
+    for (at, op) in desktop_ops {
+        desktop[at] = op;
+    }
+    let code = |plain: Vec<Op>| Code {
+        fused: crate::fuse::fuse(&plain, &starts),
+        plain,
+    };
+    // In the order of crate::timing::index.
+    let code = [code(desktop), code(plain)];
     Ok(Program {
         functions,
         by_name,
-        plain,
-        fused,
+        code,
         messages,
         entry,
+        synthetic_entry,
+        command_lines,
         statics,
         native: Default::default(),
     })
+}
+
+/// The desktop VM emulator's static segments: one per file, in load
+/// order, each as long as the file's largest static index + 1; `static i`
+/// of a file is RAM[16 + its base + i] (the web IDE numbers statics by
+/// first appearance instead, spec §2.4 and §6).
+fn desktop_static_bases(raw: &[RawFunction]) -> HashMap<&str, u16> {
+    let mut largest: Vec<(&str, Option<u16>)> = Vec::new();
+    for f in raw {
+        let at = match largest.iter().position(|(file, _)| *file == f.file) {
+            Some(at) => at,
+            None => {
+                largest.push((&f.file, None));
+                largest.len() - 1
+            }
+        };
+        for l in &f.body {
+            if let Command::Push(Segment::Static, i) | Command::Pop(Segment::Static, i) = l.command
+            {
+                let top = &mut largest[at].1;
+                *top = Some(top.map_or(i, |t| t.max(i)));
+            }
+        }
+    }
+    let mut base = 0u16;
+    let mut bases = HashMap::new();
+    for (file, top) in largest {
+        bases.insert(file, base);
+        base = base.saturating_add(top.map_or(0, |t| t.saturating_add(1)));
+    }
+    bases
 }
 
 fn resolve(by_name: &HashMap<String, FnId>, name: &str, n: u16) -> Result<Target, String> {

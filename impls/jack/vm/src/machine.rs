@@ -6,6 +6,7 @@ use crate::exec::Flow;
 use crate::exit::{CallStack, Exit};
 use crate::native::{Engine, Fault, Native};
 use crate::program::{FnId, Program};
+use crate::timing::{self, Timing};
 use jack_os::{Builtin, Completion, KeyScript, Os, Profile, Ram, KBD};
 use std::sync::Arc;
 
@@ -100,15 +101,22 @@ pub struct Machine {
     /// (0: not yet). Between changes the word keeps whatever the program
     /// stored there, however the run is split into calls.
     pub(crate) next_key_sync: u64,
+    /// The desktop's start-up step is still to be taken (by a run from the entry).
+    pub(crate) startup_pending: bool,
     /// The program's compiled code, when the compiling engine runs.
     pub(crate) native: Option<Arc<Native>>,
 }
 
 impl Machine {
     /// A machine after reset (spec §1), positioned at the entry function
-    /// with no frame (§2.6): SP=256, LCL=ARG=THIS=THAT=0.
+    /// with no frame (§2.6): SP=256, LCL=ARG=THIS=THAT=0. Under the desktop
+    /// profile it stands at the entry's `function` line, or, with the
+    /// synthetic `Sys.init`, before the desktop's start-up step, which the
+    /// first run from the entry takes (see [`crate::timing`]; host calls
+    /// do not take it).
     pub fn new(program: Arc<Program>, config: Config) -> Machine {
         let mut ram = Ram::new();
+        let timing = Timing::of(config.profile);
         let mut os = Os::new(config.profile, config.keys);
         os.reset(&mut ram);
         let entry = program.entry;
@@ -124,8 +132,10 @@ impl Machine {
                     .map(Arc::new)
             }
         };
-        Machine {
-            pc: program.functions[entry as usize].start,
+        let f = &program.functions[entry as usize];
+        let at_head = timing.function_step && f.headed;
+        let mut machine = Machine {
+            pc: f.start - u32::from(at_head),
             program,
             ram,
             os,
@@ -139,8 +149,11 @@ impl Machine {
             profile_mark: 0,
             scratch: Vec::new(),
             next_key_sync: 0,
+            startup_pending: false,
             native,
-        }
+        };
+        machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
+        machine
     }
 
     /// The engine that runs this machine: [`Engine::Interp`] if that was
@@ -150,6 +163,46 @@ impl Machine {
             None => Engine::Interp,
             Some(_) => Engine::Native,
         }
+    }
+
+    /// The desktop's first step, a hidden `call Sys.init` of its built-in,
+    /// which calls the OS inits and then `Main.main` through frames (a call
+    /// that `watch` sees like any other).
+    fn desktop_startup(&mut self, watch: &mut Option<(&[bool], &mut dyn Watcher)>) {
+        let p = Arc::clone(&self.program);
+        let size = i16::try_from(p.command_lines + 5).unwrap_or(i16::MAX);
+        let (words, regs) = timing::desktop_startup(size);
+        for (a, v) in (i32::from(timing::STACK_BASE)..).zip(words) {
+            self.ram.write(a, v);
+        }
+        for (a, v) in (0..).zip(regs) {
+            self.ram.write(a, v);
+        }
+        let sys_init = &p.functions[p.entry as usize];
+        let main = p
+            .function_id("Main.main")
+            .expect("a synthetic Sys.init calls Main.main");
+        let mut watched = false;
+        if let Some((set, watcher)) = watch {
+            if set.get(main as usize).copied().unwrap_or(false) {
+                watcher.on_call(&p, main, &[], &self.ram);
+                watched = true;
+            }
+        }
+        self.frames.push(Frame {
+            caller: p.entry,
+            ret_pc: *sys_init.resume.last().expect("the end of Sys.init"),
+            ret: -1,
+            nargs: 0,
+            flags: 0,
+            watched,
+        });
+        self.steps += 1;
+        self.charge_profile();
+        self.cur = main;
+        self.nargs = 0;
+        self.flags = p.functions[main as usize].entry_flags(0);
+        self.pc = p.functions[main as usize].start - 1;
     }
 
     /// The program this machine runs.
@@ -198,17 +251,32 @@ impl Machine {
         self.flags |= flag;
     }
 
-    /// The Jack call stack, outermost first, innermost (running) last.
+    /// The Jack call stack, outermost first, innermost (running) last,
+    /// with a recursion's frames collapsed (see [`CallStack`]).
     pub fn call_stack(&self) -> CallStack {
         let p = &self.program;
-        let mut names: Vec<String> = self
+        let mut stack = CallStack::default();
+        let callers = self
             .frames
             .iter()
             .filter(|f| f.ret_pc != HOST)
-            .map(|f| p.function_name(f.caller).to_string())
-            .collect();
-        names.push(p.function_name(self.cur).to_string());
-        CallStack(names)
+            .map(|f| f.caller);
+        let mut run: Option<(FnId, u64)> = None;
+        for id in callers.chain([self.cur]) {
+            match &mut run {
+                Some((last, n)) if *last == id => *n += 1,
+                _ => {
+                    if let Some((last, n)) = run {
+                        stack.push_run(p.function_name(last), n);
+                    }
+                    run = Some((id, 1));
+                }
+            }
+        }
+        if let Some((last, n)) = run {
+            stack.push_run(p.function_name(last), n);
+        }
+        stack
     }
 
     /// How the run ended, if it has.
@@ -343,8 +411,14 @@ impl Machine {
         });
         let function = &self.program.functions[callee as usize];
         let (start, n_vars) = (function.start, function.n_vars);
-        self.enter(callee, nargs, 0, n_vars);
-        self.pc = start;
+        if Timing::of(self.os.profile()).function_step {
+            // The callee's `function` line zeroes its locals, as a step.
+            self.enter(callee, nargs, 0, 0);
+            self.pc = start - 1;
+        } else {
+            self.enter(callee, nargs, 0, n_vars);
+            self.pc = start;
+        }
         let exit = self.drive::<W>(budget, watch);
         if let Exit::Returned(_) = exit {
             debug_assert_eq!(self.frames.len(), base_depth);
@@ -389,19 +463,24 @@ impl Machine {
             return e.clone();
         }
         let budget_end = budget.map_or(u64::MAX, |b| self.steps.saturating_add(b));
+        if self.startup_pending && self.frames.is_empty() && budget_end > self.steps {
+            self.startup_pending = false;
+            self.desktop_startup(&mut watch);
+        }
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
+        let code = &program.code[timing::index(self.os.profile())];
         let native = self.native.clone();
         let exit = loop {
             let key_change = self.next_key_sync;
             let limit = budget_end.min(key_change);
             let soft = limit.saturating_sub(crate::fuse::MAX_FUSED_STEPS);
             let flow = if let Some(native) = &native {
-                self.exec_native::<W>(&program, native, limit, &mut watch)
+                self.exec_native::<W>(&program, code, native, limit, &mut watch)
             } else if self.steps < soft {
-                self.exec::<W>(&program, &program.fused, soft, &mut watch)
+                self.exec::<W>(&program, code, true, soft, &mut watch)
             } else if self.steps < limit {
-                self.exec::<W>(&program, &program.plain, limit, &mut watch)
+                self.exec::<W>(&program, code, false, limit, &mut watch)
             } else {
                 Flow::Limit
             };
@@ -409,7 +488,7 @@ impl Machine {
                 // A fused instruction declined: run its commands one by one.
                 Flow::Deopt => {
                     let stop = limit.min(self.steps + crate::fuse::MAX_FUSED_STEPS);
-                    self.exec::<W>(&program, &program.plain, stop, &mut watch)
+                    self.exec::<W>(&program, code, false, stop, &mut watch)
                 }
                 other => other,
             };

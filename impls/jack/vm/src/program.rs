@@ -79,7 +79,16 @@ pub(crate) enum Op {
     Multiply,
     Divide,
     Return,
-    /// Ran past the last command of a function: the VM halts.
+    /// The `function` line: a step of its own under the desktop profile,
+    /// where a call lands here (see [`crate::timing`]); it pushes the
+    /// zeroed locals. `method` (fused code only): the function opens with
+    /// `push argument 0; pop pointer 0`, and this instruction runs them too.
+    Function {
+        n_vars: u16,
+        method: bool,
+    },
+    /// Ran past the last command of a function: the VM halts (both
+    /// profiles; see [`crate::timing`]).
     Halt,
 
     // Fused forms (module `fuse`); the comment gives the commands.
@@ -214,6 +223,7 @@ impl Op {
     pub(crate) const fn steps(self) -> u64 {
         match self {
             Op::Halt => 0,
+            Op::Function { method: true, .. } => 3,
             Op::Push2(..)
             | Op::Move(..)
             | Op::BinS { .. }
@@ -240,11 +250,14 @@ pub struct Function {
     pub file: String,
     /// Number of locals (`function f nVars`).
     pub n_vars: u16,
+    /// Whether the function has a `function` line (`__implicit` has none).
+    pub(crate) headed: bool,
     /// One more than the highest `argument` index the function uses (0 if
     /// none): an invocation with at least this many arguments never fails
     /// an argument access, so its fused instructions skip the check.
     pub(crate) arg_reach: u16,
-    /// First instruction.
+    /// First instruction of the body; `start - 1` holds its
+    /// [`Op::Function`] line.
     pub(crate) start: u32,
     /// Command index (as stored in a frame's RET, counting the `function`
     /// line and labels) to the instruction that runs it.
@@ -263,17 +276,34 @@ impl Function {
     }
 }
 
+/// One profile's instruction arrays.
+#[derive(Debug)]
+pub(crate) struct Code {
+    /// Per function: its `Function` line, one instruction per other
+    /// non-label command, a `Halt`, then the wasted-step
+    /// jumps of [`crate::timing`] (desktop only; unused in web code).
+    pub plain: Vec<Op>,
+    /// Same indexing as `plain`; at some indices a fused instruction.
+    pub fused: Vec<Op>,
+}
+
 /// A loaded, checked and decoded VM program. Immutable; share it with `Arc`.
 #[derive(Debug)]
 pub struct Program {
     pub(crate) functions: Vec<Function>,
     pub(crate) by_name: HashMap<String, FnId>,
-    /// One instruction per non-label command, plus a `Halt` after each function.
-    pub(crate) plain: Vec<Op>,
-    /// Same indexing as `plain`; at some indices a fused instruction.
-    pub(crate) fused: Vec<Op>,
+    /// The decoded code, per profile (indexed by [`crate::timing::index`]):
+    /// the same instructions at the same indices, except the jumps that
+    /// cost the desktop a wasted step.
+    pub(crate) code: [Code; 2],
     pub(crate) messages: Vec<String>,
     pub(crate) entry: FnId,
+    /// The entry is the synthetic `Sys.init` (no VM `Sys.init`, a `Main.main`).
+    pub(crate) synthetic_entry: bool,
+    /// Number of command lines of all files (function and label lines
+    /// included): the desktop VM emulator's program size before its
+    /// invisible start-up code.
+    pub(crate) command_lines: usize,
     /// Number of static slots allocated (RAM 16..16+n).
     pub(crate) statics: usize,
     /// Compiled code under each OS profile (desktop, web), made on first use.
@@ -307,9 +337,10 @@ impl Program {
         self.statics
     }
 
-    /// Number of decoded instructions (labels excluded).
+    /// Number of decoded instructions (labels excluded; function lines,
+    /// ends and wasted-step jumps included).
     pub fn instruction_count(&self) -> usize {
-        self.plain.len()
+        self.code[0].plain.len()
     }
 
     /// Compile the program to native code for machines of OS `profile`
@@ -320,7 +351,7 @@ impl Program {
     }
 
     pub(crate) fn native(&self, profile: Profile) -> Result<Arc<Native>, String> {
-        let slot = &self.native[usize::from(profile == Profile::Web)];
+        let slot = &self.native[crate::timing::index(profile)];
         slot.get_or_init(|| Native::compile(self, profile, None).map(Arc::new))
             .clone()
     }

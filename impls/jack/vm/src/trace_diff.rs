@@ -74,7 +74,7 @@ pub fn compare_call_traces(
     let b_to_a: Vec<Option<FnId>> = (0..pb.functions().len())
         .map(|id| pa.function_id(pb.function_name(id as FnId)))
         .collect();
-    let mut stack = a.call_stack().0;
+    let mut stack: Vec<String> = a.call_stack().names().map(String::from).collect();
     let mut sides = [Side::new(a, budget), Side::new(b, budget)];
     let mut matching = 0;
     loop {

@@ -3,11 +3,21 @@
 //! with `set_register`/`ram_mut`, the stated number of steps run, and the
 //! stated RAM compared.
 
-use hack_vm::{Config, Exit, Machine, Program, Register};
+use hack_vm::{Config, Exit, Machine, Profile, Program, Register};
 
 fn machine(sources: &[(&str, &str)]) -> Machine {
+    machine_under(sources, Profile::Desktop)
+}
+
+fn machine_under(sources: &[(&str, &str)], profile: Profile) -> Machine {
     let program = Program::from_sources(sources).expect("loads");
-    Machine::new(program, Config::default())
+    Machine::new(
+        program,
+        Config {
+            profile,
+            ..Config::default()
+        },
+    )
 }
 
 /// Run `steps` vmsteps (a run that halts earlier just stays halted).
@@ -130,12 +140,18 @@ fn pointer_test() {
 fn static_test() {
     let src = "push constant 111\npush constant 333\npush constant 888\npop static 8\npop static 3\npop static 1\n\
                push static 3\npush static 1\nsub\npush static 8\nadd\n";
+    let mut m = machine_under(&[("StaticTest.vm", src)], Profile::Web);
+    m.set_register(Register::Sp, 256);
+    steps(&mut m, 11);
+    assert_eq!(ram(&m, 256), 1110);
+    // Web: slots in order of first appearance: static 8, 3, 1 -> RAM 16, 17, 18.
+    assert_eq!((ram(&m, 16), ram(&m, 17), ram(&m, 18)), (888, 333, 111));
+    // Desktop: the file's segment from 16, static i at 16 + i.
     let mut m = machine(&[("StaticTest.vm", src)]);
     m.set_register(Register::Sp, 256);
     steps(&mut m, 11);
     assert_eq!(ram(&m, 256), 1110);
-    // Slots in order of first appearance: static 8, 3, 1 -> RAM 16, 17, 18.
-    assert_eq!((ram(&m, 16), ram(&m, 17), ram(&m, 18)), (888, 333, 111));
+    assert_eq!((ram(&m, 24), ram(&m, 19), ram(&m, 17)), (888, 333, 111));
 }
 
 #[test]
@@ -159,40 +175,46 @@ fn fibonacci_series() {
                if-goto COMPUTE_ELEMENT\ngoto END\nlabel COMPUTE_ELEMENT\npush that 0\npush that 1\nadd\n\
                pop that 2\npush pointer 1\npush constant 1\nadd\npop pointer 1\npush argument 0\n\
                push constant 1\nsub\npop argument 0\ngoto LOOP\nlabel END\n";
-    let mut m = machine(&[("FibonacciSeries.vm", src)]);
-    m.set_register(Register::Sp, 256);
-    m.set_register(Register::Local, 300);
-    m.set_register(Register::Argument, 400);
-    set(&mut m, 400, 6);
-    set(&mut m, 401, 3000);
-    let e = steps(&mut m, 73);
-    assert!(matches!(e, Exit::Budget { .. }), "{e}");
-    let got: Vec<i16> = (3000..3006).map(|a| ram(&m, a)).collect();
-    assert_eq!(got, [0, 1, 1, 2, 3, 5]);
-    // The next step runs past the end of the program: halt.
-    assert_eq!(steps(&mut m, 1), Exit::Halted);
-    assert_eq!(m.steps(), 73);
+    for profile in Profile::ALL {
+        let mut m = machine_under(&[("FibonacciSeries.vm", src)], profile);
+        m.set_register(Register::Sp, 256);
+        m.set_register(Register::Local, 300);
+        m.set_register(Register::Argument, 400);
+        set(&mut m, 400, 6);
+        set(&mut m, 401, 3000);
+        let e = steps(&mut m, 73);
+        assert!(matches!(e, Exit::Budget { .. }), "{e}");
+        let got: Vec<i16> = (3000..3006).map(|a| ram(&m, a)).collect();
+        assert_eq!(got, [0, 1, 1, 2, 3, 5]);
+        // The next step runs past the end of the program: halt.
+        assert_eq!(steps(&mut m, 1), Exit::Halted);
+        assert_eq!(m.steps(), 73);
+    }
 }
 
 #[test]
 fn simple_function() {
     let src = "function SimpleFunction.test 2\npush local 0\npush local 1\nadd\nnot\npush argument 0\nadd\n\
                push argument 1\nsub\nreturn\n";
-    let mut m = machine(&[("SimpleFunction.vm", src)]);
-    m.set_register(Register::Sp, 317);
-    m.set_register(Register::Local, 317);
-    m.set_register(Register::Argument, 310);
-    m.set_register(Register::This, 3000);
-    m.set_register(Register::That, 4000);
-    for (i, v) in [1234, 37, 9, 305, 300, 3010, 4010].into_iter().enumerate() {
-        set(&mut m, 310 + i as i32, v);
+    // Nine commands; the return from the entry ends the run. The desktop
+    // runs the `function` line first (pushing the two locals at 317): ten
+    // steps, the count the published test script runs.
+    for (profile, count) in [(Profile::Web, 9), (Profile::Desktop, 10)] {
+        let mut m = machine_under(&[("SimpleFunction.vm", src)], profile);
+        m.set_register(Register::Sp, 317);
+        m.set_register(Register::Local, 317);
+        m.set_register(Register::Argument, 310);
+        m.set_register(Register::This, 3000);
+        m.set_register(Register::That, 4000);
+        for (i, v) in [1234, 37, 9, 305, 300, 3010, 4010].into_iter().enumerate() {
+            set(&mut m, 310 + i as i32, v);
+        }
+        assert_eq!(steps(&mut m, 10), Exit::Halted);
+        assert_eq!(m.steps(), count, "{profile}");
+        let regs: Vec<i16> = (0..5).map(|a| ram(&m, a)).collect();
+        assert_eq!(regs, [311, 305, 300, 3010, 4010]);
+        assert_eq!(ram(&m, 310), 1196);
     }
-    // Nine commands; the return from the entry ends the run.
-    assert_eq!(steps(&mut m, 10), Exit::Halted);
-    assert_eq!(m.steps(), 9);
-    let regs: Vec<i16> = (0..5).map(|a| ram(&m, a)).collect();
-    assert_eq!(regs, [311, 305, 300, 3010, 4010]);
-    assert_eq!(ram(&m, 310), 1196);
 }
 
 const NESTED_SYS: &str = "
@@ -290,23 +312,27 @@ return
 #[test]
 fn fibonacci_element() {
     let sys = "function Sys.init 0\npush constant 4\ncall Main.fibonacci 1\nlabel END\ngoto END\n";
-    let mut m = machine(&[("Main.vm", FIB_MAIN), ("Sys.vm", sys)]);
-    m.set_register(Register::Sp, 261);
-    steps(&mut m, 110);
-    assert_eq!((ram(&m, 0), ram(&m, 261)), (262, 3));
-    // fib(4) itself takes 90 steps, Sys.init 2 before the loop.
-    let mut m = machine(&[("Main.vm", FIB_MAIN), ("Sys.vm", sys)]);
-    m.set_register(Register::Sp, 261);
-    steps(&mut m, 92);
-    assert_eq!((ram(&m, 0), ram(&m, 261)), (262, 3));
-    let mut m = machine(&[("Main.vm", FIB_MAIN), ("Sys.vm", sys)]);
-    m.set_register(Register::Sp, 261);
-    steps(&mut m, 91);
-    assert_ne!(
-        ram(&m, 0),
-        262,
-        "one step before the end fib(4) has not returned"
-    );
+    // Web: fib(4) itself takes 90 steps, Sys.init 2 before the loop.
+    // Desktop: 9 more for the `function` lines of the nine calls, and the
+    // `function Sys.init` line it starts at.
+    for (profile, done) in [(Profile::Web, 92), (Profile::Desktop, 102)] {
+        let run = |n| {
+            let mut m = machine_under(&[("Main.vm", FIB_MAIN), ("Sys.vm", sys)], profile);
+            m.set_register(Register::Sp, 261);
+            steps(&mut m, n);
+            m
+        };
+        let m = run(110);
+        assert_eq!((ram(&m, 0), ram(&m, 261)), (262, 3));
+        let m = run(done);
+        assert_eq!((ram(&m, 0), ram(&m, 261)), (262, 3), "{profile}");
+        let m = run(done - 1);
+        assert_ne!(
+            ram(&m, 0),
+            262,
+            "{profile}: one step before the end fib(4) has not returned"
+        );
+    }
 }
 
 #[test]
@@ -337,7 +363,7 @@ fn statics_test() {
 #[test]
 fn bootstrap_stack_at_main_main_entry() {
     let main = "function Main.main 2\npush constant 42\nreturn\n";
-    let mut m = machine(&[("Main.vm", main)]);
+    let mut m = machine_under(&[("Main.vm", main)], Profile::Web);
     // Seven init built-ins and the call of Main.main: eight steps.
     steps(&mut m, 8);
     assert_eq!(m.call_stack().to_string(), "Sys.init > Main.main");
@@ -349,4 +375,30 @@ fn bootstrap_stack_at_main_main_entry() {
     assert_eq!(steps(&mut m, 100), Exit::Halted);
     assert_eq!((ram(&m, 263), ram(&m, 0)), (42, 264));
     assert_eq!(m.steps(), 10);
+}
+
+#[test]
+fn desktop_bootstrap_is_one_hidden_call_of_sys_init() {
+    let main = "function Main.main 2\npush constant 42\nreturn\n";
+    let mut m = machine(&[("Main.vm", main)]);
+    assert_eq!(
+        steps(&mut m, 1),
+        Exit::Budget {
+            stack: ["Sys.init", "Main.main"].into_iter().collect()
+        }
+    );
+    // The hidden `call Sys.init` has run: the built-in's frame at 256, the
+    // five OS inits' zeros at 261..265, Main.main's frame (RET -1) at 266.
+    assert_eq!(m.steps(), 1);
+    assert_eq!(m.call_stack().to_string(), "Sys.init > Main.main");
+    let low: Vec<i16> = (256..271).map(|a| ram(&m, a)).collect();
+    // RET of the hidden call: the 3 command lines and 5 invisible ones.
+    assert_eq!(low, [8, 0, 0, 0, 0, 0, 0, 0, 0, 0, -1, 261, 256, 0, 0]);
+    assert_eq!((ram(&m, 2), ram(&m, 1), ram(&m, 0)), (266, 271, 271));
+    // `function Main.main 2` is a step: it pushes the two locals.
+    steps(&mut m, 1);
+    assert_eq!((ram(&m, 0), m.steps()), (273, 2));
+    assert_eq!(steps(&mut m, 100), Exit::Halted);
+    assert_eq!((ram(&m, 266), ram(&m, 0)), (42, 267));
+    assert_eq!(m.steps(), 4);
 }

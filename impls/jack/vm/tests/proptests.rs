@@ -3,18 +3,39 @@
 //! plain command at a time (RAM, step count and end), on random programs
 //! that poke at registers, RAM edges, the this/that checks and the built-ins.
 
-use hack_vm::{Config, Engine, Exit, KeyScript, Machine, Program, Watcher};
+use hack_vm::{Config, Engine, Exit, KeyScript, LoadError, Machine, Program, Watcher};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
+use std::sync::Arc;
 
 const VALID: &str = "function Main.main 2\npush constant 7\npop local 0\nlabel L\npush local 0\n\
                      push constant 1\nsub\npop local 0\npush local 0\nif-goto L\npush argument 0\n\
                      call Math.multiply 2\npush static 3\npop this 1\nreturn\n";
 
+/// `loaded`, after checking that an error at a line names a file and a
+/// line that exists (`Main.vm:LINE: ...`; `Sys.vm` is two lines long).
+fn located(text: &str, loaded: Result<Arc<Program>, LoadError>) -> Result<Arc<Program>, LoadError> {
+    if let Err(e) = &loaded {
+        if let LoadError::Syntax { file, line, .. } = e {
+            let lines = match file.as_str() {
+                "Main.vm" => text.split('\n').count(),
+                "Sys.vm" => 2,
+                other => panic!("{e}: unknown file {other}"),
+            };
+            assert!((1..=lines).contains(line), "{e}");
+            assert!(
+                e.to_string().starts_with(&format!("{file}:{line}: ")),
+                "{e}"
+            );
+        }
+    }
+    loaded
+}
+
 proptest! {
     #[test]
     fn loader_never_panics_on_random_text(text in "[ a-z0-9./$_:\\-\n\t/*]{0,200}") {
-        let _ = Program::from_sources(&[("Main.vm", text.as_str())]);
+        let _ = located(&text, Program::from_sources(&[("Main.vm", text.as_str())]));
     }
 
     #[test]
@@ -34,7 +55,7 @@ proptest! {
             }
         }
         let two = [("Main.vm", text.as_str()), ("Sys.vm", "function Sys.init 0\ncall Main.main 0\n")];
-        if let Ok(p) = Program::from_sources(&two) {
+        if let Ok(p) = located(&text, Program::from_sources(&two)) {
             // Whatever loads also runs without panicking.
             let mut m = Machine::new(p, Config::default());
             let _ = m.run(Some(10_000));
@@ -211,6 +232,8 @@ fn command() -> impl Strategy<Value = String> {
     let value = prop_oneof![
         0u16..8,
         250u16..262,
+        // The desktop's stack ends at 2047 ("Stack overflow" past it).
+        2040u16..2050,
         3000u16..3004,
         16380u16..16390,
         24570u16..24578,

@@ -4,12 +4,19 @@
 #[path = "support/fib.rs"]
 mod fib;
 
-use hack_vm::{Config, Exit, FnId, KeyScript, Machine, Program, Ram, Register, Watcher};
+use hack_vm::{Config, Exit, FnId, KeyScript, Machine, Profile, Program, Ram, Register, Watcher};
 
 fn load(sources: &[(&str, &str)]) -> Machine {
+    load_under(sources, Profile::Desktop)
+}
+
+fn load_under(sources: &[(&str, &str)], profile: Profile) -> Machine {
     Machine::new(
         Program::from_sources(sources).expect("loads"),
-        Config::default(),
+        Config {
+            profile,
+            ..Config::default()
+        },
     )
 }
 
@@ -92,21 +99,42 @@ fn if_goto_pops_and_jumps_on_nonzero() {
     // Jumped over `push 1`; then 0 does not jump.
     assert_eq!(m.ram().read(0), 257);
     assert_eq!(top(&m), 9);
-    // Labels are free: 6 commands ran.
-    assert_eq!(m.steps(), 6);
+    // Labels are free: 6 commands ran; the desktop spends one more step
+    // at `label B`, where the jump to A lands (A is followed by B).
+    assert_eq!(m.steps(), 7);
+    let mut web = load_under(&[("T.vm", src)], Profile::Web);
+    web.set_register(Register::Sp, 256);
+    assert_eq!(web.run(Some(10_000)), Exit::Halted);
+    assert_eq!(web.steps(), 6);
+    assert!(web.ram() == m.ram(), "same end state");
 }
 
 #[test]
 fn pop_below_256_is_a_runtime_error() {
-    let mut m = load(&[("T.vm", "push constant 1\npop temp 0\npop temp 0\n")]);
-    let (msg, stack) = runtime_error(m.run(None));
-    assert_eq!(msg, "Cannot pop the stack below 256 in strict mode");
-    assert_eq!(stack, "__implicit");
-    // Below 256 is fine if SP is not exactly 256.
-    let mut m = load(&[("T.vm", "pop temp 0\n")]);
+    let src = [("T.vm", "push constant 1\npop temp 0\npop temp 0\n")];
+    for (profile, message) in [
+        (
+            Profile::Web,
+            "Cannot pop the stack below 256 in strict mode",
+        ),
+        (Profile::Desktop, "Stack overflow"),
+    ] {
+        let mut m = load_under(&src, profile);
+        let (msg, stack) = runtime_error(m.run(None));
+        assert_eq!(msg, message);
+        assert_eq!(stack, "__implicit");
+        // The failing pop is a step.
+        assert_eq!(m.steps(), 3);
+    }
+    // Web: below 256 is fine if SP is not exactly 256. Desktop: SP must
+    // stay in the stack segment.
+    let mut m = load_under(&[("T.vm", "pop temp 0\n")], Profile::Web);
     m.set_register(Register::Sp, 100);
     assert_eq!(m.run(None), Exit::Halted);
     assert_eq!(m.ram().read(0), 99);
+    let mut m = load(&[("T.vm", "pop temp 0\n")]);
+    m.set_register(Register::Sp, 100);
+    assert_eq!(runtime_error(m.run(None)).0, "Stack overflow");
 }
 
 #[test]
@@ -143,7 +171,9 @@ fn temp_pointer_and_statics() {
         "push constant 3\npop temp 7\npush temp 7\npush constant 9\npop static 5\npush static 5\n",
     );
     assert_eq!(m.ram().read(12), 3);
-    assert_eq!(m.ram().read(16), 9);
+    // Desktop: the file's static segment from 16, static 5 at 21 (the web
+    // IDE's first slot would be 16).
+    assert_eq!(m.ram().read(21), 9);
     assert_eq!(top(&m), 9);
 }
 
@@ -171,11 +201,36 @@ fn more_than_240_statics_fail_when_accessed() {
         src.push_str("push constant 0\nreturn\n");
     }
     src.push_str("function Main.main 0\npush constant 0\nreturn\n");
-    let p = Program::from_sources(&[("T.vm", src.as_str())]).unwrap();
-    let mut m = Machine::new(p, Config::default());
+    // Web: 242 slots by class; C1's last two do not fit.
+    let mut m = load_under(&[("T.vm", src.as_str())], Profile::Web);
     assert_eq!(m.call("C0.f", &[], None).unwrap(), Exit::Returned(0));
     let (msg, stack) = runtime_error(m.call("C1.f", &[], None).unwrap());
     assert!(msg.contains("Too many static variables"), "{msg}");
+    assert_eq!(stack, "C1.f");
+    // Desktop: one segment per file, 121 words for T.vm: both fit. Two files
+    // of 121 do not: the second's static 119 would be RAM[256].
+    let mut m = load(&[("T.vm", src.as_str())]);
+    assert_eq!(m.call("C1.f", &[], None).unwrap(), Exit::Returned(0));
+    let one = |c: &str| {
+        let mut f = format!("function {c}.f 0\n");
+        for i in 0..121 {
+            f.push_str(&format!("push static {i}\npop temp 0\n"));
+        }
+        f + "push constant 0\nreturn\n"
+    };
+    let (c0, c1) = (one("C0"), one("C1"));
+    let main = "function Main.main 0\npush constant 0\nreturn\n";
+    let mut m = load(&[
+        ("C0.vm", c0.as_str()),
+        ("C1.vm", c1.as_str()),
+        ("Main.vm", main),
+    ]);
+    assert_eq!(m.call("C0.f", &[], None).unwrap(), Exit::Returned(0));
+    let (msg, stack) = runtime_error(m.call("C1.f", &[], None).unwrap());
+    assert!(
+        msg.contains("Out of segment space: C1.vm's static 119 would be RAM[256]"),
+        "{msg}"
+    );
     assert_eq!(stack, "C1.f");
 }
 
@@ -218,11 +273,11 @@ fn budget_stops_exactly_and_reports_the_call_stack() {
     let Exit::Budget { stack } = e else {
         panic!("{e}")
     };
-    assert_eq!(stack.0.first().map(String::as_str), Some("Sys.init"));
-    assert_eq!(stack.0.last().map(String::as_str), Some("Main.fib"));
+    assert_eq!(stack.names().next(), Some("Sys.init"));
+    assert_eq!(stack.innermost(), Some("Main.fib"));
     // Continue to the end.
     assert_eq!(m.run(None), Exit::Halted);
-    assert_eq!(m.ram().read(263), 55);
+    assert_eq!(m.ram().read(266), 55);
     let total = m.steps();
     // Any budget split gives the same total.
     for chunk in [1, 3, 7, 100] {
@@ -245,7 +300,7 @@ fn an_observed_run_ends_like_a_plain_one_and_reports_every_slice() {
             Exit::Halted
         );
         assert_eq!(m.steps(), total, "every {every}");
-        assert_eq!(m.ram().read(263), 55);
+        assert_eq!(m.ram().read(266), 55);
         // One report a slice (and one more if the end comes right after a
         // slice's last instruction), never going back.
         let slices = total.div_ceil(every) as usize;
@@ -264,7 +319,7 @@ fn an_observed_run_ends_like_a_plain_one_and_reports_every_slice() {
         let Exit::Budget { stack } = e else {
             panic!("every {every}: {e}")
         };
-        assert_eq!(stack.0.last().map(String::as_str), Some("Main.fib"));
+        assert_eq!(stack.innermost(), Some("Main.fib"));
     }
 }
 
@@ -333,10 +388,12 @@ fn builtins_replace_arguments_with_one_value() {
                push constant 200\ncall Memory.poke 2\npush constant 9\nneg\npush constant 2\ncall Math.divide 2\nreturn\n";
     let mut m = load(&[("Main.vm", src)]);
     assert_eq!(m.run(None), Exit::Halted);
-    // Stack of Main.main: 7 (max), 0 (void poke), then -9/2 returned.
+    // Stack of Main.main: 7 (max), 0 (void poke), then -9/2 returned into
+    // RAM[ARG] = 266 (the desktop's start-up frames).
     assert_eq!(m.ram().read(100), 200);
-    assert_eq!(m.ram().read(263), -4, "desktop truncates: -9/2 = -4");
-    assert_eq!(m.steps(), 8 + 11);
+    assert_eq!(m.ram().read(266), -4, "desktop truncates: -9/2 = -4");
+    // The hidden call of Sys.init, `function Main.main`, 11 commands.
+    assert_eq!(m.steps(), 1 + 1 + 11);
 }
 
 #[test]
@@ -378,7 +435,8 @@ fn sys_error_and_divide_by_zero_stop_with_the_stack() {
         "function Main.main 0\ncall Sys.halt 0\npush constant 1\nreturn\n",
     )]);
     assert_eq!(m.run(None), Exit::Halted);
-    assert_eq!(m.steps(), 9);
+    // Start-up, `function Main.main`, and the call of Sys.halt.
+    assert_eq!(m.steps(), 3);
 }
 
 #[test]

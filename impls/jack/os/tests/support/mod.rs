@@ -7,6 +7,7 @@ pub struct Machine {
     pub os: Os,
     pub ram: Ram,
     pub clock: u64,
+    pub profile: Profile,
 }
 
 impl Machine {
@@ -18,7 +19,12 @@ impl Machine {
         let mut os = Os::new(profile, keys);
         let mut ram = Ram::new();
         os.reset(&mut ram);
-        Machine { os, ram, clock: 0 }
+        Machine {
+            os,
+            ram,
+            clock: 0,
+            profile,
+        }
     }
 
     /// Call a built-in by name; panics on an unknown name (test bug).
@@ -70,10 +76,16 @@ impl Machine {
         self.ram.pixel(x, y)
     }
 
+    /// The top pixel row of text row `r`: 11r, one lower on the desktop.
+    pub fn cell_y(&self, r: usize) -> usize {
+        11 * r + usize::from(self.profile == Profile::Desktop)
+    }
+
     /// Whether the 8x11 cell (r, c) shows exactly the glyph of `ch`.
     pub fn shows(&self, r: usize, c: usize, ch: char) -> bool {
         let g = glyph(ch);
-        (0..11).all(|i| (0..8).all(|j| self.black(8 * c + j, 11 * r + i) == g[i][j]))
+        let y = self.cell_y(r);
+        (0..11).all(|i| (0..8).all(|j| self.black(8 * c + j, y + i) == g[i][j]))
     }
 
     /// Whether cells of row `r` starting at column `c` show `text`.

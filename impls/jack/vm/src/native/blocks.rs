@@ -1,9 +1,14 @@
 //! Basic blocks of one VM function, as the translator sees them: where
 //! compiled code may be entered (leaders), how many steps each block
-//! charges, and how far its stack pointer moves, so that one test at the
-//! block's entry covers every stack access inside it.
+//! charges (each instruction's [`Op::steps`], the same count the
+//! interpreter charges), and how far its stack pointer moves, so that one
+//! test at the block's entry covers every stack access inside it.
 
 use crate::program::Op;
+
+/// A frame's locals are zeroed by straight-line stores up to this many; a
+/// `function` line or a call that zeroes more is left to the interpreter.
+pub(crate) const MAX_INLINE_LOCALS: u16 = 64;
 
 /// How the translator handles one instruction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -15,7 +20,8 @@ pub(crate) enum Kind {
     /// A call of a VM function or a return: compiled inline, ends the block.
     CallOrReturn,
     /// Left to the interpreter (built-ins, halt, load-time failures, the
-    /// entry function's checked accesses, `pop constant` outside plain RAM):
+    /// entry function's checked accesses, `pop constant` outside plain RAM,
+    /// a `function` line with more than [`MAX_INLINE_LOCALS`] locals):
     /// the block ends before it, and compiled code exits there.
     Interpreted,
 }
@@ -28,6 +34,7 @@ pub(crate) fn kind(op: Op) -> Kind {
             Kind::Interpreted
         }
         Op::PopRam(a) if !crate::native::plain_address(a) => Kind::Interpreted,
+        Op::Function { n_vars, .. } if n_vars > MAX_INLINE_LOCALS => Kind::Interpreted,
         _ => Kind::Straight,
     }
 }
@@ -66,6 +73,7 @@ fn stack_effect(op: Op) -> (i32, i32) {
         | Op::Multiply
         | Op::Divide => (2, 1),
         Op::Neg | Op::Not => (1, 1),
+        Op::Function { n_vars, .. } => (0, i32::from(n_vars)),
         _ => (0, 0),
     }
 }
@@ -84,16 +92,31 @@ pub(crate) struct Block {
     /// block (a final call's frame and a return's frame are checked apart).
     pub min_depth: i32,
     pub max_depth: i32,
+    /// Whether the entry test must check SP: the block touches the stack,
+    /// or holds a `function` line (whose stack rule applies even with no
+    /// locals).
+    pub checks_stack: bool,
 }
 
-/// The blocks of the function whose instructions are `code[start..=end]`
-/// (`end`: its trailing `Halt`), in order, and for each instruction index
-/// (relative to `start`) the block that begins there, if one does.
-pub(crate) fn blocks(code: &[Op], start: u32, end: u32) -> (Vec<Block>, Vec<Option<u32>>) {
-    let len = (end - start + 1) as usize;
+/// The blocks of the function whose instructions are `code[start..end]`,
+/// in order, and for each instruction index (relative to `start`) the
+/// block that begins there, if one does. Blocks begin at `start`, at
+/// every jump target, after every instruction that ends a block, and at
+/// each of `entries` (where the machine may stand when compiled code is
+/// entered).
+pub(crate) fn blocks(
+    code: &[Op],
+    start: u32,
+    end: u32,
+    entries: &[u32],
+) -> (Vec<Block>, Vec<Option<u32>>) {
+    let len = (end - start) as usize;
     let mut leader = vec![false; len];
     leader[0] = true;
-    for (i, &op) in code[start as usize..=end as usize].iter().enumerate() {
+    for &e in entries {
+        leader[(e - start) as usize] = true;
+    }
+    for (i, &op) in code[start as usize..end as usize].iter().enumerate() {
         if let Op::Goto(t) | Op::IfGoto(t) = op {
             leader[(t - start) as usize] = true;
         }
@@ -107,7 +130,7 @@ pub(crate) fn blocks(code: &[Op], start: u32, end: u32) -> (Vec<Block>, Vec<Opti
     while i < len {
         index[i] = Some(blocks.len() as u32);
         let (mut depth, mut min_depth, mut max_depth) = (0i32, 0i32, 0i32);
-        let mut steps = 0;
+        let (mut steps, mut checks_stack) = (0, false);
         let mut j = i;
         loop {
             let op = code[start as usize + j];
@@ -119,7 +142,8 @@ pub(crate) fn blocks(code: &[Op], start: u32, end: u32) -> (Vec<Block>, Vec<Opti
             min_depth = min_depth.min(depth);
             depth += pushes;
             max_depth = max_depth.max(depth);
-            steps += 1;
+            checks_stack |= pops + pushes > 0 || matches!(op, Op::Function { .. });
+            steps += op.steps();
             j += 1;
             if kind(op) != Kind::Straight || j == len || leader[j] {
                 break;
@@ -131,6 +155,7 @@ pub(crate) fn blocks(code: &[Op], start: u32, end: u32) -> (Vec<Block>, Vec<Opti
             steps,
             min_depth,
             max_depth,
+            checks_stack,
         });
         // An interpreted instruction is a block of its own with no compiled
         // instruction: entering it exits at once.

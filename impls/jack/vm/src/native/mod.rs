@@ -17,7 +17,8 @@ mod translate;
 
 use crate::exec::Flow;
 use crate::machine::{Frame, Machine, Watcher, MAX_DEPTH};
-use crate::program::{FnId, Program};
+use crate::program::{Code, FnId, Op, Program};
+use crate::timing::{self, Timing};
 use cranelift_codegen::ir::{types, AbiParam, UserFuncName};
 use cranelift_codegen::settings::{self, Configurable};
 use cranelift_frontend::FunctionBuilderContext;
@@ -190,21 +191,27 @@ impl Native {
             })
             .collect::<Result<_, _>>()?;
         let target = module.target_config();
-        let mut block_at = vec![(0, NO_BLOCK); program.plain.len()];
+        let timing = Timing::of(profile);
+        let code = &program.code[timing::index(profile)].plain;
+        let mut block_at = vec![(0, NO_BLOCK); code.len()];
         let mut ctx = module.make_context();
         let mut fctx = FunctionBuilderContext::new();
         for (i, &id) in ids.iter().enumerate() {
             ctx.func.signature = sig.clone();
             ctx.func.name = UserFuncName::user(0, id.as_u32());
             let f = &program.functions[i];
-            let end = f.start
-                + program.plain[f.start as usize..]
-                    .iter()
-                    .position(|op| *op == crate::program::Op::Halt)
-                    .expect("every function ends in Halt") as u32;
-            let (vm_blocks, starts) = blocks::blocks(&program.plain, f.start, end);
+            let (start, end) = extent(code, f, timing);
+            // Where a run may stand in this function other than at a block
+            // that compiled code reaches: the body of a function without a
+            // `function` line (the start of `__implicit`).
+            let entries: &[u32] = if start == f.start || f.headed {
+                &[]
+            } else {
+                std::slice::from_ref(&f.start)
+            };
+            let (vm_blocks, starts) = blocks::blocks(code, start, end, entries);
             for (k, b) in starts.iter().enumerate() {
-                block_at[f.start as usize + k] = (i as FnId, b.unwrap_or(NO_BLOCK));
+                block_at[start as usize + k] = (i as FnId, b.unwrap_or(NO_BLOCK));
             }
             let mut callee = |func: &mut cranelift_codegen::ir::Function, callee: FnId| {
                 module.declare_func_in_func(ids[callee as usize], func)
@@ -213,6 +220,9 @@ impl Native {
                 cranelift_frontend::FunctionBuilder::new(&mut ctx.func, &mut fctx),
                 translate::Env {
                     program,
+                    code,
+                    start,
+                    timing,
                     id: i as FnId,
                     blocks: &vm_blocks,
                     block_at: &starts,
@@ -253,6 +263,24 @@ impl Native {
     }
 }
 
+/// The instructions `start..end` of function `f` in `code` that compiled
+/// code runs: from the instruction a call lands on (its `function` line
+/// where that is a step, crate::timing, else its body), through its
+/// `Halt` and the wasted-step jumps after it.
+fn extent(code: &[Op], f: &crate::program::Function, timing: Timing) -> (u32, u32) {
+    let start = f.start - u32::from(timing.function_step);
+    let halt = f.start as usize
+        + code[f.start as usize..]
+            .iter()
+            .position(|op| *op == Op::Halt)
+            .expect("every function ends in Halt");
+    let jumps = code[halt + 1..]
+        .iter()
+        .take_while(|op| matches!(op, Op::Goto(_)))
+        .count();
+    (start, (halt + 1 + jumps) as u32)
+}
+
 /// Whether `a` is an ordinary word (not a register, inside RAM).
 pub(crate) fn plain_address(a: u16) -> bool {
     (5..RAM_SIZE).contains(&usize::from(a))
@@ -265,6 +293,7 @@ impl Machine {
     pub(crate) fn exec_native<const W: bool>(
         &mut self,
         program: &Program,
+        code: &Code,
         native: &Native,
         stop_at: u64,
         watch: &mut Option<(&[bool], &mut dyn Watcher)>,
@@ -284,8 +313,7 @@ impl Machine {
             if self.steps >= stop_at {
                 return Flow::Limit;
             }
-            if let Flow::End(exit) = self.exec::<W>(program, &program.plain, self.steps + 1, watch)
-            {
+            if let Flow::End(exit) = self.exec::<W>(program, code, false, self.steps + 1, watch) {
                 return Flow::End(exit);
             }
         }

@@ -5,8 +5,8 @@
 //! argument count and the step count in registers, and returns a code (see
 //! `native::RETURNED`, `native::CONTINUE`; a code >= 0 is the instruction
 //! the interpreter must run next). Every block first checks that its whole
-//! step count fits under the stop and that its stack accesses stay in plain
-//! RAM above 256; otherwise, and wherever an instruction meets a case that
+//! step count fits under the stop and that its stack accesses stay between
+//! 256 and the profile's stack end (`Timing::stack_end`); otherwise, and wherever an instruction meets a case that
 //! only the interpreter handles (a register or an address outside RAM
 //! through a computed address, a failed segment check, a division by zero,
 //! a built-in), it stores the exact state before that instruction and
@@ -14,10 +14,11 @@
 //! itself is popped from a register unless a computed store might have
 //! overwritten it.
 
-use super::blocks::{self, Block, Kind};
+use super::blocks::{self, Block, Kind, MAX_INLINE_LOCALS};
 use super::{Ctx, Fault, CONTINUE, NATIVE_DEPTH, RETURNED};
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
+use crate::timing::{Timing, STACK_BASE};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{
     self, types, BlockArg, FuncRef, InstBuilder, JumpTableData, MemFlagsData, Value,
@@ -25,10 +26,6 @@ use cranelift_codegen::ir::{
 use cranelift_frontend::{FunctionBuilder, Variable};
 use jack_os::{Profile, RAM_SIZE};
 use std::mem::offset_of;
-
-/// A call frame's locals are zeroed by straight-line stores up to this
-/// many; a callee with more is called by the interpreter.
-const MAX_INLINE_LOCALS: u16 = 64;
 
 const T16: ir::Type = types::I16;
 const T32: ir::Type = types::I32;
@@ -57,6 +54,12 @@ struct Vars {
 /// What the translation of one function needs from its surroundings.
 pub(crate) struct Env<'a> {
     pub program: &'a Program,
+    /// The profile's plain instructions.
+    pub code: &'a [Op],
+    /// The function's first instruction in `code` (where a call lands).
+    pub start: u32,
+    /// The profile's step and stack rules.
+    pub timing: Timing,
     pub id: FnId,
     /// The function's blocks, and the block starting at each instruction
     /// (relative to the function's start), from [`blocks::blocks`].
@@ -89,7 +92,7 @@ struct Translator<'a, 'b> {
 /// Build the IR of function `env.id` into `b` (signature: ctx pointer,
 /// block index; returns the code).
 pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
-    let start = env.program.functions[env.id as usize].start;
+    let start = env.start;
     let (vm_blocks, block_at) = (env.blocks, env.block_at);
 
     let entry = b.create_block();
@@ -303,22 +306,24 @@ impl Translator<'_, '_> {
                 .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
             return;
         }
-        // The whole block fits under the stop, and its stack stays in
-        // plain RAM with no pop at SP = 256.
+        // The whole block fits under the stop, and its stack stays where
+        // no stack rule applies: from 256 (no pop at SP = 256) up to the
+        // profile's stack end.
         let last = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
         let mut ok = self
             .b
             .ins()
             .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at);
-        if blk.min_depth < 0 || blk.max_depth > 0 {
+        if blk.checks_stack {
             // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1).
-            let low = self.c16(256 - i64::from(blk.min_depth));
+            let low = self.c16(i64::from(STACK_BASE) - i64::from(blk.min_depth));
             let c = self
                 .b
                 .ins()
                 .icmp(IntCC::UnsignedGreaterThanOrEqual, sp0, low);
             ok = self.b.ins().band(ok, c);
-            let high = self.c16(RAM_SIZE as i64 - i64::from(blk.max_depth));
+            let end = i64::from(self.env.timing.stack_end());
+            let high = self.c16(end - i64::from(blk.max_depth));
             let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, sp0, high);
             ok = self.b.ins().band(ok, c);
         }
@@ -337,7 +342,7 @@ impl Translator<'_, '_> {
             known: Vec::new(),
         };
         for pc in blk.start..blk.end {
-            let op = self.env.program.plain[pc as usize];
+            let op = self.env.code[pc as usize];
             let before = Before {
                 pc,
                 k: u64::from(pc - blk.start),
@@ -347,7 +352,7 @@ impl Translator<'_, '_> {
             };
             self.op(op, &mut s, &before, blk);
         }
-        if blocks::kind(self.env.program.plain[blk.end as usize - 1]) == Kind::Straight {
+        if blocks::kind(self.env.code[blk.end as usize - 1]) == Kind::Straight {
             // Falls through into the next block (or the interpreted
             // instruction that ends this one).
             self.end_block(&s, steps0, blk);
@@ -550,6 +555,13 @@ impl Translator<'_, '_> {
                 callee, nargs, ret, ..
             } => self.call(FnId::from(callee), nargs, ret, s, before, blk),
             Op::Return => self.ret(s, before, blk),
+            Op::Function { n_vars, .. } => {
+                // The locals, zeroed (the block's entry test covers them).
+                for _ in 0..n_vars {
+                    let zero = self.c16(0);
+                    s.push(self, zero);
+                }
+            }
             _ => unreachable!("interpreted instructions end blocks before them"),
         }
     }
@@ -592,7 +604,14 @@ impl Translator<'_, '_> {
         let mem = MemFlagsData::trusted();
         let ctx = self.ctx;
         let f = &self.env.program.functions[callee as usize];
-        let (n_vars, entry_flags) = (f.n_vars, f.entry_flags(n));
+        // Where a call's `function` line is a step, the callee's zeroes
+        // its locals; else the call does.
+        let n_vars = if self.env.timing.function_step {
+            0
+        } else {
+            f.n_vars
+        };
+        let entry_flags = f.entry_flags(n);
         if n_vars > MAX_INLINE_LOCALS {
             self.exit_before(before);
             return;
@@ -622,15 +641,17 @@ impl Translator<'_, '_> {
         let base = s.sp(self);
         let base64 = self.b.ins().uextend(T64, base);
         let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
+        let end = i64::from(self.env.timing.stack_end());
         let c = self
             .b
             .ins()
-            .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, RAM_SIZE as i64);
+            .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end);
         let ok = self.b.ins().band(ok, c);
-        let c = self
-            .b
-            .ins()
-            .icmp_imm_s(IntCC::UnsignedGreaterThanOrEqual, base64, 256);
+        let c = self.b.ins().icmp_imm_s(
+            IntCC::UnsignedGreaterThanOrEqual,
+            base64,
+            i64::from(STACK_BASE),
+        );
         let ok = self.b.ins().band(ok, c);
         self.guard(ok, before);
 

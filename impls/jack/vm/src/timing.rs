@@ -1,0 +1,114 @@
+//! How many steps each VM command costs under each profile: the one place
+//! that states the official tools' clocks (spec §2.7 for the web IDE, §6
+//! for the desktop VM emulator). Every engine that runs a [`Program`]
+//! (the interpreter in `exec`, and any other) must count exactly this.
+//!
+//! | | web | desktop |
+//! |---|---|---|
+//! | ordinary command (push, pop, arithmetic, goto, if-goto, return) | 1 | 1 |
+//! | `label` reached in sequence | 0 | 0 |
+//! | jump to a label directly followed by another label | 1 (the jump) | 2: the jump, then a do-nothing step at the second label |
+//! | `call` of a VM function | 1 (frame, locals, all in the call) | 1 (frame), then 1 for the callee's `function` line (locals) |
+//! | `call` of a built-in | 1 | 1 |
+//! | blocking built-in (`Sys.wait`, `Keyboard.read*`) | 2: the call, and the step that hands its result back | 1 |
+//! | start of a program with `Main.main` and no `Sys.init` | 8: seven OS init calls and the call of Main.main, then Main.main's body | 1: a hidden `call Sys.init` (the built-in, which calls Main.main), then `function Main.main` (1) |
+//! | start at a VM `Sys.init` (or a single file's first function) | its body at once | its `function` line first (1) |
+//! | running past a function's last command | halt, 0 | halt, 0 (the desktop tool itself runs on into the next function's `function` line, "Missing return", or stops with "No more instructions to execute"; the harness halts in both) |
+//! | `Sys.halt`, `Sys.error` | the call (1), then the run ends | the call (1), then the run ends |
+//! | a command that fails (runtime error) | 1 | 1 |
+//! | stack: SP outside 256..=2047 | no check (the stack runs on through the heap and the screen) | "Stack overflow" at the push, pop or `function` line that leaves it |
+//!
+//! A keyboard read moves the clock on to the release of the key it takes
+//! (keys are scripted by step, see `jack_os::KeyScript`), in both profiles.
+//!
+//! How the interpreter keeps this at the edges: the decoded code holds a
+//! [`crate::program::Op::Function`] at each function's head, which only
+//! desktop calls land on; a desktop jump to a label followed by a label
+//! goes through an extra `Goto` placed after the function (the code arrays
+//! differ per profile only in those jump targets); the hand-over step is
+//! added where a built-in returns; the start-up is set up by
+//! [`crate::Machine::new`]. No instruction pays for any of this.
+//!
+//! The compiled engine (`crate::native`) translates the same per-profile
+//! code: a desktop call enters the callee at its `Function` op (which
+//! zeroes the locals, as a step of its own), each block charges its
+//! instructions' [`crate::program::Op::steps`], and its stack test uses
+//! [`Timing::stack_end`]; blocking built-ins, halts and errors are left to
+//! the interpreter.
+
+use crate::Profile;
+use jack_os::RAM_SIZE;
+
+/// The first word past the stack segment; the desktop keeps SP in
+/// `STACK_BASE..=STACK_LAST`.
+pub(crate) const STACK_BASE: u16 = 256;
+/// The last word of the stack segment.
+pub(crate) const STACK_LAST: u16 = 2047;
+
+/// The step rules of one profile (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Timing {
+    /// A call of a VM function lands on the callee's `function` line,
+    /// which is a step of its own (desktop).
+    pub function_step: bool,
+    /// A blocking built-in spends one more step handing its result back (web).
+    pub handover_step: bool,
+    /// A jump to a label directly followed by another label wastes a step (desktop).
+    pub label_pair_step: bool,
+    /// The program starts with one hidden `call Sys.init` (desktop) rather
+    /// than the seven OS init calls and the call of `Main.main` (web).
+    pub hidden_sys_init: bool,
+    /// SP must stay in the stack segment ("Stack overflow"), desktop.
+    pub stack_check: bool,
+}
+
+impl Timing {
+    /// The rules of `profile`.
+    pub const fn of(profile: Profile) -> Timing {
+        let desktop = matches!(profile, Profile::Desktop);
+        Timing {
+            function_step: desktop,
+            handover_step: !desktop,
+            label_pair_step: desktop,
+            hidden_sys_init: desktop,
+            stack_check: desktop,
+        }
+    }
+
+    /// The highest SP that pushes may reach before a stack rule of this
+    /// profile applies: the end of the stack segment (desktop, "Stack
+    /// overflow" beyond), the end of RAM (web, whose stack runs on through
+    /// plain memory). Compiled code checks each block's stack against it.
+    pub(crate) const fn stack_end(self) -> u16 {
+        if self.stack_check {
+            STACK_LAST
+        } else {
+            RAM_SIZE as u16
+        }
+    }
+}
+
+/// Index of `profile`'s code in [`crate::program::Program`]'s arrays.
+pub(crate) const fn index(profile: Profile) -> usize {
+    match profile {
+        Profile::Desktop => 0,
+        Profile::Web => 1,
+    }
+}
+
+/// The desktop's start-up before `Main.main` runs (its built-in `Sys.init`):
+/// RAM words from 256 and the registers at the `function Main.main` line.
+/// `program_size` is the RET word of the hidden call (the desktop program's
+/// length, with its five invisible commands).
+pub(crate) fn desktop_startup(program_size: i16) -> (Vec<i16>, [i16; 5]) {
+    // 256..260: the hidden call's frame (RET, LCL, ARG, THIS, THAT).
+    let mut words = vec![program_size, 0, 0, 0, 0];
+    // 261..265: the 0 that each of Memory, Math, Screen, Output and
+    // Keyboard.init leaves (each called from the built-in through a frame).
+    words.extend([0; 5]);
+    // 266..270: Main.main's frame, RET -1 = back into the built-in.
+    words.extend([-1, 261, 256, 0, 0]);
+    let sp = STACK_BASE as i16 + words.len() as i16;
+    // SP, LCL, ARG, THIS, THAT.
+    (words, [sp, sp, 266, 0, 0])
+}
