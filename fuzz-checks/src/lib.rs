@@ -5,10 +5,12 @@
 //! checked-in corpus, the committed regression inputs and a bounded number
 //! of proptest mutations of the corpus. See docs/fuzzing.md.
 
+mod cast_file;
 mod differential;
 mod jack_source;
 mod sets;
 
+pub use cast_file::{cast_file, project_file};
 pub use differential::f316_vs_jack;
 pub use jack_source::{jack_source, vm_source};
 pub use sets::{scene, vector_set};
@@ -18,10 +20,11 @@ pub type Check = fn(&[u8]);
 
 /// The targets by name, as `fuzz/fuzz_targets/NAME.rs` and the corpus
 /// folders `fuzz/corpus/NAME` call them.
-pub const TARGETS: [(&str, Check); 5] = [
+pub const TARGETS: [(&str, Check); 6] = [
     ("jack_source", jack_source),
     ("vm_source", vm_source),
     ("vector_set", vector_set),
     ("scene", scene),
+    ("cast_file", cast_file),
     ("f316_vs_jack", f316_vs_jack),
 ];

@@ -75,6 +75,18 @@ fn seeds_reach_the_deep_paths() {
     );
     let scene = text("scene", "camera-march.json");
     serde_json::from_str::<reference::Scene>(&scene).expect("a seed is a scene");
+    for seed in [
+        "jack-inline.toml",
+        "jack-bindings-file.toml",
+        "shaders.toml",
+    ] {
+        let cast = harness::cast::Cast::with_project(
+            &fuzz_checks::project_file(),
+            &text("cast_file", seed),
+        )
+        .expect("a seed declares implementations");
+        assert!(cast.entries().len() > harness::cast::Cast::builtin().entries().len());
+    }
 }
 
 #[test]
@@ -148,6 +160,11 @@ proptest! {
     #[test]
     fn mutated_scenes(bytes in mutated("scene", 6)) {
         check_of("scene")(&bytes);
+    }
+
+    #[test]
+    fn mutated_cast_files(bytes in mutated("cast_file", 6)) {
+        check_of("cast_file")(&bytes);
     }
 }
 

@@ -286,6 +286,33 @@ fn fifos_and_devices_are_refused_as_inputs() {
     }
 }
 
+/// The same for the project file and the files it names: `--cast`, a jack
+/// entry's `bindings` and a shader entry's `path` (each once blocked on a
+/// FIFO and read /dev/zero without end).
+#[test]
+fn fifos_and_devices_are_refused_as_project_files_and_the_files_they_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo: PathBuf = dir.path().join("fifo");
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let limit = Duration::from_secs(30);
+    for path in [s(&fifo), "/dev/zero"] {
+        let o = harness_within(&["cast", "--cast", path], limit);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
+        let bindings =
+            format!("[impl.port]\nkind = \"jack\"\nprogram = \".\"\nbindings = \"{path}\"\n");
+        let shader =
+            format!("[impl.glow]\nkind = \"shader\"\npath = \"{path}\"\nlanguage = \"wgsl\"\n");
+        for (name, project) in [("bindings.toml", bindings), ("shader.toml", shader)] {
+            let file = dir.path().join(name);
+            std::fs::write(&file, project).unwrap();
+            let o = harness_within(&["cast", "--cast", s(&file)], limit);
+            assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
+        }
+    }
+}
+
 /// Every test marked ignore is run by the nightly job: `scripts/nightly.sh`
 /// runs `cargo test --release -p CRATE -- --ignored` for each crate that
 /// has one (two such tests once ran nowhere).

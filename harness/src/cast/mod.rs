@@ -264,11 +264,8 @@ pub enum OpenError {
 /// Why a project file could not be read.
 #[derive(Debug, thiserror::Error)]
 pub enum CastError {
-    #[error("cannot read the project file {}: {source}", file.display())]
-    Read {
-        file: PathBuf,
-        source: std::io::Error,
-    },
+    #[error("the project file: {0}")]
+    Read(common::input::InputError),
     #[error(transparent)]
     Field(#[from] FieldError),
 }
@@ -297,10 +294,7 @@ impl Cast {
     pub fn load(flag: Option<&Path>) -> Result<Cast, CastError> {
         let mut cast = Cast::builtin();
         if let Some(path) = file::locate(flag) {
-            let text = std::fs::read_to_string(&path).map_err(|source| CastError::Read {
-                file: path.clone(),
-                source,
-            })?;
+            let text = common::input::read_text(&path).map_err(CastError::Read)?;
             cast.declare(Source {
                 file: &path,
                 text: &text,

@@ -117,8 +117,8 @@ fn part<T: serde::de::DeserializeOwned>(
 /// The bindings of a declared entry: inline fields, or a bindings file.
 fn declared_bindings(fields: &mut Fields<'_>) -> Result<Bindings, FieldError> {
     if let Some(path) = fields.path("bindings")? {
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| fields.error("bindings", format!("{}: {e}", path.display())))?;
+        let text =
+            common::input::read_text(&path).map_err(|e| fields.error("bindings", e.to_string()))?;
         return toml::from_str(&text).map_err(|e| {
             let at = e.span().map_or(0, |s| s.start);
             crate::cast::file::Source {

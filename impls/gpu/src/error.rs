@@ -58,13 +58,12 @@ pub enum GpuError {
         /// The limit it outran, in seconds.
         seconds: f64,
     },
-    /// A user's shader file could not be read.
-    #[error("cannot read the shader `{path}`: {source}")]
+    /// A user's shader file could not be read (missing, not a regular
+    /// file, too large, not UTF-8); the reason names the file.
+    #[error("the shader: {source}")]
     ShaderFile {
-        /// The file.
-        path: String,
-        /// The operating system's reason.
-        source: std::io::Error,
+        /// The reason, with the file's path.
+        source: common::input::InputError,
     },
     /// A user's shader does not parse, does not validate, or lacks the
     /// entry functions of its convention. The diagnostic names the user's

@@ -50,10 +50,8 @@ impl ShaderSource {
                      say it (.wgsl, .glsl, .frag, .fs): declare `language = \"glsl\"` or \"wgsl\""
                 ),
             })?;
-        let text = std::fs::read_to_string(path).map_err(|source| GpuError::ShaderFile {
-            path: name.clone(),
-            source,
-        })?;
+        let text =
+            common::input::read_text(path).map_err(|source| GpuError::ShaderFile { source })?;
         Ok(ShaderSource {
             name,
             text,

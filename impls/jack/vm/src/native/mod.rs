@@ -46,8 +46,8 @@ pub enum Engine {
 
 impl Default for Engine {
     /// `HACK_VM_ENGINE=native|interp` if set (how the test suites run on
-    /// both engines), else `Interp`: the compiled engine is exact but not
-    /// yet faster than the fused interpreter (docs/performance.md).
+    /// both engines), else `Interp`, the oracle (docs/performance.md
+    /// compares the two).
     fn default() -> Engine {
         match std::env::var("HACK_VM_ENGINE").as_deref() {
             Ok("native") => Engine::Native,

@@ -87,6 +87,83 @@ struct Translator<'a, 'b> {
     start: u32,
     /// Stores the state and returns (code, pc).
     leave: ir::Block,
+    /// The highest `local` and `argument` index the function uses, where
+    /// one test of LCL (ARG) on entering compiled code and after each call
+    /// covers every such access (None: each access tests its address).
+    reach: [Option<u16>; 2],
+    /// The this/that flags already known set in the current block (tested
+    /// or set by `pop pointer`), whose accesses need no test.
+    flags_known: u8,
+    /// The address test of each `this`/`that` access of the current block,
+    /// by instruction index relative to `block_start`.
+    ptr_tests: Vec<PtrTest>,
+    block_start: u32,
+}
+
+/// How a `this` or `that` access of a block tests its address.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum PtrTest {
+    /// On its own (an index too large for a span test).
+    Each,
+    /// The first access while the pointer keeps its value in the block:
+    /// it tests the span of every index of those accesses, up to this one.
+    First(u16),
+    /// Covered by the first access's test.
+    Covered,
+}
+
+/// The address tests of the `this`/`that` accesses of `code` (one block):
+/// the accesses between two `pop pointer`s of one pointer share one test.
+fn ptr_tests(code: &[Op]) -> Vec<PtrTest> {
+    let mut tests = vec![PtrTest::Each; code.len()];
+    // The first access of each pointer's open run.
+    let mut run: [Option<usize>; 2] = [None; 2];
+    for (k, op) in code.iter().enumerate() {
+        let (p, i) = match *op {
+            Op::PushThis(i) | Op::PushThisChk(i) | Op::PopThis(i) | Op::PopThisChk(i) => (0, i),
+            Op::PushThat(i) | Op::PushThatChk(i) | Op::PopThat(i) | Op::PopThatChk(i) => (1, i),
+            Op::PopPtr(p) => {
+                run[usize::from(p)] = None;
+                continue;
+            }
+            _ => continue,
+        };
+        if usize::from(i) + 6 >= RAM_SIZE {
+            continue;
+        }
+        match run[p] {
+            Some(first) => {
+                if let PtrTest::First(top) = &mut tests[first] {
+                    *top = (*top).max(i);
+                }
+                tests[k] = PtrTest::Covered;
+            }
+            None => {
+                tests[k] = PtrTest::First(i);
+                run[p] = Some(k);
+            }
+        }
+    }
+    tests
+}
+
+/// Index in `Translator::reach`.
+const LOCAL: usize = 0;
+const ARGUMENT: usize = 1;
+
+/// The highest index of each of `local` and `argument` used in `code`, if
+/// any, and if small enough that a plain LCL (ARG) below it is testable.
+fn reach(code: &[Op]) -> [Option<u16>; 2] {
+    let mut top = [None; 2];
+    for op in code {
+        let (seg, i) = match *op {
+            Op::PushLocal(i) | Op::PopLocal(i) => (LOCAL, i),
+            Op::PushArg(i) | Op::PopArg(i) => (ARGUMENT, i),
+            _ => continue,
+        };
+        top[seg] = Some(top[seg].map_or(i, |t: u16| t.max(i)));
+    }
+    top.map(|t| t.filter(|&t| usize::from(t) + 6 < RAM_SIZE))
 }
 
 /// Build the IR of function `env.id` into `b` (signature: ctx pointer,
@@ -116,6 +193,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let inline = b
         .ins()
         .uload8(T32, mem, ctx, field(offset_of!(Ctx, inline)));
+    let reach =
+        reach(&env.code[start as usize..vm_blocks.last().map_or(start, |b| b.end) as usize]);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
     let leave = b.create_block();
     b.append_block_param(leave, T32);
@@ -132,11 +211,35 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         block_at,
         start,
         leave,
+        reach,
+        flags_known: 0,
+        ptr_tests: Vec::new(),
+        block_start: 0,
     };
     t.load_state();
     // Dispatch on the block index; an index out of range (never passed)
     // leaves at once with the pc the caller gave.
     let default = t.b.create_block();
+    if let Some(ok) = t.frame_ok() {
+        // LCL or ARG such that some access of the function would not be
+        // a plain word: the interpreter runs from the block's start.
+        let (run, bad) = (t.b.create_block(), t.b.create_block());
+        t.b.ins().brif(ok, run, NONE, bad, NONE);
+        t.b.switch_to_block(bad);
+        t.b.set_cold_block(bad);
+        let exits: Vec<_> = vm_blocks
+            .iter()
+            .map(|blk| {
+                let pc = t.c32(i64::from(blk.start));
+                let args = [BlockArg::Value(pc), BlockArg::Value(pc)];
+                t.b.func.dfg.block_call(leave, &args)
+            })
+            .collect();
+        let def = t.b.func.dfg.block_call(default, NONE);
+        let table = t.b.create_jump_table(JumpTableData::new(def, &exits));
+        t.b.ins().br_table(which, table);
+        t.b.switch_to_block(run);
+    }
     let calls: Vec<_> =
         t.cl.iter()
             .map(|&blk| t.b.func.dfg.block_call(blk, NONE))
@@ -297,6 +400,9 @@ impl Translator<'_, '_> {
 
     fn block(&mut self, index: usize, blk: &Block) {
         self.b.switch_to_block(self.cl[index]);
+        self.flags_known = 0;
+        self.ptr_tests = ptr_tests(&self.env.code[blk.start as usize..blk.end as usize]);
+        self.block_start = blk.start;
         let steps0 = self.b.use_var(self.v.steps);
         let sp0 = self.b.use_var(self.v.sp);
         if blk.steps == 0 {
@@ -396,8 +502,97 @@ impl Translator<'_, '_> {
     }
 
     fn flag_ok(&mut self, bit: u8, before: &Before) {
-        let ok = self.flag_set(bit);
-        self.guard(ok, before);
+        if self.flags_known & bit == 0 {
+            let ok = self.flag_set(bit);
+            self.guard(ok, before);
+            self.flags_known |= bit;
+        }
+    }
+
+    /// Whether LCL and ARG leave every `local` and `argument` access of the
+    /// function (up to `reach`) on a plain word, without wrapping (None if
+    /// no access is covered so).
+    fn frame_ok(&mut self) -> Option<Value> {
+        let mut ok = None;
+        for (var, top) in [
+            (self.v.lcl, self.reach[LOCAL]),
+            (self.v.arg, self.reach[ARGUMENT]),
+        ] {
+            let Some(top) = top else { continue };
+            let c = self.span_ok(var, top);
+            ok = Some(match ok {
+                None => c,
+                Some(o) => self.b.ins().band(o, c),
+            });
+        }
+        ok
+    }
+
+    /// Whether `var + 0 ..= var + top` are all plain words, with no
+    /// wrapping: 5 <= var <= RAM_SIZE - 1 - top.
+    fn span_ok(&mut self, var: Variable, top: u16) -> Value {
+        let base = self.b.use_var(var);
+        let minus5 = self.c16(-5);
+        let t = self.b.ins().iadd(base, minus5);
+        let limit = self.c16(RAM_SIZE as i64 - 5 - i64::from(top));
+        self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit)
+    }
+
+    /// The address of `this i` or `that i` (pointer register `var`), tested
+    /// as the block's span tests decided (`false`: the caller tests it).
+    fn ptr_addr(&mut self, var: Variable, i: u16, before: &Before) -> (Value, bool) {
+        let test = self.ptr_tests[(before.pc - self.block_start) as usize];
+        if let PtrTest::First(top) = test {
+            let ok = self.span_ok(var, top);
+            self.guard(ok, before);
+        }
+        (self.seg_addr(var, i), test != PtrTest::Each)
+    }
+
+    fn ptr_read(&mut self, var: Variable, i: u16, before: &Before) -> Value {
+        match self.ptr_addr(var, i, before) {
+            (a, true) => self.load_word(a),
+            (a, false) => self.read(a, before),
+        }
+    }
+
+    fn ptr_write(&mut self, var: Variable, i: u16, x: Value, s: &mut Stack, before: &Before) {
+        match self.ptr_addr(var, i, before) {
+            (a, true) => {
+                self.store_word(a, x);
+                s.known.clear();
+            }
+            (a, false) => self.write(a, x, s, before),
+        }
+    }
+
+    /// RAM[base + i] of segment `seg` (`base` its register).
+    fn seg_read(&mut self, seg: usize, var: Variable, i: u16, before: &Before) -> Value {
+        let a = self.seg_addr(var, i);
+        if self.reach[seg].is_some() {
+            self.load_word(a)
+        } else {
+            self.read(a, before)
+        }
+    }
+
+    /// RAM[base + i] = x, for segment `seg` (`base` its register).
+    fn seg_write(
+        &mut self,
+        seg: usize,
+        var: Variable,
+        i: u16,
+        x: Value,
+        s: &mut Stack,
+        before: &Before,
+    ) {
+        let a = self.seg_addr(var, i);
+        if self.reach[seg].is_some() {
+            self.store_word(a, x);
+            s.known.clear();
+        } else {
+            self.write(a, x, s, before);
+        }
     }
 
     fn op(&mut self, op: Op, s: &mut Stack, before: &Before, blk: &Block) {
@@ -407,30 +602,26 @@ impl Translator<'_, '_> {
                 s.push(self, x);
             }
             Op::PushLocal(i) => {
-                let a = self.seg_addr(self.v.lcl, i);
-                let x = self.read(a, before);
+                let x = self.seg_read(LOCAL, self.v.lcl, i, before);
                 s.push(self, x);
             }
             Op::PushArg(i) => {
                 self.arg_ok(i, before);
-                let a = self.seg_addr(self.v.arg, i);
-                let x = self.read(a, before);
+                let x = self.seg_read(ARGUMENT, self.v.arg, i, before);
                 s.push(self, x);
             }
             Op::PushThis(i) | Op::PushThisChk(i) => {
                 if matches!(op, Op::PushThisChk(_)) {
                     self.flag_ok(THIS_OK, before);
                 }
-                let a = self.seg_addr(self.v.this, i);
-                let x = self.read(a, before);
+                let x = self.ptr_read(self.v.this, i, before);
                 s.push(self, x);
             }
             Op::PushThat(i) | Op::PushThatChk(i) => {
                 if matches!(op, Op::PushThatChk(_)) {
                     self.flag_ok(THAT_OK, before);
                 }
-                let a = self.seg_addr(self.v.that, i);
-                let x = self.read(a, before);
+                let x = self.ptr_read(self.v.that, i, before);
                 s.push(self, x);
             }
             Op::PushAbs(a) => {
@@ -446,30 +637,26 @@ impl Translator<'_, '_> {
             }
             Op::PopLocal(i) => {
                 let x = s.pop(self);
-                let a = self.seg_addr(self.v.lcl, i);
-                self.write(a, x, s, before);
+                self.seg_write(LOCAL, self.v.lcl, i, x, s, before);
             }
             Op::PopArg(i) => {
                 self.arg_ok(i, before);
                 let x = s.pop(self);
-                let a = self.seg_addr(self.v.arg, i);
-                self.write(a, x, s, before);
+                self.seg_write(ARGUMENT, self.v.arg, i, x, s, before);
             }
             Op::PopThis(i) | Op::PopThisChk(i) => {
                 if matches!(op, Op::PopThisChk(_)) {
                     self.flag_ok(THIS_OK, before);
                 }
                 let x = s.pop(self);
-                let a = self.seg_addr(self.v.this, i);
-                self.write(a, x, s, before);
+                self.ptr_write(self.v.this, i, x, s, before);
             }
             Op::PopThat(i) | Op::PopThatChk(i) => {
                 if matches!(op, Op::PopThatChk(_)) {
                     self.flag_ok(THAT_OK, before);
                 }
                 let x = s.pop(self);
-                let a = self.seg_addr(self.v.that, i);
-                self.write(a, x, s, before);
+                self.ptr_write(self.v.that, i, x, s, before);
             }
             Op::PopAbs(a) => {
                 // 5..=255: never a stack word.
@@ -487,13 +674,14 @@ impl Translator<'_, '_> {
             }
             Op::PopPtr(p) => {
                 let x = s.pop(self);
-                if p == 0 {
-                    self.b.def_var(self.v.this, x);
-                    self.set_flag(THIS_OK);
+                let (var, bit) = if p == 0 {
+                    (self.v.this, THIS_OK)
                 } else {
-                    self.b.def_var(self.v.that, x);
-                    self.set_flag(THAT_OK);
-                }
+                    (self.v.that, THAT_OK)
+                };
+                self.b.def_var(var, x);
+                self.set_flag(bit);
+                self.flags_known |= bit;
             }
             Op::Add | Op::Sub | Op::And | Op::Or | Op::Multiply => {
                 let y = s.pop(self);
@@ -753,6 +941,19 @@ impl Translator<'_, '_> {
         self.b.ins().return_(&[code]);
         self.b.switch_to_block(back);
         self.load_state();
+        if let Some(ok) = self.frame_ok() {
+            // The return restored LCL and ARG from RAM, which the callee
+            // may have changed: the same test as on entry.
+            let (cont, bad) = (self.b.create_block(), self.b.create_block());
+            self.b.ins().brif(ok, cont, NONE, bad, NONE);
+            self.b.switch_to_block(bad);
+            self.b.set_cold_block(bad);
+            let pc = self.c32(i64::from(before.pc + 1));
+            self.b
+                .ins()
+                .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+            self.b.switch_to_block(cont);
+        }
         s.known.clear();
         self.jump_to(before.pc + 1);
     }
