@@ -32,6 +32,8 @@ pub enum Command {
     Diff(commands::diff::DiffArgs),
     /// Print the first Float316 operation on which two implementations differ.
     Localize(commands::localize::LocalizeArgs),
+    /// Why a lower-precision implementation differs from ref-f64: class and root cause.
+    Explain(commands::explain::ExplainArgs),
     /// Inject each fault of the catalogue and check that it is detected and localized.
     Selftest(commands::selftest::SelftestArgs),
     /// For `git bisect run`: exit 0 when the comparison holds, 1 when it fails, 125 when undecidable.
@@ -59,6 +61,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Jack(cmd) => commands::jack::run(cmd),
         Command::Diff(args) => commands::diff::run(args, &cast()?),
         Command::Localize(args) => commands::localize::run(args, &cast()?),
+        Command::Explain(args) => commands::explain::run(args, &cast()?),
         Command::Selftest(args) => commands::selftest::run(args, &cast()?),
         Command::Merge(args) => commands::merge::run(args),
         Command::Sweep(args) => commands::sweep::run(args, &cast()?),

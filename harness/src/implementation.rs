@@ -155,7 +155,7 @@ impl fmt::Display for Answer {
 }
 
 /// Why an implementation gave no answers at all.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, thiserror::Error)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, thiserror::Error)]
 #[serde(tag = "kind", content = "reason", rename_all = "snake_case")]
 pub enum ImplError {
     /// The implementation cannot run here (no GPU adapter, missing
@@ -168,6 +168,10 @@ pub enum ImplError {
     /// It ran and failed in a way that is not an answer (an internal error).
     #[error("failed: {0}")]
     Failed(String),
+    /// It panicked, hung, crashed or broke its protocol while answering:
+    /// contained, with the input and the answers that came before.
+    #[error("{0}")]
+    Contained(Box<crate::contain::Failure>),
 }
 
 /// A whole image from an implementation's own render path.

@@ -1,16 +1,19 @@
 //! The differential runner: feeds a vector set to several implementations
-//! in parallel (rayon, one job per batch), with a progress bar per
+//! in parallel (one job per batch, on the runner's own thread pool), with a progress bar per
 //! implementation on long work (hidden when stderr is not a terminal),
 //! then compares the first implementation with each of the others and,
 //! when three or more answered, names the odd one out of each divergence.
 
 use crate::compare::{compare, odd_one_out, Comparison, Policy, Sides};
+use crate::contain::{Failure, FailureKind};
 use crate::implementation::{Answer, ImplError, Implementation, Numbers};
 use crate::progress;
 use common::Outcome;
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::OnceLock;
 use std::time::Instant;
 use vectors::{Level, Vector, VectorSet};
 
@@ -94,50 +97,126 @@ fn bars(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) -> 
         .collect()
 }
 
+/// What one batch gave: its answers, or why it gave none (a contained
+/// failure carries the answers before it).
+type BatchAnswers = Result<Vec<Outcome<Answer>>, ImplError>;
+
+/// One batch's answers checked for their count.
+fn checked(imp: &dyn Implementation, chunk: &[Vector]) -> BatchAnswers {
+    imp.eval(chunk).and_then(|a| {
+        if a.len() == chunk.len() {
+            Ok(a)
+        } else {
+            Err(ImplError::Failed(format!(
+                "answered {} of {} vectors",
+                a.len(),
+                chunk.len()
+            )))
+        }
+    })
+}
+
+/// Join one implementation's batches, in set order, into its answers. At
+/// the first batch that failed, a contained failure keeps every answer
+/// before its input (earlier batches and its own) and names the input in
+/// the set; the batches after it count as not run.
+fn joined(batches: Vec<(usize, BatchAnswers)>) -> Answers {
+    let mut answers = Vec::new();
+    for (start, batch) in batches {
+        match batch {
+            Ok(a) => answers.extend(a),
+            Err(ImplError::Contained(mut failure)) => {
+                answers.append(&mut failure.answered);
+                let mut placed = failure.placed(start);
+                placed.answered = answers;
+                return Err(ImplError::Contained(Box::new(placed)));
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(answers)
+}
+
 /// Answer every vector of `set` with every implementation, in parallel.
+/// The runner's threads, one per core. A batch job blocks while its
+/// contained worker or its pipe answers; on threads of its own it cannot
+/// starve an implementation that parallelises on the global rayon pool
+/// inside a batch (the reference renders an image's rows in parallel).
+/// `None` when no thread could be started: the global pool runs the jobs.
+fn runner_pool() -> Option<&'static rayon::ThreadPool> {
+    static POOL: OnceLock<Option<rayon::ThreadPool>> = OnceLock::new();
+    POOL.get_or_init(|| {
+        rayon::ThreadPoolBuilder::new()
+            .thread_name(|i| format!("harness-runner-{i}"))
+            .build()
+            .ok()
+    })
+    .as_ref()
+}
+
+/// An implementation's failure is contained to it: once one of its batches
+/// failed, its later batches are not run, and the other implementations go
+/// on.
 pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) -> Vec<ImplRun> {
     let bars = bars(impls, set, options);
+    // The start of each implementation's earliest failed batch.
+    let failed: Vec<AtomicUsize> = impls.iter().map(|_| AtomicUsize::new(usize::MAX)).collect();
     // One job per (implementation, batch); rayon spreads them over cores.
-    let jobs: Vec<(usize, &[Vector])> = impls
+    let jobs: Vec<(usize, usize, &[Vector])> = impls
         .iter()
         .enumerate()
         .filter(|(_, imp)| imp.supports(set.level))
         .flat_map(|(i, imp)| {
+            let size = imp.batch_size(set.level).max(1);
             set.vectors
-                .chunks(imp.batch_size(set.level).max(1))
-                .map(move |chunk| (i, chunk))
+                .chunks(size)
+                .enumerate()
+                .map(move |(k, chunk)| (i, k * size, chunk))
         })
         .collect();
-    let results: Vec<(usize, Answers, f64)> = jobs
-        .into_par_iter()
-        .map(|(i, chunk)| {
-            let start = Instant::now();
-            let answers = impls[i].eval(chunk).and_then(|a| {
-                if a.len() == chunk.len() {
-                    Ok(a)
+    let work = || -> Vec<(usize, usize, BatchAnswers, f64)> {
+        jobs.into_par_iter()
+            .map(|(i, start, chunk)| {
+                let begin = Instant::now();
+                let answers = if start > failed[i].load(Ordering::Relaxed) {
+                    Err(Failure::new(
+                        &impls[i].label(),
+                        FailureKind::NotRun,
+                        "an earlier batch failed".into(),
+                        chunk,
+                    )
+                    .into())
                 } else {
-                    Err(ImplError::Failed(format!(
-                        "answered {} of {} vectors",
-                        a.len(),
-                        chunk.len()
-                    )))
+                    checked(impls[i], chunk)
+                };
+                if answers.is_err() {
+                    failed[i].fetch_min(start, Ordering::Relaxed);
                 }
-            });
-            bars[i].inc(chunk.len() as u64);
-            (i, answers, start.elapsed().as_secs_f64())
-        })
-        .collect();
+                bars[i].inc(chunk.len() as u64);
+                (i, start, answers, begin.elapsed().as_secs_f64())
+            })
+            .collect()
+    };
+    let results = match runner_pool() {
+        Some(pool) => pool.install(work),
+        None => work(),
+    };
+    let mut per_impl: Vec<Vec<(usize, BatchAnswers)>> = impls.iter().map(|_| Vec::new()).collect();
+    let mut seconds = vec![0.0; impls.len()];
+    for (i, start, answers, s) in results {
+        per_impl[i].push((start, answers));
+        seconds[i] += s;
+    }
     impls
         .iter()
+        .zip(per_impl)
+        .zip(seconds)
         .enumerate()
-        .map(|(i, imp)| {
+        .map(|(i, ((imp, mut batches), seconds))| {
             bars[i].finish_and_clear();
-            let mine = results.iter().filter(|(j, _, _)| *j == i);
-            let seconds = mine.clone().map(|(_, _, s)| s).sum();
             let answers = if imp.supports(set.level) {
-                mine.map(|(_, a, _)| a.clone())
-                    .collect::<Result<Vec<Vec<_>>, _>>()
-                    .map(|v| v.concat())
+                batches.sort_by_key(|(start, _)| *start);
+                joined(batches)
             } else {
                 Err(ImplError::Unsupported(format!("the {} level", set.level)))
             };
@@ -149,6 +228,16 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
             }
         })
         .collect()
+}
+
+/// The answers a run has to compare: all of them, or those kept before a
+/// contained failure.
+pub fn kept_answers(run: &ImplRun) -> Option<&[Outcome<Answer>]> {
+    match &run.answers {
+        Ok(a) => Some(a),
+        Err(ImplError::Contained(f)) if !f.answered.is_empty() => Some(&f.answered),
+        Err(_) => None,
+    }
 }
 
 /// The localize command that reproduces a divergence.
@@ -175,23 +264,23 @@ fn answer_at(run: &[Outcome<Answer>], index: usize, level: Level) -> Outcome<Ans
 /// Compare the first run with each other one that answered; fill in odd
 /// ones out and localize commands.
 pub fn compare_runs(set: &VectorSet, runs: &[ImplRun]) -> Vec<Comparison> {
-    let answered: Vec<(&ImplRun, &Vec<Outcome<Answer>>)> = runs
+    let answered: Vec<(&ImplRun, &[Outcome<Answer>])> = runs
         .iter()
-        .filter_map(|r| r.answers.as_ref().ok().map(|a| (r, a)))
+        .filter_map(|r| kept_answers(r).map(|a| (r, a)))
         .collect();
-    let Some(((first, first_answers), others)) = answered.split_first() else {
+    let Some((&(first, first_answers), others)) = answered.split_first() else {
         return Vec::new();
     };
     if first.label != runs[0].label {
         return Vec::new();
     }
-    let exact_runs: Vec<&(&ImplRun, &Vec<Outcome<Answer>>)> = answered
+    let exact_runs: Vec<&(&ImplRun, &[Outcome<Answer>])> = answered
         .iter()
         .filter(|(r, _)| r.numbers == Numbers::Float316)
         .collect();
     others
         .iter()
-        .map(|(other, other_answers)| {
+        .map(|&(other, other_answers)| {
             // The f64 side, if any, is the oracle.
             let swap = first.numbers == Numbers::F64 && other.numbers != Numbers::F64;
             let ((sa, aa), (sb, ab)) = if swap {
@@ -199,31 +288,59 @@ pub fn compare_runs(set: &VectorSet, runs: &[ImplRun]) -> Vec<Comparison> {
             } else {
                 ((first, first_answers), (other, other_answers))
             };
+            // After a contained failure, the answers kept before it.
+            let n = aa.len().min(ab.len());
+            let prefix;
+            let compared = if n < set.vectors.len() {
+                prefix = VectorSet {
+                    vectors: set.vectors[..n].to_vec(),
+                    ..set.clone()
+                };
+                &prefix
+            } else {
+                set
+            };
             let mut comparison = compare(
-                set,
+                compared,
                 &Sides {
                     a_label: &sa.label,
                     a_numbers: sa.numbers,
-                    a: aa,
+                    a: &aa[..n],
                     b_label: &sb.label,
                     b_numbers: sb.numbers,
-                    b: ab,
+                    b: &ab[..n],
                 },
             );
             if comparison.policy == Policy::Exact {
                 for d in &mut comparison.divergences {
                     d.localize = localize_command(&sa.label, &sb.label, &d.input);
-                    let answers: Vec<Outcome<Answer>> = exact_runs
+                    let voters: Vec<&&(&ImplRun, &[Outcome<Answer>])> = exact_runs
+                        .iter()
+                        .filter(|(_, a)| set.level == Level::Image || d.index < a.len())
+                        .collect();
+                    let answers: Vec<Outcome<Answer>> = voters
                         .iter()
                         .map(|(_, a)| answer_at(a, d.index, set.level))
                         .collect();
                     let refs: Vec<&Outcome<Answer>> = answers.iter().collect();
-                    d.odd_one_out = odd_one_out(&refs).map(|i| exact_runs[i].0.label.clone());
+                    d.odd_one_out = odd_one_out(&refs).map(|i| voters[i].0.label.clone());
                 }
             }
             comparison
         })
         .collect()
+}
+
+/// An error as a summary keeps it: a contained failure without the
+/// answers it kept.
+fn without_answers(e: &ImplError) -> ImplError {
+    match e {
+        ImplError::Contained(f) => ImplError::Contained(Box::new(Failure {
+            answered: Vec::new(),
+            ..(**f).clone()
+        })),
+        other => other.clone(),
+    }
 }
 
 /// Run a set through the implementations and compare them.
@@ -248,7 +365,7 @@ pub fn level_report(set: &VectorSet, runs: &[ImplRun]) -> LevelReport {
             .map(|r| RunSummary {
                 label: r.label.clone(),
                 numbers: r.numbers,
-                error: r.answers.as_ref().err().cloned(),
+                error: r.answers.as_ref().err().map(without_answers),
                 seconds: r.seconds,
             })
             .collect(),

@@ -159,6 +159,10 @@ pub struct Entry {
     pub variants: Vec<VariantInfo>,
     pub roles: Roles,
     pub origin: Origin,
+    /// Whether it runs in the harness's process, so that the cast opens it
+    /// behind the containment layer ([`crate::contain::Contained`]); a
+    /// kind that runs its own processes contains them itself.
+    pub in_process: bool,
     opener: Box<dyn Opener>,
 }
 
@@ -182,6 +186,7 @@ impl Entry {
             variants: Vec::new(),
             roles: Roles::default(),
             origin: Origin::Builtin,
+            in_process: true,
             opener: Box::new(opener),
         }
     }
@@ -201,6 +206,13 @@ impl Entry {
     /// Recording op traces.
     pub fn traces(mut self) -> Self {
         self.traces = true;
+        self
+    }
+
+    /// Running in a process of its own, which its kind watches (no
+    /// containment layer in the harness's process).
+    pub fn own_process(mut self) -> Self {
+        self.in_process = false;
         self
     }
 
@@ -234,13 +246,20 @@ impl Entry {
         self.levels.contains(&level)
     }
 
-    /// Open it under `label` (its name and variants that apply).
+    /// Open it under `label` (its name and variants that apply); an
+    /// in-process implementation comes behind the containment layer, so
+    /// that its panics and endless loops are contained failures.
     fn open(
         &self,
         label: &Label,
         scene: Option<&reference::Scene>,
     ) -> Result<Box<dyn Implementation>, ImplError> {
-        self.opener.open(&Request { label, scene })
+        let opened = self.opener.open(&Request { label, scene })?;
+        Ok(if self.in_process {
+            crate::contain::Contained::boxed(opened)
+        } else {
+            opened
+        })
     }
 }
 

@@ -1,7 +1,9 @@
 //! `harness check`: one yes/no question about the tree, for `git bisect
 //! run`. Exit 0 when the comparison holds, 1 when it fails, 125 when it
-//! cannot be decided (an implementation unavailable or failing, bad input);
-//! always one line saying why. See `scripts/bisect-check.sh`, which maps a
+//! cannot be decided (an implementation unavailable, bad input); always one
+//! line saying why. An implementation under test that panics, hangs,
+//! crashes or breaks its protocol fails the check (1): that is the commit
+//! to blame, never one to skip. See `scripts/bisect-check.sh`, which maps a
 //! build failure to 125 too.
 //!
 //! - `--no-divergence A B [--level L]`: the runner's policy finds no
@@ -11,13 +13,16 @@
 //! - `--min-speed IMPL PIXELS_PER_SEC`: IMPL renders the whole image at
 //!   least that fast (wall clock, this machine).
 
+use crate::cast::OpenError;
 use crate::cast::{Cast, CastError};
 use crate::commands::diff::{sets_for, LevelArg};
-use crate::implementation::ImplError;
+use crate::contain::Failure;
+use crate::implementation::{ImplError, Implementation};
 use crate::measure;
 use crate::runner::{diff_set, RunOptions};
 use anyhow::{Context, Result};
 use std::process::ExitCode;
+use vectors::VectorSet;
 
 /// Exit status of `check` when the question cannot be decided.
 pub const UNDECIDABLE: u8 = 125;
@@ -106,7 +111,32 @@ pub fn decide(args: &CheckArgs, cast: &Cast) -> Verdict {
     } else {
         Err(anyhow::anyhow!("no question given"))
     };
-    result.unwrap_or_else(|e| Verdict::Undecidable(format!("{e:#}")))
+    result.unwrap_or_else(|e| match contained_failure(&e) {
+        Some(f) => Verdict::Bad(one_line(&f.to_string())),
+        None => Verdict::Undecidable(format!("{e:#}")),
+    })
+}
+
+/// The contained failure of an implementation of its own (not a batch
+/// left unrun) behind an error, if that is what it is.
+fn contained_failure(e: &anyhow::Error) -> Option<&Failure> {
+    e.chain().find_map(|cause| {
+        let imp = cause.downcast_ref::<ImplError>().or_else(|| {
+            cause.downcast_ref::<OpenError>().and_then(|o| match o {
+                OpenError::Impl(i) => Some(i),
+                _ => None,
+            })
+        });
+        match imp {
+            Some(ImplError::Contained(f)) if f.is_own() => Some(f.as_ref()),
+            _ => None,
+        }
+    })
+}
+
+/// A multi-line message (a failure with its stderr lines) on one line.
+fn one_line(text: &str) -> String {
+    text.lines().map(str::trim).collect::<Vec<_>>().join(" ")
 }
 
 fn no_divergence(cast: &Cast, a: &str, b: &str, level: Option<LevelArg>) -> Result<Verdict> {
@@ -117,18 +147,28 @@ fn no_divergence(cast: &Cast, a: &str, b: &str, level: Option<LevelArg>) -> Resu
     let ib = cast
         .open(b)
         .with_context(|| format!("implementation `{b}`"))?;
+    no_divergence_between(ia.as_ref(), ib.as_ref(), &sets)
+}
+
+/// The `--no-divergence` question for two opened implementations on
+/// `sets`: bad on a divergence or on a contained failure of either.
+pub fn no_divergence_between(
+    ia: &dyn Implementation,
+    ib: &dyn Implementation,
+    sets: &[VectorSet],
+) -> Result<Verdict> {
+    let (a, b) = (ia.label(), ib.label());
     let mut compared = 0;
-    for set in &sets {
-        let report = diff_set(
-            &[ia.as_ref(), ib.as_ref()],
-            set,
-            RunOptions { progress: false },
-        );
+    for set in sets {
+        let report = diff_set(&[ia, ib], set, RunOptions { progress: false });
         if let Some((label, e)) = report.failures().next() {
-            if matches!(e, ImplError::Unsupported(_)) {
-                continue;
+            match e {
+                ImplError::Unsupported(_) => continue,
+                ImplError::Contained(f) if f.is_own() => {
+                    return Ok(Verdict::Bad(one_line(&format!("on {}: {f}", set.name))));
+                }
+                _ => anyhow::bail!("{label} on {}: {e}", set.name),
             }
-            anyhow::bail!("{label} on {}: {e}", set.name);
         }
         for c in &report.comparisons {
             compared += c.vectors;

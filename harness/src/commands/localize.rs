@@ -63,45 +63,55 @@ fn triple(s: &str, what: &str) -> anyhow::Result<F316> {
     Ok(F316::new(t[0], t[1], t[2]))
 }
 
+/// A `--pixel X,Y` argument, inside the image.
+pub fn parse_pixel(p: &str) -> anyhow::Result<(usize, usize)> {
+    let xy: Vec<u64> = ints(p, 2, "--pixel")?;
+    if xy[0] >= common::image_consts::WIDTH as u64 || xy[1] >= common::image_consts::HEIGHT as u64 {
+        bail!(
+            "--pixel: ({},{}) is outside the 512x256 image",
+            xy[0],
+            xy[1]
+        );
+    }
+    Ok((xy[0] as usize, xy[1] as usize))
+}
+
+/// A `--point` argument: `x,y,z` (encoded by truncation) or three triples
+/// `s,e,m:s,e,m:s,e,m`.
+pub fn parse_point(p: &str) -> anyhow::Result<[F316; 3]> {
+    let coords: Vec<F316> = if p.contains(':') {
+        p.split(':')
+            .map(|t| triple(t, "--point"))
+            .collect::<Result<_, _>>()?
+    } else {
+        ints::<f64>(p, 3, "--point")?
+            .into_iter()
+            .map(|x| {
+                F316::from_f64_truncating(x)
+                    .with_context(|| format!("--point: {x} is not a Float316 value"))
+            })
+            .collect::<Result<_, _>>()?
+    };
+    if coords.len() != 3 {
+        bail!("--point: expected three coordinates");
+    }
+    Ok([coords[0], coords[1], coords[2]])
+}
+
 /// The input the arguments name.
 pub fn input_of(args: &LocalizeArgs) -> anyhow::Result<Vector> {
     if let Some(p) = &args.pixel {
-        let xy: Vec<u64> = ints(p, 2, "--pixel")?;
-        if xy[0] >= common::image_consts::WIDTH as u64
-            || xy[1] >= common::image_consts::HEIGHT as u64
-        {
-            bail!(
-                "--pixel: ({},{}) is outside the 512x256 image",
-                xy[0],
-                xy[1]
-            );
-        }
+        let (x, y) = parse_pixel(p)?;
         return Ok(Vector::Pixel(PixelVector {
             category: "localize".into(),
-            x: xy[0] as u16,
-            y: xy[1] as u16,
+            x: x as u16,
+            y: y as u16,
         }));
     }
     if let Some(p) = &args.point {
-        let coords: Vec<F316> = if p.contains(':') {
-            p.split(':')
-                .map(|t| triple(t, "--point"))
-                .collect::<Result<_, _>>()?
-        } else {
-            ints::<f64>(p, 3, "--point")?
-                .into_iter()
-                .map(|x| {
-                    F316::from_f64_truncating(x)
-                        .with_context(|| format!("--point: {x} is not a Float316 value"))
-                })
-                .collect::<Result<_, _>>()?
-        };
-        if coords.len() != 3 {
-            bail!("--point: expected three coordinates");
-        }
         return Ok(Vector::Sdf(SdfVector {
             category: "localize".into(),
-            p: [coords[0], coords[1], coords[2]],
+            p: parse_point(p)?,
         }));
     }
     if let Some(op) = args.op {

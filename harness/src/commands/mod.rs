@@ -4,6 +4,7 @@ pub mod bench;
 pub mod cast;
 pub mod check;
 pub mod diff;
+pub mod explain;
 pub mod jack;
 pub mod localize;
 pub mod merge;

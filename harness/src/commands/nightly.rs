@@ -26,7 +26,7 @@ pub struct NightlyArgs {
     #[arg(long, default_value_t = 16)]
     pub jack_unary_step: usize,
     /// Run only these steps (comma-separated: levels, unary, selftest,
-    /// renders, screens, pairs, scenes, speed); default all.
+    /// renders, screens, pairs, explain, scenes, speed); default all.
     #[arg(long, value_delimiter = ',', value_name = "STEP,...")]
     pub steps: Option<Vec<String>>,
     /// Open only these implementations of the cast (comma-separated), with

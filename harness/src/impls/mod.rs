@@ -7,6 +7,7 @@
 
 pub mod gpu;
 pub mod jack;
+pub mod pipe;
 pub mod reference;
 pub mod shader;
 
@@ -19,4 +20,5 @@ pub const KINDS: &[&dyn Kind] = &[
     &jack::JackKind,
     &gpu::GpuKind,
     &shader::ShaderKind,
+    &pipe::PipeKind,
 ];

@@ -15,6 +15,7 @@
 //! failure must make it count in [`Summary`]: a bit-exact comparison row,
 //! a gated image pair, a failed render, or a new field here.
 
+mod explain;
 mod pairs;
 pub mod scenes;
 pub mod steps;

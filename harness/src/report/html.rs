@@ -427,6 +427,9 @@ fn pairs(h: &mut String, r: &Report) {
             );
         }
         h.push_str("</div>");
+        if let Some(e) = &p.explanation {
+            explanation(h, e);
+        }
         if !p.divergences.is_empty() {
             let _ = write!(
                 h,
@@ -447,6 +450,7 @@ fn pairs(h: &mut String, r: &Report) {
                     td(esc(d
                         .first_op
                         .as_deref()
+                        .or(d.explained.as_deref())
                         .unwrap_or("not localizable (see above)"))),
                     td_code(&d.repro),
                 ];
@@ -461,6 +465,75 @@ fn pairs(h: &mut String, r: &Report) {
         h.push_str("</details>\n");
     }
     h.push_str("</section>\n");
+}
+
+/// Why a lower precision differs from the oracle: classes, decisions,
+/// root causes and the class map.
+fn explanation(h: &mut String, e: &PairExplanation) {
+    let _ = write!(
+        h,
+        "<h4>Why they differ</h4><p>Explained by <code>{}</code>: {}, in {} s; {}.</p><div class=figs>",
+        esc(&e.explained_by),
+        esc(&e.inputs),
+        short_number(e.seconds),
+        esc(&e.holds)
+    );
+    table_head(h, ["class", "pixels"]);
+    for c in &e.classes {
+        row(h, &[td(esc(&c.name)), td_n(c.count)]);
+    }
+    for d in &e.decisions {
+        row(
+            h,
+            &[
+                td(format!("&nbsp;&nbsp;at {}", esc(&d.name))),
+                td_n(d.count),
+            ],
+        );
+    }
+    h.push_str("</table>");
+    if !e.class_map.is_empty() {
+        let key: Vec<String> = e
+            .colours
+            .iter()
+            .map(|c| {
+                format!(
+                    "<span style=\"color:#{:06x}\">■</span> {}",
+                    c.count,
+                    esc(&c.name)
+                )
+            })
+            .collect();
+        let _ = write!(
+            h,
+            "<figure><img class=px src=\"{}\" alt=\"pixels by class\"><figcaption>explained pixels by class: {}</figcaption></figure>",
+            esc(&e.class_map),
+            key.join(", ")
+        );
+    }
+    h.push_str("</div>");
+    table_head(
+        h,
+        ["root cause (largest contributor)", "pixels", "mean share"],
+    );
+    for c in &e.causes {
+        row(
+            h,
+            &[
+                td_code(&c.site),
+                td_n(c.pixels),
+                td_n(format!("{:.0}%", 100.0 * c.mean_share)),
+            ],
+        );
+    }
+    h.push_str("</table>");
+    if !e.examples.is_empty() {
+        h.push_str("<ul>");
+        for line in &e.examples {
+            let _ = write!(h, "<li>{}</li>", esc(line));
+        }
+        h.push_str("</ul>");
+    }
 }
 
 fn pixel_text(white: bool, shade: Option<f64>) -> String {
@@ -811,6 +884,52 @@ fn trend(h: &mut String, history: &History) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_explained_pair_shows_classes_causes_and_each_pixel() {
+        let mut r = Report::new(RunMeta::default());
+        r.image_pairs.push(ImagePair {
+            a: "ref-f64".into(),
+            b: "ref-f316".into(),
+            differing_pixels: 1,
+            divergences: vec![PixelDivergence {
+                explained: Some(
+                    "threshold flip; root cause inv_sqrt in pixel(*,*) > normalize (90%)".into(),
+                ),
+                ..PixelDivergence::default()
+            }],
+            explanation: Some(PairExplanation {
+                explained_by: "ref-f316".into(),
+                holds: "ref-f316 is the explained implementation".into(),
+                inputs: "every pixel whose dithered bit differs (1)".into(),
+                classes: vec![NamedCount {
+                    name: "threshold flip".into(),
+                    count: 1,
+                }],
+                causes: vec![CauseRow {
+                    site: "inv_sqrt in pixel(*,*) > normalize".into(),
+                    pixels: 1,
+                    mean_share: 0.9,
+                }],
+                class_map: "images/classes.png".into(),
+                colours: vec![NamedCount {
+                    name: "threshold flip".into(),
+                    count: 0xffd200,
+                }],
+                ..PairExplanation::default()
+            }),
+            ..ImagePair::default()
+        });
+        let page = render(&r, &History::default());
+        assert!(page.contains("<h4>Why they differ</h4><p>Explained by <code>ref-f316</code>"));
+        assert!(page.contains("<tr><td>threshold flip</td><td class=n>1</td></tr>"));
+        assert!(page.contains("<td><code>inv_sqrt in pixel(*,*) &gt; normalize</code></td><td class=n>1</td><td class=n>90%</td>"));
+        assert!(page.contains("<span style=\"color:#ffd200\">■</span> threshold flip"));
+        assert!(page.contains(
+            "<td>threshold flip; root cause inv_sqrt in pixel(*,*) &gt; normalize (90%)</td>"
+        ));
+        assert!(!page.contains("not localizable (see above)"));
+    }
 
     #[test]
     fn escapes_markup() {

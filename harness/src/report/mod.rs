@@ -224,6 +224,7 @@ impl ReportBuilder {
                 b_shade: shade(rb, x, y),
                 first_op: localize.as_mut().map(|f| f(x, y)),
                 repro: repro(x, y),
+                explained: None,
             })
             .collect();
         self.report.image_pairs.push(ImagePair {
@@ -240,8 +241,47 @@ impl ReportBuilder {
             localization,
             unlisted: differing.len().saturating_sub(LISTED_PIXELS) as u64,
             bit_exact,
+            explanation: None,
         });
         Ok(self.report.image_pairs.last().expect("just pushed"))
+    }
+
+    /// Attach an explanation to the pair `a`, `b` added earlier: `classes`
+    /// colours each explained pixel in the class map written here, and
+    /// `explained(x, y)` gives a listed pixel its class and root cause.
+    pub fn add_explanation(
+        &mut self,
+        (a, b): (&str, &str),
+        mut explanation: PairExplanation,
+        classes: &[(usize, usize, [u8; 3])],
+        explained: impl Fn(usize, usize) -> Option<String>,
+    ) -> Result<()> {
+        let index = self
+            .report
+            .image_pairs
+            .iter()
+            .position(|p| p.a == a && p.b == b)
+            .with_context(|| format!("no image pair {a} vs {b}"))?;
+        let (w, h) = {
+            let p = &self.report.image_pairs[index];
+            (p.width, p.height)
+        };
+        if !classes.is_empty() {
+            let mut img = image::RgbImage::from_pixel(w, h, image::Rgb([40, 40, 40]));
+            for &(x, y, c) in classes {
+                if x < w as usize && y < h as usize {
+                    img.put_pixel(x as u32, y as u32, image::Rgb(c));
+                }
+            }
+            let stem = format!("{}-vs-{}", file_stem(a), file_stem(b));
+            explanation.class_map = self.write_png(&format!("classes-{stem}.png"), &img)?;
+        }
+        let pair = &mut self.report.image_pairs[index];
+        for d in &mut pair.divergences {
+            d.explained = explained(d.x as usize, d.y as usize);
+        }
+        pair.explanation = Some(explanation);
+        Ok(())
     }
 
     /// The speed point of a render against the oracle's render (which

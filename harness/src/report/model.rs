@@ -236,6 +236,10 @@ pub struct ImagePair {
     pub localization: String,
     /// How many divergent pixels are not listed.
     pub unlisted: u64,
+    /// Why a lower precision differs from the oracle, for pairs of one
+    /// with the oracle (`harness explain`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub explanation: Option<PairExplanation>,
     /// Both renders come from implementations that must agree bit for
     /// bit: a differing pixel or shade is a divergence.
     #[serde(default)]
@@ -280,6 +284,54 @@ pub struct PixelDivergence {
     pub first_op: Option<String>,
     /// The command that reproduces it.
     pub repro: String,
+    /// Its class and root cause against the oracle, when explained.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub explained: Option<String>,
+}
+
+/// Why the pixels of a lower-precision render differ from the oracle's.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PairExplanation {
+    /// The reference implementation whose pipeline explained them.
+    pub explained_by: String,
+    /// Whether the explanation holds for the render's implementation (it
+    /// agrees with `explained_by` bit for bit), or why not.
+    pub holds: String,
+    /// Which pixels were explained.
+    pub inputs: String,
+    /// Pixels per class (threshold flip, control-flow divergence, ...).
+    pub classes: Vec<NamedCount>,
+    /// Control-flow divergences per decision.
+    pub decisions: Vec<NamedCount>,
+    /// Top root causes: pixels whose largest contributor a site is.
+    pub causes: Vec<CauseRow>,
+    /// The pixels coloured by class, relative path (empty: none).
+    pub class_map: String,
+    /// Colour of each class in the map (`count` is `0xRRGGBB`).
+    pub colours: Vec<NamedCount>,
+    /// One line per explained pixel when they are few (the largest shade
+    /// differences of a pair without flips).
+    pub examples: Vec<String>,
+    /// Seconds spent explaining.
+    pub seconds: f64,
+}
+
+/// A name and a number.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct NamedCount {
+    pub name: String,
+    pub count: u64,
+}
+
+/// One root-cause site across many pixels.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CauseRow {
+    /// `op in call path`.
+    pub site: String,
+    /// Pixels whose largest contributor it is.
+    pub pixels: u64,
+    /// Their mean share of the error.
+    pub mean_share: f64,
 }
 
 /// The Jack program's cost per pixel.

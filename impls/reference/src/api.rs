@@ -6,9 +6,11 @@ use crate::consts::Consts;
 use crate::engine::{outcome, Engine};
 use crate::float::FloatEngine;
 use crate::float316::F316Engine;
+use crate::formulation::Formulated;
 use crate::pipeline::{self, Shaded};
 use crate::scene::{Scene, SceneError};
 use crate::settings::{Arith, Settings};
+use crate::shadow::{OutputValue, Sh, ShadowEngine, ShadowOptions, ShadowOutput, ShadowRun};
 use crate::tracer::Tracer;
 use crate::vec3::V3;
 use common::image_consts::{HEIGHT, WIDTH};
@@ -167,6 +169,8 @@ pub struct Reference {
     implementation: RefImpl,
     settings: Settings,
     consts: Prepared,
+    /// The scene, for the shadowed runs' constants.
+    scene: Scene,
 }
 
 fn sdf_at<E: Engine>(e: &mut E, k: &Consts<E::N>, p: [F316; 3]) -> Outcome<SdfValue> {
@@ -195,6 +199,13 @@ fn pixel_at<E: Engine>(e: &mut E, k: &Consts<E::N>, x: usize, y: usize) -> Outco
         .and_then(|xc| Ok((xc, pipeline::counter(e, k, y)?)))
         .and_then(|c| pipeline::pixel(e, k, (x, y), c));
     outcome(r).map(pixel_value::<E>)
+}
+
+fn coords_at<E: Engine>(e: &mut E, k: &Consts<E::N>, x: usize, y: usize) -> Outcome<[Scalar; 2]> {
+    let r = pipeline::counter(e, k, x)
+        .and_then(|xc| Ok((xc, pipeline::counter(e, k, y)?)))
+        .and_then(|c| pipeline::coords(e, k, c));
+    outcome(r).map(|(u, v)| [Scalar::of::<E>(u), Scalar::of::<E>(v)])
 }
 
 fn image_of<E: Engine>(engine: impl Fn() -> E + Sync, k: &Consts<E::N>) -> RenderedImage {
@@ -240,6 +251,7 @@ impl Reference {
             implementation,
             settings,
             consts,
+            scene: scene.clone(),
         })
     }
 
@@ -274,6 +286,16 @@ impl Reference {
             Prepared::F316(k) => pixel_at(&mut F316Engine::new(self.settings.arith), k, x, y),
             Prepared::F64(k) => pixel_at(&mut FloatEngine::new(), k, x, y),
             Prepared::F32(k) => pixel_at(&mut FloatEngine::new(), k, x, y),
+        }
+    }
+
+    /// The normalized coordinates `[u, v]` of pixel (x, y), the arguments
+    /// of the spec's `pixel(u, v)`, computed as [`Reference::pixel`] does.
+    pub fn pixel_coords(&self, x: usize, y: usize) -> Outcome<[Scalar; 2]> {
+        match &self.consts {
+            Prepared::F316(k) => coords_at(&mut F316Engine::new(self.settings.arith), k, x, y),
+            Prepared::F64(k) => coords_at(&mut FloatEngine::new(), k, x, y),
+            Prepared::F32(k) => coords_at(&mut FloatEngine::new(), k, x, y),
         }
     }
 
@@ -327,12 +349,151 @@ impl Reference {
         })
     }
 
+    /// The Float316 operations of pixel (x, y)'s coordinates: the records
+    /// that open [`Reference::trace_pixel`]. `ref-f316` only.
+    pub fn trace_pixel_coords(
+        &self,
+        x: usize,
+        y: usize,
+    ) -> Result<Trace<[Scalar; 2]>, RequestError> {
+        let k = self.f316_consts()?;
+        let mut e = F316Engine::new(self.settings.arith);
+        let counters = pipeline::counter(&mut e, k, x)
+            .and_then(|xc| Ok((xc, pipeline::counter(&mut e, k, y)?)));
+        self.traced(None, |e, k| {
+            let coords = counters
+                .and_then(|c| e.frame(|| format!("pixel({x},{y})"), |e| pipeline::coords(e, k, c)));
+            outcome(coords).map(|(u, v)| [Scalar::of::<F316Engine>(u), Scalar::of::<F316Engine>(v)])
+        })
+    }
+
+    /// Pixel (x, y) of ref-f316 from its normalized coordinates `[u, v]`
+    /// (as [`Reference::pixel_coords`] gives them): what a port's pixel
+    /// function computes from its arguments. `ref-f316` only.
+    pub fn pixel_from_coords(
+        &self,
+        x: usize,
+        y: usize,
+        [u, v]: [F316; 2],
+    ) -> Result<Outcome<PixelValue>, RequestError> {
+        let k = self.f316_consts()?;
+        let mut e = F316Engine::new(self.settings.arith);
+        Ok(outcome(pipeline::shaded(&mut e, k, (x, y), (u, v))).map(pixel_value::<F316Engine>))
+    }
+
+    /// Every Float316 operation of [`Reference::pixel_from_coords`], under
+    /// the same path as in [`Reference::trace_pixel`]. `ref-f316` only.
+    pub fn trace_pixel_from_coords(
+        &self,
+        x: usize,
+        y: usize,
+        [u, v]: [F316; 2],
+    ) -> Result<Trace<PixelValue>, RequestError> {
+        self.traced(None, |e, k| {
+            let r = e.frame(
+                || format!("pixel({x},{y})"),
+                |e| pipeline::shaded(e, k, (x, y), (u, v)),
+            );
+            outcome(r).map(pixel_value::<F316Engine>)
+        })
+    }
+
     /// Every Float316 operation of one SDF query. `ref-f316` only.
     pub fn trace_sdf(&self, p: [F316; 3]) -> Result<Trace<SdfValue>, RequestError> {
         self.traced(
             Some(format!("sdf({:?},{:?},{:?})", p[0], p[1], p[2])),
             |e, k| sdf_at(e, k, p),
         )
+    }
+}
+
+/// Run `body` on a shadow of `inner` with the scene's constants (built by
+/// the same engine, so the camera basis is shadowed and correctable too).
+fn shadowed<E: Formulated>(
+    inner: E,
+    scene: &Scene,
+    settings: Settings,
+    options: &ShadowOptions,
+    body: impl FnOnce(&mut ShadowEngine<E>, &Consts<Sh<E::N>>) -> crate::engine::R<ShadowOutput>,
+) -> ShadowRun {
+    let mut e = ShadowEngine::new(inner, options.clone());
+    // The scene was accepted by `Reference::new` with the same low
+    // precision encoding and camera computation, so it is accepted here.
+    let k = Consts::build(scene, &mut e, settings.dither_threshold)
+        .expect("the scene was checked when the reference was made");
+    let r = body(&mut e, &k);
+    e.finish(outcome(r))
+}
+
+fn output<E: Engine>(name: &'static str, v: Sh<E::N>) -> OutputValue {
+    OutputValue {
+        name,
+        lo: E::to_f64(v.lo),
+        hi: v.hi,
+    }
+}
+
+fn shadow_pixel_of<E: Formulated>(
+    inner: E,
+    r: &Reference,
+    (x, y): (usize, usize),
+    options: &ShadowOptions,
+) -> ShadowRun {
+    shadowed(inner, &r.scene, r.settings, options, |e, k| {
+        // The image loop's counters are exact integers in every precision.
+        let counter = |n: usize| {
+            ShadowEngine::<E>::constant(n as f64).ok_or(crate::engine::Trap::OutOfDomain)
+        };
+        let s = pipeline::pixel(e, k, (x, y), (counter(x)?, counter(y)?))?;
+        Ok(ShadowOutput {
+            values: vec![output::<E>("shade", s.value)],
+            white: Some(s.white),
+        })
+    })
+}
+
+fn shadow_sdf_of<E: Formulated>(
+    inner: E,
+    r: &Reference,
+    p: [F316; 3],
+    options: &ShadowOptions,
+) -> ShadowRun {
+    shadowed(inner, &r.scene, r.settings, options, |e, k| {
+        let point = V3::new(
+            ShadowEngine::<E>::from_triple(p[0])?,
+            ShadowEngine::<E>::from_triple(p[1])?,
+            ShadowEngine::<E>::from_triple(p[2])?,
+        );
+        let s = e.frame(|| "sdf".into(), |e| pipeline::sdf(e, k, point))?;
+        Ok(ShadowOutput {
+            values: vec![output::<E>("sd", s.sd), output::<E>("col", s.col)],
+            white: None,
+        })
+    })
+}
+
+impl Reference {
+    /// Pixel (x, y) with every value shadowed in f64 (see
+    /// [`crate::ShadowEngine`]): its decisions, and its operations when
+    /// `options.record_ops`. The low-precision answer is this
+    /// implementation's, bit for bit.
+    pub fn shadow_pixel(&self, x: usize, y: usize, options: &ShadowOptions) -> ShadowRun {
+        let arith = self.settings.arith;
+        match &self.consts {
+            Prepared::F316(_) => shadow_pixel_of(F316Engine::new(arith), self, (x, y), options),
+            Prepared::F64(_) => shadow_pixel_of(FloatEngine::<f64>::new(), self, (x, y), options),
+            Prepared::F32(_) => shadow_pixel_of(FloatEngine::<f32>::new(), self, (x, y), options),
+        }
+    }
+
+    /// One SDF query, shadowed (see [`Reference::shadow_pixel`]).
+    pub fn shadow_sdf(&self, p: [F316; 3], options: &ShadowOptions) -> ShadowRun {
+        let arith = self.settings.arith;
+        match &self.consts {
+            Prepared::F316(_) => shadow_sdf_of(F316Engine::new(arith), self, p, options),
+            Prepared::F64(_) => shadow_sdf_of(FloatEngine::<f64>::new(), self, p, options),
+            Prepared::F32(_) => shadow_sdf_of(FloatEngine::<f32>::new(), self, p, options),
+        }
     }
 }
 

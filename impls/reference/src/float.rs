@@ -3,7 +3,8 @@
 
 use crate::consts::Consts;
 use crate::engine::{Engine, Trap, R};
-use crate::vec3::{self, V3};
+use crate::formulation::{self, Formulated, Formulation};
+use crate::vec3::V3;
 use common::F316;
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -151,23 +152,30 @@ impl<T: IeeeFloat> Engine for FloatEngine<T> {
     }
 
     fn normalize(&mut self, v: V3<T>) -> R<V3<T>> {
-        let l = vec3::length(self, v)?;
-        Ok(V3::new(v.x / l, v.y / l, v.z / l))
+        formulation::normalize(self, v)
     }
 
     fn diffuse(&mut self, k: &Consts<T>, a: T) -> R<T> {
-        Ok((k.diffuse_k * a) * k.diffuse_i)
+        formulation::diffuse(self, k, a)
     }
 
     fn specular(&mut self, k: &Consts<T>, s: T) -> R<T> {
-        Ok((k.specular_k * s.powf(lit(4.0))) * k.specular_i)
+        formulation::specular(self, k, s)
     }
 
     fn ambient(&mut self, k: &Consts<T>) -> R<T> {
-        Ok(k.ambient_factor * k.background)
+        formulation::ambient(self, k)
     }
 
     fn dither_value(&mut self, k: &Consts<T>, v: T, b: usize) -> R<T> {
-        Ok((v + k.bayer[b]) - k.half)
+        formulation::dither_value(self, k, v, b)
+    }
+}
+
+impl<T: IeeeFloat> Formulated for FloatEngine<T> {
+    const FORMULATION: Formulation = Formulation::Ieee;
+
+    fn inv_sqrt(&mut self, x: T) -> R<T> {
+        Ok(lit::<T>(1.0) / x.sqrt())
     }
 }

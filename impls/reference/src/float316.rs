@@ -11,9 +11,10 @@
 
 use crate::consts::Consts;
 use crate::engine::{Engine, Trap, R};
+use crate::formulation::{self, Formulated, Formulation};
 use crate::settings::{Arith, ArithSource, SpecArith};
 use crate::tracer::{Recorder, Tracer, Untraced};
-use crate::vec3::{self, V3};
+use crate::vec3::V3;
 use common::jack_int as j;
 use common::{Op, OpValue, F316};
 
@@ -602,27 +603,31 @@ impl<Rec: Recorder, A: ArithSource> Engine for F316Engine<Rec, A> {
     }
 
     fn normalize(&mut self, v: V3<F316>) -> R<V3<F316>> {
-        let d = vec3::dot(self, v, v)?;
-        let k = self.inv_sqrt(d)?;
-        vec3::scale(self, v, k)
+        formulation::normalize(self, v)
     }
 
     fn diffuse(&mut self, k: &Consts<F316>, a: F316) -> R<F316> {
-        self.mul(k.diffuse_ki, a)
+        formulation::diffuse(self, k, a)
     }
 
     fn specular(&mut self, k: &Consts<F316>, s: F316) -> R<F316> {
-        let s = self.mul(s, s)?;
-        let s = self.mul(s, s)?;
-        self.mul(s, k.specular_ki)
+        formulation::specular(self, k, s)
     }
 
     fn ambient(&mut self, k: &Consts<F316>) -> R<F316> {
-        Ok(k.ambient)
+        formulation::ambient(self, k)
     }
 
     fn dither_value(&mut self, k: &Consts<F316>, v: F316, b: usize) -> R<F316> {
-        self.add(v, k.bayer_centred[b])
+        formulation::dither_value(self, k, v, b)
+    }
+}
+
+impl<Rec: Recorder, A: ArithSource> Formulated for F316Engine<Rec, A> {
+    const FORMULATION: Formulation = Formulation::Float316;
+
+    fn inv_sqrt(&mut self, x: F316) -> R<F316> {
+        F316Engine::inv_sqrt(self, x)
     }
 }
 

@@ -17,10 +17,12 @@ mod described;
 mod engine;
 mod float;
 mod float316;
+mod formulation;
 mod interp;
 mod pipeline;
 mod scene;
 mod settings;
+mod shadow;
 mod tracer;
 mod vec3;
 
@@ -29,5 +31,11 @@ pub use api::{
     Trace, UnknownImpl,
 };
 pub use described::{Described, DescribedError, SceneImage, ScenePixel};
+pub use engine::{Decision, Engine, Trap, R};
+pub use formulation::{Formulated, Formulation};
 pub use scene::{Camera, Floor, March, Scene, SceneError, Shading, Sphere, Torus};
 pub use settings::{Arith, Settings, UnknownVariant, Variant, VariantKind};
+pub use shadow::{
+    blame, candidate_sites, Blame, DecisionRecord, Follow, OutputValue, Sh, ShadowEngine, ShadowOp,
+    ShadowOptions, ShadowOutput, ShadowRun, SiteKey,
+};

@@ -6,7 +6,7 @@
 //! of `|` evaluated), so Float316 traces line up with the Jack program's.
 
 use crate::consts::Consts;
-use crate::engine::{Engine, R};
+use crate::engine::{Decision, Engine, R};
 use crate::vec3::{self, V3};
 use common::image_consts::{HEIGHT, WIDTH};
 use rayon::prelude::*;
@@ -20,7 +20,12 @@ pub struct Surface<N> {
 
 /// `union(a, b)`: a if `gt(b.sd, a.sd)`, else b.
 fn union<E: Engine>(e: &mut E, a: Surface<E::N>, b: Surface<E::N>) -> R<Surface<E::N>> {
-    Ok(if e.gt(b.sd, a.sd)? { a } else { b })
+    let keep_a = e.gt(b.sd, a.sd)?;
+    Ok(if e.decide(Decision::Union, [b.sd, a.sd], keep_a) {
+        a
+    } else {
+        b
+    })
 }
 
 /// The floor plane with its checkerboard colour.
@@ -33,6 +38,13 @@ fn floor<E: Engine>(e: &mut E, k: &Consts<E::N>, p: V3<E::N>) -> R<Surface<E::N>
             let fz = e.floor(p.z)?;
             let sum = e.add(fx, fz)?;
             let parity = e.mod2(sum)?;
+            let odd = E::to_f64(parity) != 0.0;
+            // An engine that overrides the decision gets the other square.
+            let parity = match (odd, e.decide(Decision::Checker, [p.x, p.z], odd)) {
+                (was, now) if was == now => parity,
+                (_, true) => k.one,
+                (_, false) => k.zero,
+            };
             let checker = e.mul(parity, k.floor_checker)?;
             let col = e.add(checker, k.floor_colour)?;
             Ok(Surface { sd, col })
@@ -117,7 +129,9 @@ fn march<E: Engine>(
                 depth = e.add(depth, s.sd)?;
                 col = s.col;
                 let hit = e.gt(k.precision, s.sd)?;
+                let hit = e.decide(Decision::MarchHit, [k.precision, s.sd], hit);
                 let far = e.gt(depth, k.max_distance)?;
+                let far = e.decide(Decision::MarchFar, [depth, k.max_distance], far);
                 Ok(hit | far)
             },
         )?;
@@ -185,7 +199,8 @@ pub fn shade<E: Engine>(e: &mut E, k: &Consts<E::N>, u: E::N, v: E::N) -> R<E::N
         },
     )?;
     let (depth, col) = march(e, k, k.camera, rd, k.view_steps, "march")?;
-    if e.gt(depth, k.max_distance)? {
+    let miss = e.gt(depth, k.max_distance)?;
+    if e.decide(Decision::Miss, [depth, k.max_distance], miss) {
         return Ok(k.background);
     }
     let along = vec3::scale(e, rd, depth)?;
@@ -205,7 +220,8 @@ pub fn shade<E: Engine>(e: &mut E, k: &Consts<E::N>, u: E::N, v: E::N) -> R<E::N
             let (shadow_depth, _) = march(e, k, o, ld, k.shadow_steps, "shadow march")?;
             let to_light = vec3::sub(e, k.light, o)?;
             let dist = vec3::length(e, to_light)?;
-            if e.gt(dist, shadow_depth)? {
+            let shadowed = e.gt(dist, shadow_depth)?;
+            if e.decide(Decision::Shadow, [dist, shadow_depth], shadowed) {
                 e.quarter(value)
             } else {
                 Ok(value)
@@ -222,6 +238,17 @@ pub fn counter<E: Engine>(e: &mut E, k: &Consts<E::N>, n: usize) -> R<E::N> {
         c = e.add(c, k.one)?;
     }
     Ok(c)
+}
+
+/// The normalized coordinates `(u, v)` of the pixel with counters `xc`,
+/// `yc`: the arguments of [`shade`].
+#[inline]
+pub fn coords<E: Engine>(e: &mut E, k: &Consts<E::N>, (xc, yc): (E::N, E::N)) -> R<(E::N, E::N)> {
+    let u = e.sub(xc, k.half_width)?;
+    let u = e.div(u, k.pixel_scale)?;
+    let v = e.sub(yc, k.half_height)?;
+    let v = E::negate(e.div(v, k.pixel_scale)?);
+    Ok((u, v))
 }
 
 /// A pixel's clamped shade and its dithered bit.
@@ -242,30 +269,41 @@ pub fn pixel<E: Engine>(
     e.frame(
         || format!("pixel({x},{y})"),
         |e| {
-            let u = e.sub(xc, k.half_width)?;
-            let u = e.div(u, k.pixel_scale)?;
-            let v = e.sub(yc, k.half_height)?;
-            let v = E::negate(e.div(v, k.pixel_scale)?);
-            let value = shade(e, k, u, v)?;
-            let value = if e.gt(value, k.one)? {
-                k.one
-            } else if E::sign_bit(value) {
-                k.zero
-            } else {
-                value
-            };
-            let dithered = e.frame(
-                || "dither".into(),
-                |e| e.dither_value(k, value, (y % 8) * 8 + (x % 8)),
-            )?;
-            let white = if k.dither_threshold_fault {
-                !e.gt(k.half, dithered)?
-            } else {
-                e.gt(dithered, k.half)?
-            };
-            Ok(Shaded { value, white })
+            let uv = coords(e, k, (xc, yc))?;
+            shaded(e, k, (x, y), uv)
         },
     )
+}
+
+/// Pixel (x, y) from its normalized coordinates `(u, v)`: shade, clamp,
+/// dither (the part of [`pixel`] after [`coords`]).
+#[inline]
+pub fn shaded<E: Engine>(
+    e: &mut E,
+    k: &Consts<E::N>,
+    (x, y): (usize, usize),
+    (u, v): (E::N, E::N),
+) -> R<Shaded<E::N>> {
+    let value = shade(e, k, u, v)?;
+    let above = e.gt(value, k.one)?;
+    let value = if e.decide(Decision::ClampHigh, [value, k.one], above) {
+        k.one
+    } else if e.decide(Decision::ClampLow, [value, k.zero], E::sign_bit(value)) {
+        k.zero
+    } else {
+        value
+    };
+    let dithered = e.frame(
+        || "dither".into(),
+        |e| e.dither_value(k, value, (y % 8) * 8 + (x % 8)),
+    )?;
+    let white = if k.dither_threshold_fault {
+        !e.gt(k.half, dithered)?
+    } else {
+        e.gt(dithered, k.half)?
+    };
+    let white = e.decide(Decision::Dither, [dithered, k.half], white);
+    Ok(Shaded { value, white })
 }
 
 /// Every pixel of the image, row by row, rows in parallel. `engine` makes

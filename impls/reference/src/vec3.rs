@@ -1,7 +1,7 @@
 //! Vector helpers of spec section 3, generic over the engine. They are not
 //! operations of their own: in a trace they appear as frames of the path.
 
-use crate::engine::{Engine, R};
+use crate::engine::{Decision, Engine, R};
 
 /// A 3-vector of engine numbers.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -97,13 +97,15 @@ pub fn angle<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>, one: E::N, zero: E:
         || "angle".into(),
         |e| {
             let d = dot(e, a, b)?;
-            if E::sign_bit(d) {
-                Ok(zero)
-            } else if e.gt(d, one)? {
-                Ok(one)
-            } else {
-                Ok(d)
+            if e.decide(Decision::AngleLow, [d, zero], E::sign_bit(d)) {
+                return Ok(zero);
             }
+            let above = e.gt(d, one)?;
+            Ok(if e.decide(Decision::AngleHigh, [d, one], above) {
+                one
+            } else {
+                d
+            })
         },
     )
 }

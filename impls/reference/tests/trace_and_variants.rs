@@ -122,3 +122,37 @@ fn newton_steps_shape_the_trace() {
     assert_eq!(n(None), 7);
     assert_eq!(n(Some(Variant::Newton3)), 10);
 }
+
+#[test]
+fn pixel_coordinates_open_the_pixel_trace_and_match_in_every_number_type() {
+    let f316 = Reference::seed(RefImpl::F316);
+    for (x, y) in [(0, 0), (312, 87), (511, 255), (256, 128)] {
+        let coords = f316.trace_pixel_coords(x, y).unwrap();
+        let pixel = f316.trace_pixel(x, y).unwrap();
+        assert!(!coords.records.is_empty());
+        assert_eq!(coords.records[..], pixel.records[..coords.records.len()]);
+        assert_eq!(coords.outcome, f316.pixel_coords(x, y));
+    }
+    // u grows to the right, v upwards, in f64 as in Float316.
+    let f64s = Reference::seed(RefImpl::F64);
+    let [u0, v0] = f64s.pixel_coords(0, 0).value().unwrap();
+    let [u1, v1] = f64s.pixel_coords(511, 255).value().unwrap();
+    assert!(u0.value < 0.0 && u1.value > 0.0 && v0.value > 0.0 && v1.value < 0.0);
+    assert!(u0.triple.is_none());
+    let [t, _] = f316.pixel_coords(0, 0).value().unwrap();
+    assert!((t.value - u0.value).abs() < 1e-3, "{t:?} {u0:?}");
+}
+
+#[test]
+fn a_pixel_from_its_coordinates_is_the_pixel_and_its_trace_the_rest_of_the_pixel_trace() {
+    let r = Reference::seed(RefImpl::F316);
+    for (x, y) in [(312, 87), (100, 200), (0, 255)] {
+        let [u, v] = r.pixel_coords(x, y).value().unwrap();
+        let uv = [u.triple.unwrap(), v.triple.unwrap()];
+        assert_eq!(r.pixel_from_coords(x, y, uv).unwrap(), r.pixel(x, y));
+        let head = r.trace_pixel_coords(x, y).unwrap().records;
+        let tail = r.trace_pixel_from_coords(x, y, uv).unwrap().records;
+        let whole = r.trace_pixel(x, y).unwrap().records;
+        assert_eq!([head, tail].concat(), whole);
+    }
+}

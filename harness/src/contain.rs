@@ -1,0 +1,418 @@
+//! Containment: every implementation fails like a real component. A panic,
+//! an endless loop, a crashed or misbehaving adapter process becomes a
+//! [`Failure`] that names the implementation and the input (or the batch)
+//! it was working on, keeps the answers that came before, and lets the
+//! other implementations go on; the harness itself neither panics nor
+//! hangs.
+//!
+//! [`Contained`] wraps any in-process [`Implementation`]: each call runs
+//! on a worker thread under `catch_unwind`, and a [`Watchdog`] turns an
+//! answer that never comes into a reported hang (the looping thread is
+//! left behind; it holds its own reference to the implementation, so
+//! nothing it uses is freed under it). Pipe adapters report their own
+//! failures the same way (`pipe`).
+
+use crate::implementation::{Answer, ImplError, Implementation, Numbers};
+use common::{Outcome, TraceRecord};
+use serde::{Deserialize, Serialize};
+use std::any::Any;
+use std::cell::RefCell;
+use std::fmt;
+use std::panic::{self, AssertUnwindSafe};
+use std::sync::{mpsc, Arc, Once};
+use std::time::Duration;
+use vectors::{Level, Vector};
+
+/// How an implementation failed to answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailureKind {
+    /// It panicked (an in-process implementation).
+    Panic,
+    /// Its answer did not come within the watchdog's time.
+    Hang,
+    /// Its process exited (or was killed) while answering.
+    Crash,
+    /// Its process wrote something the protocol does not allow: a
+    /// malformed line, a wrong id, a wrong count.
+    Protocol,
+    /// Its process exited before its handshake.
+    EarlyExit,
+    /// It was not asked: an earlier failure stopped it.
+    NotRun,
+}
+
+impl fmt::Display for FailureKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            FailureKind::Panic => "panicked",
+            FailureKind::Hang => "hung",
+            FailureKind::Crash => "crashed",
+            FailureKind::Protocol => "broke the protocol",
+            FailureKind::EarlyExit => "exited before its handshake",
+            FailureKind::NotRun => "not run",
+        })
+    }
+}
+
+/// A contained failure of one implementation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Failure {
+    /// The implementation's label.
+    pub label: String,
+    pub kind: FailureKind,
+    /// What happened, in words (the panic message, the offending line and
+    /// field, the exit status, ...).
+    pub message: String,
+    /// The input it was working on, when it is known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub input: Option<Vector>,
+    /// Index of the first input left without an answer: in the batch as the
+    /// implementation reports it, in the set once the runner has placed it.
+    pub index: usize,
+    /// The batch it was answering: index of its first input and its length.
+    pub batch: (usize, usize),
+    /// The last lines the adapter process wrote on stderr.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stderr: Vec<String>,
+    /// The answers to the inputs of the batch before `index`, kept.
+    #[serde(skip)]
+    pub answered: Vec<Outcome<Answer>>,
+}
+
+impl Failure {
+    /// A failure of `label` on a batch, before the runner places it.
+    pub fn new(label: &str, kind: FailureKind, message: String, batch: &[Vector]) -> Self {
+        Failure {
+            label: label.to_string(),
+            kind,
+            message,
+            input: None,
+            index: 0,
+            batch: (0, batch.len()),
+            stderr: Vec::new(),
+            answered: Vec::new(),
+        }
+    }
+
+    /// The same failure with the answers given before it, naming the input
+    /// it stopped at.
+    pub fn after(mut self, answered: Vec<Outcome<Answer>>, batch: &[Vector]) -> Self {
+        self.index = answered.len();
+        self.input = batch.get(answered.len()).cloned();
+        self.answered = answered;
+        self
+    }
+
+    /// The failure of a batch of one input names that input.
+    pub fn naming_a_lone_input(self, batch: &[Vector]) -> Self {
+        if batch.len() == 1 && self.answered.is_empty() {
+            self.after(Vec::new(), batch)
+        } else {
+            self
+        }
+    }
+
+    /// Move the failure from batch indices to set indices: the batch
+    /// started at `start` in the set.
+    pub fn placed(mut self, start: usize) -> Self {
+        self.index += start;
+        self.batch.0 += start;
+        self
+    }
+
+    /// Whether the implementation itself failed (a panic, hang, crash,
+    /// protocol violation or early exit), as opposed to not being asked.
+    pub fn is_own(&self) -> bool {
+        self.kind != FailureKind::NotRun
+    }
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} {}", self.label, self.kind)?;
+        match &self.input {
+            Some(input) => write!(f, " on input #{} {input}", self.index)?,
+            None if self.batch.1 > 0 => write!(
+                f,
+                " on the batch of inputs #{}..#{}",
+                self.batch.0,
+                self.batch.0 + self.batch.1 - 1
+            )?,
+            None => {}
+        }
+        write!(f, ": {}", self.message)?;
+        if !self.stderr.is_empty() {
+            write!(f, "; last lines of its stderr:")?;
+            for line in &self.stderr {
+                write!(f, "\n    | {line}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl From<Failure> for ImplError {
+    fn from(f: Failure) -> Self {
+        ImplError::Contained(Box::new(f))
+    }
+}
+
+/// How long an answer may take before it is reported as a hang.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Watchdog {
+    /// Allowed for any batch, whatever its size.
+    pub base: Duration,
+    /// Allowed on top of `base` for each input of a batch, per level
+    /// (ops, sdf, pixels, image).
+    pub per_input: [Duration; 4],
+}
+
+impl Default for Watchdog {
+    /// Generous for the slowest built-in (the Jack program on the Hack VM
+    /// emulator in the dev profile: about 1 s per pixel on a loaded
+    /// machine, a minute or two per image). `HARNESS_WATCHDOG_S` sets a
+    /// fixed number of seconds per batch instead.
+    fn default() -> Self {
+        if let Some(s) = std::env::var("HARNESS_WATCHDOG_S")
+            .ok()
+            .and_then(|s| s.parse::<f64>().ok())
+            .filter(|s| s.is_finite() && *s > 0.0)
+        {
+            return Watchdog::fixed(Duration::from_secs_f64(s));
+        }
+        Watchdog {
+            base: Duration::from_secs(30),
+            per_input: [
+                Duration::from_millis(2),
+                Duration::from_millis(50),
+                Duration::from_secs(5),
+                Duration::from_secs(900),
+            ],
+        }
+    }
+}
+
+impl Watchdog {
+    /// The same time for every batch.
+    pub fn fixed(limit: Duration) -> Self {
+        Watchdog {
+            base: limit,
+            per_input: [Duration::ZERO; 4],
+        }
+    }
+
+    /// The time allowed for a batch of `n` inputs of `level`.
+    pub fn limit(&self, level: Level, n: usize) -> Duration {
+        let i = Level::ALL.iter().position(|l| *l == level).unwrap_or(0);
+        self.base + self.per_input[i] * u32::try_from(n).unwrap_or(u32::MAX)
+    }
+}
+
+thread_local! {
+    /// The last panic of a contained worker thread: message and location.
+    static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
+}
+
+/// Worker threads of contained implementations are named with this prefix:
+/// their panics are recorded for the failure instead of printed.
+const WORKER: &str = "contained:";
+
+fn install_panic_hook() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let previous = panic::take_hook();
+        panic::set_hook(Box::new(move |info| {
+            let contained = std::thread::current()
+                .name()
+                .is_some_and(|n| n.starts_with(WORKER));
+            if contained {
+                let at = info
+                    .location()
+                    .map(|l| format!(" at {}:{}:{}", l.file(), l.line(), l.column()))
+                    .unwrap_or_default();
+                let message = payload_text(info.payload());
+                LAST_PANIC.with(|p| *p.borrow_mut() = Some(format!("{message}{at}")));
+            } else {
+                previous(info);
+            }
+        }));
+    });
+}
+
+fn payload_text(payload: &(dyn Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic with a non-text payload".to_string())
+}
+
+/// Run `f`, turning a panic into its message (with its location).
+fn catch<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    panic::catch_unwind(AssertUnwindSafe(f)).map_err(|payload| {
+        LAST_PANIC
+            .with(|p| p.borrow_mut().take())
+            .unwrap_or_else(|| payload_text(payload.as_ref()))
+    })
+}
+
+/// Run `job` on a named worker thread and wait at most `limit` for it.
+/// `None`: it did not finish in time (the thread is left running).
+fn on_worker<T: Send + 'static>(
+    label: &str,
+    limit: Duration,
+    job: impl FnOnce() -> T + Send + 'static,
+) -> Result<Option<T>, ImplError> {
+    install_panic_hook();
+    let (tx, rx) = mpsc::channel();
+    std::thread::Builder::new()
+        .name(format!("{WORKER}{label}"))
+        .spawn(move || {
+            let _ = tx.send(job());
+        })
+        .map_err(|e| ImplError::Failed(format!("{label}: cannot start a worker thread: {e}")))?;
+    wait(&rx, limit).ok_or_else(|| {
+        // The worker catches panics, so it always sends unless it is gone.
+        ImplError::Failed(format!(
+            "{label}: its worker thread ended without an answer"
+        ))
+    })
+}
+
+/// Wait at most `limit` for a value on `rx`: `Some(Some(v))` when it came,
+/// `Some(None)` when the time ran out, `None` when the sender is gone. The
+/// runner's jobs wait here on the runner's own threads
+/// (`runner::run`), so the global rayon pool stays free for
+/// implementations that parallelise inside a batch.
+pub fn wait<T>(rx: &mpsc::Receiver<T>, limit: Duration) -> Option<Option<T>> {
+    match rx.recv_timeout(limit) {
+        Ok(v) => Some(Some(v)),
+        Err(mpsc::RecvTimeoutError::Timeout) => Some(None),
+        Err(mpsc::RecvTimeoutError::Disconnected) => None,
+    }
+}
+
+/// An in-process implementation behind the containment layer.
+pub struct Contained {
+    inner: Arc<dyn Implementation>,
+    watchdog: Watchdog,
+}
+
+impl Contained {
+    /// Contain `inner` under `watchdog`.
+    pub fn new(inner: Box<dyn Implementation>, watchdog: Watchdog) -> Self {
+        Contained {
+            inner: Arc::from(inner),
+            watchdog,
+        }
+    }
+
+    /// Contain `inner` under the default watchdog.
+    pub fn boxed(inner: Box<dyn Implementation>) -> Box<dyn Implementation> {
+        Box::new(Contained::new(inner, Watchdog::default()))
+    }
+}
+
+/// Answer `batch` one input at a time up to the first that panics: the
+/// answers before it and the panic's message.
+fn answers_before_panic(
+    imp: &dyn Implementation,
+    batch: &[Vector],
+) -> (Vec<Outcome<Answer>>, Option<String>) {
+    let mut answered = Vec::new();
+    for v in batch {
+        match catch(|| imp.eval(std::slice::from_ref(v))) {
+            Ok(Ok(mut a)) if a.len() == 1 => answered.extend(a.pop()),
+            // The batch as a whole panicked, this input alone does not:
+            // keep what came before and name this input.
+            Ok(_) => return (answered, None),
+            Err(message) => return (answered, Some(message)),
+        }
+    }
+    (answered, None)
+}
+
+enum Evaluated {
+    Done(Result<Vec<Outcome<Answer>>, ImplError>),
+    Panicked(Vec<Outcome<Answer>>, String),
+}
+
+impl Implementation for Contained {
+    fn label(&self) -> String {
+        self.inner.label()
+    }
+
+    fn numbers(&self) -> Numbers {
+        self.inner.numbers()
+    }
+
+    fn supports(&self, level: Level) -> bool {
+        self.inner.supports(level)
+    }
+
+    fn batch_size(&self, level: Level) -> usize {
+        self.inner.batch_size(level)
+    }
+
+    fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+        let Some(first) = batch.first() else {
+            return Ok(Vec::new());
+        };
+        let label = self.label();
+        let limit = self.watchdog.limit(first.level(), batch.len());
+        let inner = Arc::clone(&self.inner);
+        let owned = batch.to_vec();
+        let result = on_worker(&label, limit, move || match catch(|| inner.eval(&owned)) {
+            Ok(done) => Evaluated::Done(done),
+            Err(whole) => {
+                let (answered, message) = answers_before_panic(inner.as_ref(), &owned);
+                Evaluated::Panicked(answered, message.unwrap_or(whole))
+            }
+        })?;
+        match result {
+            Some(Evaluated::Done(done)) => done,
+            Some(Evaluated::Panicked(answered, message)) => {
+                Err(Failure::new(&label, FailureKind::Panic, message, batch)
+                    .after(answered, batch)
+                    .into())
+            }
+            None => Err(Failure::new(
+                &label,
+                FailureKind::Hang,
+                format!(
+                    "no answer within the watchdog's {:.1} s",
+                    limit.as_secs_f64()
+                ),
+                batch,
+            )
+            .naming_a_lone_input(batch)
+            .into()),
+        }
+    }
+
+    fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {
+        let label = self.label();
+        let limit = self.watchdog.limit(input.level(), 1) * 4;
+        let inner = Arc::clone(&self.inner);
+        let owned = input.clone();
+        let one = std::slice::from_ref(input);
+        match on_worker(&label, limit, move || catch(|| inner.trace(&owned)))? {
+            Some(Ok(trace)) => trace,
+            Some(Err(message)) => Err(Failure::new(&label, FailureKind::Panic, message, one)
+                .after(Vec::new(), one)
+                .into()),
+            None => Err(Failure::new(
+                &label,
+                FailureKind::Hang,
+                format!(
+                    "no trace within the watchdog's {:.1} s",
+                    limit.as_secs_f64()
+                ),
+                one,
+            )
+            .after(Vec::new(), one)
+            .into()),
+        }
+    }
+}

@@ -1,0 +1,287 @@
+//! Kind `pipe`: any program, in any language, that speaks the JSON-lines
+//! protocol of `docs/protocol.md` on its stdin and stdout. The harness
+//! starts it, reads its handshake (name, numbers, levels, trace support),
+//! then sends pipelined batches of requests; pixel requests carry the
+//! normalized coordinates the reference computes in the adapter's number
+//! type. Every way an adapter can fail (exit before its handshake, crash
+//! mid-batch, hang, a malformed line, a wrong id or count) is a contained
+//! [`Failure`] naming the adapter, the input or batch, the line and the
+//! field, with the last lines of its stderr; the answers before it are
+//! kept.
+
+mod process;
+pub mod protocol;
+
+use crate::contain::{Failure, FailureKind, Watchdog};
+use crate::implementation::{Answer, ImplError, Implementation, Num, Numbers};
+use common::{Outcome, TraceRecord};
+use process::{Adapter, Reply, Request, StartError};
+use protocol::{Expect, Handshake};
+use reference::{RefImpl, Reference, Scalar};
+use std::path::PathBuf;
+use std::time::Duration;
+use vectors::{Level, Vector};
+
+/// How to start a pipe adapter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PipeConfig {
+    /// The label the harness gives it in reports.
+    pub label: String,
+    /// The program to run (looked up on `PATH` unless it has a slash).
+    pub program: String,
+    /// Its arguments.
+    pub args: Vec<String>,
+    /// Its working directory (default: the harness's).
+    pub dir: Option<PathBuf>,
+    /// How long its answers may take.
+    pub watchdog: Watchdog,
+    /// How long its handshake may take.
+    pub handshake: Duration,
+}
+
+impl PipeConfig {
+    /// `program args...` under `label`, with the default watchdog.
+    pub fn new(label: &str, program: &str, args: &[&str]) -> Self {
+        PipeConfig {
+            label: label.to_string(),
+            program: program.to_string(),
+            args: args.iter().map(|a| a.to_string()).collect(),
+            dir: None,
+            watchdog: Watchdog::default(),
+            handshake: Duration::from_secs(60),
+        }
+    }
+}
+
+/// A started pipe adapter.
+pub struct Pipe {
+    label: String,
+    hello: Handshake,
+    adapter: Adapter,
+    watchdog: Watchdog,
+    /// The reference in the adapter's numbers: pixel coordinates.
+    coords: Reference,
+    /// ref-f316: the coordinate operations that open a pixel's trace.
+    tracer: Reference,
+}
+
+impl Pipe {
+    /// Start the adapter and read its handshake. A program that cannot be
+    /// started is unavailable; one that exits, hangs or writes a bad line
+    /// before its handshake is a contained failure.
+    pub fn open(config: &PipeConfig) -> Result<Pipe, ImplError> {
+        let failure = |kind, message: String, stderr| {
+            let mut f = Failure::new(&config.label, kind, message, &[]);
+            f.stderr = stderr;
+            ImplError::from(f)
+        };
+        let (adapter, line) = Adapter::start(
+            &config.label,
+            &config.program,
+            &config.args,
+            config.dir.as_deref(),
+            config.handshake,
+        )
+        .map_err(|e| match e {
+            StartError::Spawn(why) => ImplError::Unavailable(why),
+            StartError::Failed {
+                kind,
+                message,
+                stderr,
+            } => failure(kind, message, stderr),
+        })?;
+        let hello = protocol::read_handshake(&line).map_err(|e| {
+            adapter.stop("a bad handshake");
+            failure(
+                FailureKind::Protocol,
+                format!("its handshake line: {e}"),
+                adapter.stderr_tail(),
+            )
+        })?;
+        let which = match hello.numbers {
+            Numbers::Float316 => RefImpl::F316,
+            Numbers::F32 => RefImpl::F32,
+            Numbers::F64 | Numbers::Ieee { .. } => RefImpl::F64,
+        };
+        Ok(Pipe {
+            label: config.label.clone(),
+            hello,
+            adapter,
+            watchdog: config.watchdog,
+            coords: Reference::seed(which),
+            tracer: Reference::seed(RefImpl::F316),
+        })
+    }
+
+    /// What the adapter said in its handshake.
+    pub fn handshake(&self) -> &Handshake {
+        &self.hello
+    }
+
+    fn num(&self, s: Scalar) -> Num {
+        match (s.triple, self.hello.numbers) {
+            (Some(t), _) => Num::F316(t),
+            (None, Numbers::F32) => Num::F32(s.value as f32),
+            (None, _) => Num::F64(s.value),
+        }
+    }
+
+    /// The normalized coordinates of a pixel request.
+    fn coords_of(&self, input: &Vector) -> Result<Option<[Num; 2]>, ImplError> {
+        let Vector::Pixel(p) = input else {
+            return Ok(None);
+        };
+        match self.coords.pixel_coords(usize::from(p.x), usize::from(p.y)) {
+            Outcome::Value([u, v]) => Ok(Some([self.num(u), self.num(v)])),
+            trap => Err(ImplError::Failed(format!(
+                "the reference's coordinates of {input} give {}",
+                trap.map(|_| "a value")
+            ))),
+        }
+    }
+
+    /// Send `batch` (asking for op traces when `trace`) and wait for its
+    /// answers under the watchdog.
+    fn ask(&self, batch: &[Vector], trace: bool) -> Result<Vec<process::Answered>, ImplError> {
+        let Some(first) = batch.first() else {
+            return Ok(Vec::new());
+        };
+        let level = first.level();
+        let mut lines = String::with_capacity(64 * (batch.len() + 1));
+        let mut requests = Vec::with_capacity(batch.len());
+        // The ids are assigned when the batch is sent; write them after
+        // reserving them under the adapter's lock.
+        let coords = batch
+            .iter()
+            .map(|v| self.coords_of(v))
+            .collect::<Result<Vec<_>, _>>()?;
+        let label = &self.label;
+        let sent = self.adapter.send_with(|batch_no, first_id| {
+            protocol::batch_line(&mut lines, batch_no, level, batch.len());
+            for (k, (v, c)) in batch.iter().zip(&coords).enumerate() {
+                protocol::request_line(&mut lines, first_id + k as u64, v, *c, trace);
+                requests.push(Request {
+                    expect: Expect::of(v, self.hello.numbers),
+                    trace,
+                });
+            }
+            (std::mem::take(&mut lines), std::mem::take(&mut requests))
+        });
+        let (rx, ahead) = sent.map_err(|why| {
+            ImplError::from(Failure::new(
+                label,
+                FailureKind::NotRun,
+                format!("the adapter takes no more batches: {why}"),
+                batch,
+            ))
+        })?;
+        let limit = self.watchdog.limit(level, batch.len()) * (ahead as u32 + 1);
+        let reply = match crate::contain::wait(&rx, limit) {
+            Some(Some(reply)) => reply,
+            Some(None) => {
+                let why = format!(
+                    "no answer within the watchdog's {:.1} s; stopped",
+                    limit.as_secs_f64()
+                );
+                self.adapter.stop(&why);
+                // The answers it gave before it was stopped.
+                let answers = crate::contain::wait(&rx, Duration::from_secs(2))
+                    .flatten()
+                    .map(|r| r.answers)
+                    .unwrap_or_default();
+                Reply {
+                    answers,
+                    failure: Some((FailureKind::Hang, why)),
+                }
+            }
+            None => Reply {
+                answers: Vec::new(),
+                failure: Some((
+                    FailureKind::Crash,
+                    "its reader ended without a reply".into(),
+                )),
+            },
+        };
+        match reply.failure {
+            None => Ok(reply.answers),
+            Some((kind, message)) => {
+                let outcomes = reply.answers.into_iter().map(|(o, _)| o).collect();
+                let mut f = Failure::new(label, kind, message, batch).after(outcomes, batch);
+                if kind != FailureKind::NotRun {
+                    f.stderr = self.adapter.stderr_tail();
+                }
+                Err(f.into())
+            }
+        }
+    }
+}
+
+impl Implementation for Pipe {
+    fn label(&self) -> String {
+        self.label.clone()
+    }
+
+    fn numbers(&self) -> Numbers {
+        self.hello.numbers
+    }
+
+    fn supports(&self, level: Level) -> bool {
+        self.hello.levels.contains(&level)
+    }
+
+    fn batch_size(&self, level: Level) -> usize {
+        match level {
+            Level::Ops => 4096,
+            Level::Sdf => 512,
+            Level::Pixels => 16,
+            Level::Image => 1,
+        }
+    }
+
+    fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+        if let Some(v) = batch.iter().find(|v| !self.supports(v.level())) {
+            return Err(ImplError::Unsupported(format!(
+                "the {} level (its handshake declares {:?})",
+                v.level(),
+                self.hello.levels
+            )));
+        }
+        Ok(self
+            .ask(batch, false)?
+            .into_iter()
+            .map(|(o, _)| o)
+            .collect())
+    }
+
+    /// The adapter's trace of `input`. For a pixel, the adapter traces its
+    /// pixel function from the coordinates it was given, and the harness
+    /// puts the operations that computed them (ref-f316's) in front.
+    fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {
+        if !self.hello.trace || self.hello.numbers != Numbers::Float316 {
+            return Err(ImplError::Unsupported(format!("{}: op traces", self.label)));
+        }
+        if !self.supports(input.level()) {
+            return Err(ImplError::Unsupported(format!(
+                "the {} level",
+                input.level()
+            )));
+        }
+        let answered = self.ask(std::slice::from_ref(input), true)?;
+        let own = answered
+            .into_iter()
+            .next()
+            .and_then(|(_, t)| t)
+            .unwrap_or_default();
+        let mut records = match input {
+            Vector::Pixel(p) => {
+                self.tracer
+                    .trace_pixel_coords(usize::from(p.x), usize::from(p.y))
+                    .map_err(|e| ImplError::Failed(e.to_string()))?
+                    .records
+            }
+            _ => Vec::new(),
+        };
+        records.extend(own);
+        Ok(records)
+    }
+}

@@ -1,0 +1,481 @@
+//! One adapter process and the pipeline to it: a writer thread feeds its
+//! stdin (so that a full pipe never blocks the caller's watchdog), a
+//! reader thread reads its stdout line by line and hands each batch's
+//! answers to the caller waiting for them, in the order the batches were
+//! sent, and a third thread keeps the last lines of its stderr. Several
+//! batches may be in flight at once.
+
+use super::protocol::{self, Expect, Line};
+use crate::contain::FailureKind;
+use crate::implementation::Answer;
+use common::{Outcome, TraceRecord};
+use std::collections::VecDeque;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::path::Path;
+use std::process::{Child, ChildStdout, Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+use std::time::{Duration, Instant};
+
+/// Lines of stderr kept for a failure's message.
+const STDERR_LINES: usize = 12;
+
+/// How long to wait for a process that closed its stdout to exit, and for
+/// its last stderr lines, before reporting it.
+const EXIT_GRACE: Duration = Duration::from_secs(2);
+
+/// One answer: the outcome and, when it was asked for, the op trace.
+pub type Answered = (Outcome<Answer>, Option<Vec<TraceRecord>>);
+
+/// What came back for one batch: the answers in request order, and why
+/// they stop short when they do.
+pub struct Reply {
+    pub answers: Vec<Answered>,
+    pub failure: Option<(FailureKind, String)>,
+}
+
+/// One request of a batch as the reader checks its answer.
+#[derive(Clone, Copy)]
+pub struct Request {
+    pub expect: Expect,
+    /// Whether the request asked for an op trace.
+    pub trace: bool,
+}
+
+struct Pending {
+    batch: u64,
+    first_id: u64,
+    requests: Vec<Request>,
+    reply: Sender<Reply>,
+}
+
+/// What the reader and the callers share: the ways into the process, and
+/// why it was stopped.
+struct Queue {
+    to_writer: Option<Sender<String>>,
+    to_reader: Option<Sender<Pending>>,
+    next_id: u64,
+    next_batch: u64,
+    /// Why no more batches are sent (set once).
+    stopped: Option<String>,
+}
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// The parts of a running adapter the threads share.
+struct Shared {
+    queue: Mutex<Queue>,
+    child: Mutex<Child>,
+    stderr: Mutex<VecDeque<String>>,
+    stderr_done: Mutex<Option<Receiver<()>>>,
+    /// Batches sent and not yet answered.
+    in_flight: AtomicUsize,
+}
+
+impl Shared {
+    /// Stop sending batches (recording why, the first time) and kill the
+    /// process.
+    fn stop(&self, why: &str) {
+        {
+            let mut q = lock(&self.queue);
+            q.stopped.get_or_insert_with(|| why.to_string());
+            q.to_writer = None;
+            q.to_reader = None;
+        }
+        let mut child = lock(&self.child);
+        let _ = child.kill();
+    }
+
+    /// The last lines of stderr, once the process has closed it (or after
+    /// a grace period).
+    fn stderr_tail(&self) -> Vec<String> {
+        if let Some(done) = lock(&self.stderr_done).take() {
+            let _ = done.recv_timeout(EXIT_GRACE);
+        }
+        lock(&self.stderr).iter().cloned().collect()
+    }
+
+    /// How the process ended, in words, waiting a little for it to end.
+    fn exit_status(&self) -> String {
+        let deadline = Instant::now() + EXIT_GRACE;
+        loop {
+            match lock(&self.child).try_wait() {
+                Ok(Some(status)) => return status_words(status),
+                Ok(None) if Instant::now() < deadline => {}
+                Ok(None) => return "closed its stdout but is still running".into(),
+                Err(e) => return format!("cannot be waited for: {e}"),
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+}
+
+fn status_words(status: std::process::ExitStatus) -> String {
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        if let Some(signal) = status.signal() {
+            return format!("was killed by signal {signal}");
+        }
+    }
+    match status.code() {
+        Some(code) => format!("exited with status {code}"),
+        None => format!("ended ({status})"),
+    }
+}
+
+/// A running adapter process.
+pub struct Adapter {
+    shared: Arc<Shared>,
+}
+
+/// Why an adapter could not be started.
+pub enum StartError {
+    /// The program could not be run at all.
+    Spawn(String),
+    /// It ran, and failed before or in its handshake.
+    Failed {
+        kind: FailureKind,
+        message: String,
+        stderr: Vec<String>,
+    },
+}
+
+impl Adapter {
+    /// Start `program` with `args` in `dir` and read its handshake line,
+    /// waiting at most `handshake` for it.
+    pub fn start(
+        label: &str,
+        program: &str,
+        args: &[String],
+        dir: Option<&Path>,
+        handshake: Duration,
+    ) -> Result<(Adapter, String), StartError> {
+        let mut command = Command::new(program);
+        command
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped());
+        if let Some(dir) = dir {
+            command.current_dir(dir);
+        }
+        let mut child = command.spawn().map_err(|e| {
+            let place = dir
+                .map(|d| format!(" in {}", d.display()))
+                .unwrap_or_default();
+            StartError::Spawn(format!("cannot start `{program}`{place}: {e}"))
+        })?;
+        let (stdin, stdout, stderr) =
+            match (child.stdin.take(), child.stdout.take(), child.stderr.take()) {
+                (Some(i), Some(o), Some(e)) => (i, o, e),
+                _ => {
+                    return Err(StartError::Spawn(format!(
+                        "`{program}`: its pipes could not be opened"
+                    )))
+                }
+            };
+        let (to_writer, writer_rx) = mpsc::channel::<String>();
+        let (to_reader, reader_rx) = mpsc::channel::<Pending>();
+        let (stderr_tx, stderr_done) = mpsc::channel();
+        let shared = Arc::new(Shared {
+            queue: Mutex::new(Queue {
+                to_writer: Some(to_writer),
+                to_reader: Some(to_reader),
+                next_id: 0,
+                next_batch: 0,
+                stopped: None,
+            }),
+            child: Mutex::new(child),
+            stderr: Mutex::new(VecDeque::new()),
+            stderr_done: Mutex::new(Some(stderr_done)),
+            in_flight: AtomicUsize::new(0),
+        });
+        let spawn = |name: &str, f: Box<dyn FnOnce() + Send>| {
+            std::thread::Builder::new()
+                .name(format!("pipe {name}: {label}"))
+                .spawn(f)
+                .map(|_| ())
+                .map_err(|e| StartError::Spawn(format!("cannot start a thread: {e}")))
+        };
+        spawn(
+            "writer",
+            Box::new(move || {
+                let mut stdin = std::io::BufWriter::with_capacity(1 << 16, stdin);
+                for text in writer_rx {
+                    if stdin
+                        .write_all(text.as_bytes())
+                        .and_then(|()| stdin.flush())
+                        .is_err()
+                    {
+                        break;
+                    }
+                }
+            }),
+        )?;
+        let keep = Arc::clone(&shared);
+        spawn(
+            "stderr",
+            Box::new(move || {
+                keep_stderr(&keep, stderr);
+                let _ = stderr_tx.send(());
+            }),
+        )?;
+        let (hello_tx, hello_rx) = mpsc::channel();
+        let read = Arc::clone(&shared);
+        spawn(
+            "reader",
+            Box::new(move || reader(&read, stdout, hello_tx, reader_rx)),
+        )?;
+        let adapter = Adapter { shared };
+        let hello = match hello_rx.recv_timeout(handshake) {
+            Ok(Some(line)) => return Ok((adapter, line)),
+            Ok(None) | Err(mpsc::RecvTimeoutError::Disconnected) => StartError::Failed {
+                kind: FailureKind::EarlyExit,
+                message: format!(
+                    "it {} before writing its handshake line",
+                    adapter.shared.exit_status()
+                ),
+                stderr: adapter.shared.stderr_tail(),
+            },
+            Err(mpsc::RecvTimeoutError::Timeout) => {
+                adapter.shared.stop("no handshake");
+                StartError::Failed {
+                    kind: FailureKind::Hang,
+                    message: format!(
+                        "no handshake line within {:.1} s; stopped",
+                        handshake.as_secs_f64()
+                    ),
+                    stderr: adapter.shared.stderr_tail(),
+                }
+            }
+        };
+        Err(hello)
+    }
+
+    /// Send one batch: `write(batch number, first request id)` gives its
+    /// lines (the opening line first) and its requests. Returns where its
+    /// reply will come, with the number of batches ahead of it; or why the
+    /// adapter takes no more batches.
+    pub fn send_with(
+        &self,
+        write: impl FnOnce(u64, u64) -> (String, Vec<Request>),
+    ) -> Result<(Receiver<Reply>, u64), String> {
+        let mut q = lock(&self.shared.queue);
+        if let Some(why) = &q.stopped {
+            return Err(why.clone());
+        }
+        let (lines, requests) = write(q.next_batch, q.next_id);
+        let (reply, rx) = mpsc::channel();
+        let pending = Pending {
+            batch: q.next_batch,
+            first_id: q.next_id,
+            requests,
+            reply,
+        };
+        q.next_id += pending.requests.len() as u64;
+        q.next_batch += 1;
+        let ahead = self.shared.in_flight.fetch_add(1, Ordering::Relaxed) as u64;
+        let sent = q
+            .to_reader
+            .as_ref()
+            .is_some_and(|r| r.send(pending).is_ok())
+            && q.to_writer.as_ref().is_some_and(|w| w.send(lines).is_ok());
+        if !sent {
+            return Err("its pipes are closed".into());
+        }
+        Ok((rx, ahead))
+    }
+
+    /// Stop the adapter: no more batches, the process killed.
+    pub fn stop(&self, why: &str) {
+        self.shared.stop(why);
+    }
+
+    /// The last lines of its stderr.
+    pub fn stderr_tail(&self) -> Vec<String> {
+        self.shared.stderr_tail()
+    }
+}
+
+impl Drop for Adapter {
+    fn drop(&mut self) {
+        self.shared.stop("closed");
+        let _ = lock(&self.shared.child).wait();
+    }
+}
+
+fn keep_stderr(shared: &Shared, stderr: impl Read) {
+    let mut lines = BufReader::new(stderr);
+    let mut buf = Vec::new();
+    loop {
+        buf.clear();
+        match lines.read_until(b'\n', &mut buf) {
+            Ok(0) | Err(_) => return,
+            Ok(_) => {
+                let line = String::from_utf8_lossy(&buf).trim_end().to_string();
+                let mut tail = lock(&shared.stderr);
+                if tail.len() == STDERR_LINES {
+                    tail.pop_front();
+                }
+                tail.push_back(protocol::excerpt(&line));
+            }
+        }
+    }
+}
+
+/// Read one line into `buf`: `Ok(false)` at the end of the output.
+fn next_line(out: &mut BufReader<ChildStdout>, buf: &mut String) -> Result<bool, String> {
+    buf.clear();
+    match out.read_line(buf) {
+        Ok(0) => Ok(false),
+        Ok(_) => {
+            let trimmed = buf.trim_end_matches(['\n', '\r']).len();
+            buf.truncate(trimmed);
+            Ok(true)
+        }
+        Err(e) => Err(format!("its output could not be read: {e}")),
+    }
+}
+
+fn reader(
+    shared: &Shared,
+    stdout: ChildStdout,
+    hello: Sender<Option<String>>,
+    pending: Receiver<Pending>,
+) {
+    let mut out = BufReader::with_capacity(1 << 16, stdout);
+    let mut buf = String::new();
+    match next_line(&mut out, &mut buf) {
+        Ok(true) => {
+            let _ = hello.send(Some(buf.clone()));
+        }
+        _ => {
+            let _ = hello.send(None);
+            return;
+        }
+    }
+    while let Ok(p) = pending.recv() {
+        let (answers, failure) = read_batch(shared, &mut out, &mut buf, &p);
+        let failed = failure.is_some();
+        if let Some((kind, why)) = &failure {
+            let stop = match kind {
+                FailureKind::Crash => format!("it {why}"),
+                _ => format!("it {} on batch {}", kind, p.batch),
+            };
+            shared.stop(&stop);
+        }
+        shared.in_flight.fetch_sub(1, Ordering::Relaxed);
+        let _ = p.reply.send(Reply { answers, failure });
+        if failed {
+            // Batches sent after it are not run.
+            for later in pending.try_iter() {
+                let why = lock(&shared.queue).stopped.clone().unwrap_or_default();
+                let _ = later.reply.send(Reply {
+                    answers: Vec::new(),
+                    failure: Some((
+                        FailureKind::NotRun,
+                        format!("an earlier batch failed: {why}"),
+                    )),
+                });
+            }
+            return;
+        }
+    }
+}
+
+/// Read the answers of one batch and its closing line.
+fn read_batch(
+    shared: &Shared,
+    out: &mut BufReader<ChildStdout>,
+    buf: &mut String,
+    p: &Pending,
+) -> (Vec<Answered>, Option<(FailureKind, String)>) {
+    let n = p.requests.len();
+    let mut answers = Vec::with_capacity(n);
+    let protocol = |k: usize, e: String| {
+        Some((
+            FailureKind::Protocol,
+            format!(
+                "answer line {} of batch {} ({n} requests): {e}",
+                k + 1,
+                p.batch
+            ),
+        ))
+    };
+    loop {
+        let k = answers.len();
+        match next_line(out, buf) {
+            Ok(true) => {}
+            Ok(false) => {
+                let status = shared.exit_status();
+                return (
+                    answers,
+                    Some((
+                        FailureKind::Crash,
+                        format!(
+                            "{status} after answering {k} of the {n} inputs of batch {}",
+                            p.batch
+                        ),
+                    )),
+                );
+            }
+            Err(e) => return (answers, Some((FailureKind::Crash, e))),
+        }
+        let request = p.requests.get(k).or(p.requests.last());
+        let Some(request) = request else {
+            return (answers, protocol(k, "an empty batch".into()));
+        };
+        match protocol::read_line(buf, &request.expect) {
+            Err(e) => return (answers, protocol(k, e.to_string())),
+            Ok(Line::End { batch, count }) => {
+                let problem = if batch != p.batch {
+                    Some(format!(
+                        "field `batch`: closes batch {batch}, expected {}",
+                        p.batch
+                    ))
+                } else if count != n as u64 || k != n {
+                    Some(format!(
+                        "field `count`: {count}, after {k} answers to {n} requests"
+                    ))
+                } else {
+                    None
+                };
+                return match problem {
+                    Some(m) => (
+                        answers,
+                        protocol(k, format!("{m}; the line: `{}`", protocol::excerpt(buf))),
+                    ),
+                    None => (answers, None),
+                };
+            }
+            Ok(Line::Answer { id, outcome, trace }) => {
+                let expected = p.first_id + k as u64;
+                let problem = if k == n {
+                    Some(format!(
+                        "field `id`: {id} is an answer beyond the batch's {n} requests (its closing line {{\"batch\":{},\"count\":{n}}} is missing)",
+                        p.batch
+                    ))
+                } else if id != expected {
+                    Some(format!(
+                        "field `id`: {id}, expected {expected} (answers come in request order)"
+                    ))
+                } else if request.trace && trace.is_none() {
+                    Some("field `trace`: missing, and the request asked for the op trace".into())
+                } else {
+                    None
+                };
+                if let Some(m) = problem {
+                    return (
+                        answers,
+                        protocol(k, format!("{m}; the line: `{}`", protocol::excerpt(buf))),
+                    );
+                }
+                answers.push((outcome, trace));
+            }
+        }
+    }
+}

@@ -1,0 +1,42 @@
+"""A pipe adapter that answers `double` requests correctly, then fails at
+its sixth answer the way MODE says (the harness's containment tests):
+early-exit, crash, hang, garbage, wrong-id, wrong-count."""
+import json
+import os
+import sys
+import time
+
+mode = sys.argv[1]
+if mode == "early-exit":
+    print("my-port: cannot open port.cfg", file=sys.stderr)
+    sys.exit(3)
+print(json.dumps({"protocol": 1, "name": "misbehaving", "numbers": "float316",
+                  "levels": ["ops"], "trace": False}), flush=True)
+answered = 0
+while True:
+    header = sys.stdin.readline()
+    if not header:
+        break
+    batch = json.loads(header)
+    for _ in range(batch["count"]):
+        q = json.loads(sys.stdin.readline())
+        s, e, m = q["a"]
+        answer = {"id": q["id"], "value": [s, e + 1 if e > 0 else e, m]}
+        if answered == 5:
+            sys.stdout.flush()
+            if mode == "crash":
+                print("Traceback (most recent call last):", file=sys.stderr)
+                print("ZeroDivisionError: in my_port.double", file=sys.stderr)
+                sys.stderr.flush()
+                os._exit(1)
+            if mode == "hang":
+                time.sleep(3600)
+            if mode == "garbage":
+                print('{"id": %d, "value": [0, 1' % q["id"])
+                continue
+            if mode == "wrong-id":
+                answer["id"] += 7
+        print(json.dumps(answer))
+        answered += 1
+    count = batch["count"] + (1 if mode == "wrong-count" else 0)
+    print(json.dumps({"batch": batch["batch"], "count": count}), flush=True)

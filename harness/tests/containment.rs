@@ -1,0 +1,226 @@
+//! Every implementation fails like a real component: a pipe adapter that
+//! exits before its handshake, crashes mid-batch, hangs, writes a garbage
+//! line, a wrong id or a wrong count, and an in-process implementation
+//! that panics or loops for ever (a test fault), are each contained and
+//! named, with the input and the answers that came before; `harness
+//! check` calls the commit bad.
+
+use common::{Op, Outcome, F316};
+use harness::cast::Cast;
+use harness::commands::check::{no_divergence_between, Verdict};
+use harness::contain::{Contained, Failure, FailureKind, Watchdog};
+use harness::implementation::{Answer, ImplError, Implementation, Numbers};
+use harness::pipe::{Pipe, PipeConfig};
+use harness::runner::{diff_set, RunOptions};
+use std::time::Duration;
+use vectors::{Level, OpVector, Vector, VectorSet};
+
+const ADAPTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/adapters/misbehaving.py");
+
+/// Ten `double` vectors: the misbehaving adapter answers the first five.
+fn doubles() -> VectorSet {
+    let vectors = (0..10)
+        .map(|i| {
+            Vector::Op(OpVector {
+                category: "double".into(),
+                op: Op::Double,
+                a: F316::new(i % 2, 120 + i, 8192 + 100 * i),
+                b: None,
+            })
+        })
+        .collect();
+    VectorSet::new("doubles", Level::Ops, "", None, vectors)
+}
+
+fn misbehaving(mode: &str) -> Result<Pipe, ImplError> {
+    let mut config = PipeConfig::new(&format!("py-{mode}"), "python3", &[ADAPTER, mode]);
+    config.watchdog = Watchdog::fixed(Duration::from_secs(3));
+    Pipe::open(&config)
+}
+
+fn failure(e: &ImplError) -> &Failure {
+    match e {
+        ImplError::Contained(f) => f,
+        other => panic!("a contained failure expected, got {other}"),
+    }
+}
+
+/// Run the doubles through ref-f316 and `subject`: the subject's failure,
+/// after checking that the answers before it were kept and agree.
+fn contained_run(subject: &dyn Implementation, kept: usize) -> Failure {
+    let reference = Cast::builtin().open("ref-f316").unwrap();
+    let set = doubles();
+    let report = diff_set(&[reference.as_ref(), subject], &set, RunOptions::default());
+    let (label, e) = report.failures().next().expect("the subject failed");
+    assert_eq!(label, subject.label());
+    let f = failure(e).clone();
+    assert_eq!(f.index, kept, "{f}");
+    if let Some(input) = &f.input {
+        assert_eq!(Some(input), set.vectors.get(kept), "{f}");
+    }
+    match report.comparisons.first() {
+        Some(c) => {
+            assert_eq!(
+                c.vectors, kept,
+                "the answers before the failure are compared"
+            );
+            assert!(!c.diverged);
+        }
+        None => assert_eq!(kept, 0, "nothing to compare"),
+    }
+    f
+}
+
+#[test]
+fn an_adapter_that_exits_before_its_handshake_is_named_with_its_stderr() {
+    let e = misbehaving("early-exit").err().expect("no handshake");
+    let f = failure(&e);
+    assert_eq!(f.kind, FailureKind::EarlyExit);
+    let text = f.to_string();
+    assert!(
+        text.contains("py-early-exit exited before its handshake"),
+        "{text}"
+    );
+    assert!(text.contains("exited with status 3"), "{text}");
+    assert!(text.contains("my-port: cannot open port.cfg"), "{text}");
+}
+
+#[test]
+fn an_adapter_that_crashes_mid_batch_keeps_its_answers_and_shows_its_stderr() {
+    let pipe = misbehaving("crash").unwrap();
+    let f = contained_run(&pipe, 5);
+    assert_eq!(f.kind, FailureKind::Crash);
+    let text = f.to_string();
+    assert!(
+        text.contains("exited with status 1 after answering 5 of the 10 inputs"),
+        "{text}"
+    );
+    assert!(
+        text.contains("ZeroDivisionError: in my_port.double"),
+        "{text}"
+    );
+    // It takes no more batches afterwards.
+    let again = pipe.eval(&doubles().vectors).unwrap_err();
+    assert_eq!(failure(&again).kind, FailureKind::NotRun);
+}
+
+#[test]
+fn an_adapter_that_hangs_is_stopped_by_the_watchdog() {
+    let pipe = misbehaving("hang").unwrap();
+    let f = contained_run(&pipe, 5);
+    assert_eq!(f.kind, FailureKind::Hang);
+    assert!(
+        f.to_string()
+            .contains("no answer within the watchdog's 3.0 s"),
+        "{f}"
+    );
+}
+
+#[test]
+fn a_garbage_line_is_named_with_the_line() {
+    let f = contained_run(&misbehaving("garbage").unwrap(), 5);
+    assert_eq!(f.input, Some(doubles().vectors[5].clone()));
+    assert_eq!(f.kind, FailureKind::Protocol);
+    let text = f.to_string();
+    assert!(text.contains("answer line 6 of batch 0"), "{text}");
+    assert!(text.contains("not JSON"), "{text}");
+    assert!(text.contains(r#"`{"id": 5, "value": [0, 1`"#), "{text}");
+}
+
+#[test]
+fn a_wrong_id_is_named_with_the_field() {
+    let f = contained_run(&misbehaving("wrong-id").unwrap(), 5);
+    assert_eq!(f.kind, FailureKind::Protocol);
+    assert!(f.to_string().contains("field `id`: 12, expected 5"), "{f}");
+}
+
+#[test]
+fn a_wrong_count_is_named_with_the_field() {
+    let f = contained_run(&misbehaving("wrong-count").unwrap(), 10);
+    assert_eq!(f.kind, FailureKind::Protocol);
+    assert!(
+        f.to_string()
+            .contains("field `count`: 11, after 10 answers to 10 requests"),
+        "{f}"
+    );
+}
+
+/// A test fault: ref-f316, except that it panics on its sixth vector
+/// (`panics`) or never answers it (`loops`).
+struct Faulty {
+    inner: Box<dyn Implementation>,
+    panics: bool,
+}
+
+impl Implementation for Faulty {
+    fn label(&self) -> String {
+        format!("ref-f316+{}", if self.panics { "panics" } else { "loops" })
+    }
+    fn numbers(&self) -> Numbers {
+        Numbers::Float316
+    }
+    fn supports(&self, level: Level) -> bool {
+        self.inner.supports(level)
+    }
+    fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+        let set = doubles();
+        if let Some(v) = batch.iter().find(|v| **v == set.vectors[5]) {
+            if self.panics {
+                let overflow = i16::MAX;
+                panic!("attempt to multiply with overflow: {overflow} * 2 in {v}");
+            }
+            loop {
+                std::thread::sleep(Duration::from_secs(1));
+            }
+        }
+        self.inner.eval(batch)
+    }
+}
+
+fn faulty(panics: bool) -> Contained {
+    let inner = Cast::builtin().open("ref-f316").unwrap();
+    Contained::new(
+        Box::new(Faulty { inner, panics }),
+        Watchdog::fixed(Duration::from_secs(2)),
+    )
+}
+
+#[test]
+fn an_in_process_panic_becomes_a_failure_of_its_input() {
+    let f = contained_run(&faulty(true), 5);
+    assert_eq!(f.kind, FailureKind::Panic);
+    let text = f.to_string();
+    assert!(
+        text.starts_with("ref-f316+panics panicked on input #5 double((1,125,8692))"),
+        "{text}"
+    );
+    assert!(text.contains("attempt to multiply with overflow"), "{text}");
+    assert!(
+        text.contains("containment.rs:"),
+        "the panic's location: {text}"
+    );
+}
+
+#[test]
+fn an_in_process_endless_loop_becomes_a_hang_of_its_batch() {
+    let f = contained_run(&faulty(false), 0);
+    assert_eq!(f.kind, FailureKind::Hang);
+    assert!(f.input.is_none(), "a hang names its batch");
+    assert!(
+        f.to_string().contains("on the batch of inputs #0..#9"),
+        "{f}"
+    );
+}
+
+#[test]
+fn check_calls_a_contained_panic_or_hang_of_the_implementation_under_test_bad() {
+    let reference = Cast::builtin().open("ref-f316").unwrap();
+    for subject in [faulty(true), faulty(false)] {
+        let verdict = no_divergence_between(reference.as_ref(), &subject, &[doubles()]).unwrap();
+        let Verdict::Bad(why) = &verdict else {
+            panic!("bad expected: {verdict:?}")
+        };
+        assert!(why.contains(&subject.label()), "{why}");
+        assert_eq!(verdict.exit_code(), 1);
+    }
+}
