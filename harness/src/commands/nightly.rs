@@ -26,13 +26,17 @@ pub struct NightlyArgs {
     #[arg(long, default_value_t = 16)]
     pub jack_unary_step: usize,
     /// Run only these steps (comma-separated: levels, unary, selftest,
-    /// renders, screens, pairs, explain, speed); default all.
+    /// renders, screens, pairs, explain, scenes, speed); default all.
     #[arg(long, value_delimiter = ',', value_name = "STEP,...")]
     pub steps: Option<Vec<String>>,
     /// Open only these implementations of the cast (comma-separated), with
     /// the oracle and the tracer; default all.
     #[arg(long = "impls", value_delimiter = ',', value_name = "NAME,...")]
     pub implementations: Option<Vec<String>>,
+    /// A described scene for the scenes step: a shipped scene's name
+    /// (`rtdemo`) or a file (repeatable; default every shipped scene).
+    #[arg(long = "scene", value_name = "NAME")]
+    pub scenes: Vec<String>,
 }
 
 /// Run the nightly job.
@@ -67,6 +71,14 @@ pub fn run(args: NightlyArgs, cast: &Cast) -> Result<ExitCode> {
         steps: args.steps,
         implementations: args.implementations,
         progress: crate::progress::wanted(),
+        scenes: if args.scenes.is_empty() {
+            nightly::scenes::shipped()?
+        } else {
+            args.scenes
+                .iter()
+                .map(|n| nightly::scenes::resolve(n))
+                .collect::<Result<_>>()?
+        },
     };
     let (summary, dir) = nightly::run(cast, &options)?;
     println!(

@@ -6,6 +6,7 @@ use super::render::{write_atomically, RenderArgs};
 use anyhow::{bail, Context, Result};
 use common::Outcome;
 use reference::{Described, RefImpl, Scalar, SceneImage, ScenePixel, Settings};
+use scene::Program;
 use serde::Serialize;
 use std::path::Path;
 use std::process::ExitCode;
@@ -63,43 +64,70 @@ pub fn render(
             if settings != Settings::default() {
                 bail!("{name} has no variants (no --variant)");
             }
-            let imp = if name == "gpu-f316" {
+            let form = if name == "gpu-f316" {
                 RefImpl::F316
             } else {
                 RefImpl::F32
             };
-            let program = Described::new(imp, scene, settings)?.program().clone();
             let gpu = gpu::Gpu::new()?;
-            let kernel = gpu.scene_kernel(&program)?;
-            let pixels = kernel
-                .render(&gpu)?
-                .into_iter()
-                .map(|o| {
-                    o.map(|p| ScenePixel {
-                        value: Scalar {
-                            value: p.value.value,
-                            triple: p.value.triple,
-                        },
-                        level: p.level,
-                    })
-                })
-                .collect();
-            Ok(SceneImage {
-                width: program.pixels.width as usize,
-                height: program.pixels.height as usize,
-                levels: program.pixels.levels,
-                pixels,
-            })
+            let (kernel, program) = compile_gpu(&gpu, form, scene)?;
+            kernel_image(&gpu, &kernel, &program)
         }
-        "jack" => bail!(
-            "jack: the hand-written Jack program renders the seed scene only, and {} (`{}`) is another scene; a Jack program generated from a description does not exist yet",
-            file.display(),
-            scene.description.name
-        ),
+        "jack" => bail!("{}", jack_refusal(scene, file)),
         _ => bail!(
             "unknown implementation `{name}` (expected ref-f316, ref-f64, ref-f32, jack, gpu-f316 or gpu-f32)"
         ),
     }
+}
+
+/// What the hand-written Jack program says to a described scene: it
+/// renders the seed scene only.
+pub fn jack_refusal(scene: &scene::Checked, file: &Path) -> String {
+    format!(
+        "jack: the hand-written Jack program renders the seed scene only, and {} (`{}`) is another scene; a Jack program generated from a description does not exist yet",
+        file.display(),
+        scene.description.name
+    )
+}
+
+/// Generate and compile the kernels of `scene` for `form` (`F316`:
+/// gpu-f316, an IEEE one: gpu-f32) on `gpu`, with the program they came from.
+pub fn compile_gpu(
+    gpu: &gpu::Gpu,
+    form: RefImpl,
+    scene: &scene::Checked,
+) -> Result<(gpu::SceneKernel, Program)> {
+    let program = Described::new(form, scene, Settings::default())?
+        .program()
+        .clone();
+    Ok((gpu.scene_kernel(&program)?, program))
+}
+
+/// The whole image of `program` through its compiled `kernel`.
+pub fn kernel_image(
+    gpu: &gpu::Gpu,
+    kernel: &gpu::SceneKernel,
+    program: &Program,
+) -> Result<SceneImage> {
+    let pixels = kernel
+        .render(gpu)?
+        .into_iter()
+        .map(|o| {
+            o.map(|p| ScenePixel {
+                value: Scalar {
+                    value: p.value.value,
+                    triple: p.value.triple,
+                },
+                level: p.level,
+            })
+        })
+        .collect();
+    Ok(SceneImage {
+        width: program.pixels.width as usize,
+        height: program.pixels.height as usize,
+        levels: program.pixels.levels,
+        pixels,
+    })
 }
 
 /// Write the image as an 8-bit grey PNG, and its values when asked.

@@ -17,6 +17,7 @@
 
 mod explain;
 mod pairs;
+pub mod scenes;
 pub mod steps;
 
 use crate::cast::{Cast, Entry};
@@ -42,6 +43,8 @@ pub struct Options {
     pub implementations: Option<Vec<String>>,
     /// Progress bars on a terminal.
     pub progress: bool,
+    /// The described scenes of the scene step (files).
+    pub scenes: Vec<PathBuf>,
 }
 
 /// An implementation of the cast, opened for the night.

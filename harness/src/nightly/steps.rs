@@ -49,6 +49,7 @@ pub fn all() -> Vec<Box<dyn Step>> {
         Box::new(Screens),
         Box::new(Pairs),
         Box::new(super::explain::Explain),
+        Box::new(super::scenes::Scenes),
         Box::new(Speed),
     ]
 }

@@ -165,7 +165,7 @@ pub fn render(report: &Report, history: &History) -> String {
     );
     h.push_str(
         "<nav><a href=#summary>Summary</a><a href=#levels>Levels</a><a href=#renders>Renders</a><a href=#pairs>Image pairs</a>\
-         <a href=#cost>Cost map</a><a href=#speed>Speed vs error</a><a href=#stability>Stability</a><a href=#bench>Bench</a><a href=#trend>Trend</a></nav>\n<main>\n",
+         <a href=#cost>Cost map</a><a href=#speed>Speed vs error</a><a href=#stability>Stability</a><a href=#bench>Bench</a><a href=#scenes>Scenes</a><a href=#trend>Trend</a></nav>\n<main>\n",
     );
     summary(&mut h, report);
     levels(&mut h, report);
@@ -175,6 +175,7 @@ pub fn render(report: &Report, history: &History) -> String {
     speed(&mut h, report);
     stability(&mut h, report);
     bench(&mut h, report);
+    scenes(&mut h, report);
     trend(&mut h, history);
     h.push_str("</main></body></html>\n");
     h
@@ -755,6 +756,65 @@ fn bench(h: &mut String, r: &Report) {
         row(h, &cells);
     }
     h.push_str("</table></section>\n");
+}
+
+/// The described scenes: what each uses and never reaches, and its cost
+/// per pixel on each implementation (their comparisons are in Levels).
+fn scenes(h: &mut String, r: &Report) {
+    h.push_str("<section id=scenes><h2>Scenes</h2>");
+    if r.scenes.is_empty() {
+        h.push_str("<p>No scene step in this run.</p></section>\n");
+        return;
+    }
+    let list = |items: &[String]| esc(&items.join(", "));
+    for s in &r.scenes {
+        let reached: Vec<String> = s
+            .reached
+            .iter()
+            .map(|(op, n)| format!("{op} {n}"))
+            .collect();
+        let _ = write!(
+            h,
+            "<h3><code>{}</code> ({})</h3><ul><li>shapes: {}</li><li>Float316 operations: {}</li>\
+             <li>reached over {} traced pixels: {}</li><li>never reached: {}</li><li>domains never reached: {}</li>",
+            esc(&s.name),
+            esc(&s.file),
+            list(&s.shapes),
+            list(&s.operations),
+            s.traced_pixels,
+            esc(&reached.join(", ")),
+            list(&s.never_reached),
+            list(&s.domains_never_reached),
+        );
+        for u in &s.unsupported {
+            let _ = write!(h, "<li>{}</li>", esc(u));
+        }
+        h.push_str("</ul>");
+        table_head(
+            h,
+            [
+                "implementation",
+                "set-up",
+                "full image",
+                "pixels",
+                "per pixel",
+            ],
+        );
+        for c in &s.costs {
+            row(
+                h,
+                &[
+                    td_code(&c.implementation),
+                    td_n(seconds(c.setup_s)),
+                    td_n(seconds(c.render_s)),
+                    td_n(c.pixels),
+                    td_n(seconds(c.per_pixel_s)),
+                ],
+            );
+        }
+        h.push_str("</table>");
+    }
+    h.push_str("</section>\n");
 }
 
 /// Most recent runs shown in the trend table.

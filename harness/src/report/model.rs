@@ -34,6 +34,9 @@ pub struct Report {
     pub stability: Vec<StabilityRow>,
     /// Benchmark table.
     pub bench: Vec<BenchRow>,
+    /// The described scenes of the scene step (docs/scenes.md).
+    #[serde(default)]
+    pub scenes: Vec<SceneRow>,
     /// Steps that could not run or failed, with the reason; the report is
     /// still written, these are listed at its top.
     pub problems: Vec<String>,
@@ -103,6 +106,46 @@ pub struct Comparison {
     pub error: Option<ErrorFigures>,
     /// A few divergent cases, in order.
     pub examples: Vec<DivergenceExample>,
+}
+
+/// One described scene: what it uses, what it never reaches, its cost.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SceneRow {
+    /// The description's name.
+    pub name: String,
+    /// The description file.
+    pub file: String,
+    /// The shape and combination kinds of its nodes (`sphere`, `union`, ...).
+    pub shapes: Vec<String>,
+    /// The Float316 operations its program calls, read from the statements.
+    pub operations: Vec<String>,
+    /// Float316 operations reached over the traced pixels, with call counts.
+    pub reached: BTreeMap<String, u64>,
+    /// Pixels traced on ref-f316 for `reached` and the domains.
+    pub traced_pixels: u64,
+    /// Float316 operations the traced pixels never call.
+    pub never_reached: Vec<String>,
+    /// Operand classes (`sqrt(zero)`, `div(negative,positive)`) and traps
+    /// (`div -> trap`) of the reached operations that no traced call hits.
+    pub domains_never_reached: Vec<String>,
+    /// Whole-image cost on each implementation that renders it.
+    pub costs: Vec<SceneCost>,
+    /// Implementations that do not render it, and why.
+    pub unsupported: Vec<String>,
+}
+
+/// The cost of one whole-image render of a described scene.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SceneCost {
+    pub implementation: String,
+    /// Seconds to make it from the description (lowering; for the GPU,
+    /// generating and compiling the kernels).
+    pub setup_s: f64,
+    /// Seconds for the whole image (kernels compiled beforehand).
+    pub render_s: f64,
+    pub pixels: u64,
+    /// `render_s / pixels`.
+    pub per_pixel_s: f64,
 }
 
 /// Error against an oracle.

@@ -1,0 +1,478 @@
+//! The scene step: every described scene of the night (`--scene`, default
+//! every shipped one in `vectors/scenes/`) rendered from its description on
+//! each opened implementation that supports it: the Float316 ones compared
+//! bit for bit (gpu-f316 against ref-f316 on every pixel's shade and level,
+//! and on SDF queries), the float ones by their error against ref-f64; and
+//! per scene what it uses (shapes, Float316 operations), what it never
+//! reaches (operations, operand classes, traps, over traced ref-f316
+//! pixels) and its cost per pixel on each implementation.
+
+use super::steps::Step;
+use super::Night;
+use crate::commands::render_scene::{compile_gpu, jack_refusal, kernel_image};
+use crate::report::model::{Comparison, DivergenceExample, ErrorFigures, SceneCost, SceneRow};
+use crate::report::{BIT_EXACT, ERROR_FIGURES};
+use anyhow::{bail, Context, Result};
+use common::{Op, Outcome, TraceRecord, F316};
+use reference::{Described, RefImpl, SceneImage, ScenePixel, Settings};
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The folder of the shipped scenes.
+pub fn shipped_dir() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../vectors/scenes");
+    dir.canonicalize().unwrap_or(dir)
+}
+
+/// Every shipped scene, by file name order.
+pub fn shipped() -> Result<Vec<PathBuf>> {
+    let dir = shipped_dir();
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .with_context(|| format!("cannot list {}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+/// The file of `--scene NAME`: a shipped scene's name, or a path to a
+/// description.
+pub fn resolve(name: &str) -> Result<PathBuf> {
+    let shipped_file = shipped_dir().join(format!("{name}.json"));
+    if !name.contains('/') && shipped_file.is_file() {
+        return Ok(shipped_file);
+    }
+    let path = PathBuf::from(name);
+    if path.is_file() {
+        return Ok(path);
+    }
+    let names: Vec<String> = shipped()?
+        .iter()
+        .filter_map(|f| f.file_stem().map(|s| s.to_string_lossy().into_owned()))
+        .collect();
+    bail!(
+        "--scene: `{name}` is neither a shipped scene ({}) nor a file",
+        names.join(", ")
+    )
+}
+
+/// Every `TRACE_STRIDE`-th pixel in x and in y is traced for coverage.
+const TRACE_STRIDE: usize = 8;
+
+/// SDF query points compared per scene.
+const SDF_POINTS: usize = 512;
+
+/// Examples kept per comparison.
+const EXAMPLES: usize = 5;
+
+/// The scene step.
+pub struct Scenes;
+
+impl Step for Scenes {
+    fn key(&self) -> &'static str {
+        "scenes"
+    }
+
+    fn name(&self) -> String {
+        "described scenes".into()
+    }
+
+    fn run(&self, night: &mut Night<'_>) -> Result<()> {
+        let wants_gpu = ["gpu-f316", "gpu-f32"]
+            .iter()
+            .any(|n| night.find(n).is_some());
+        let gpu = if wants_gpu {
+            match gpu::Gpu::new() {
+                Ok(g) => Some(g),
+                Err(e) => {
+                    night.problem(format!("scenes: no GPU for the generated kernels: {e}"));
+                    None
+                }
+            }
+        } else {
+            None
+        };
+        for file in night.options.scenes.clone() {
+            if let Err(e) = one_scene(night, gpu.as_ref(), &file) {
+                let line = format!("scene {}: {e:#}", file.display());
+                night.failed_renders.push(line.clone());
+                night.problem(line);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One scene through every opened implementation that supports it.
+fn one_scene(night: &mut Night<'_>, gpu: Option<&gpu::Gpu>, file: &Path) -> Result<()> {
+    let checked = scene::load(file)?;
+    let name = checked.description.name.clone();
+    let scope = format!("scene {name}");
+    let mut row = SceneRow {
+        name: name.clone(),
+        file: file.display().to_string(),
+        shapes: shapes(&checked),
+        ..SceneRow::default()
+    };
+    let mut images: Vec<(String, SceneImage)> = Vec::new();
+    let mut f316 = None;
+    for imp in [RefImpl::F64, RefImpl::F32, RefImpl::F316] {
+        if night.find(imp.name()).is_none() {
+            continue;
+        }
+        let start = Instant::now();
+        let described = Described::new(imp, &checked, Settings::default())?;
+        let setup_s = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let image = described.render();
+        row.costs.push(cost(
+            imp.name(),
+            setup_s,
+            start.elapsed().as_secs_f64(),
+            &image,
+        ));
+        images.push((imp.name().into(), image));
+        if imp == RefImpl::F316 {
+            f316 = Some(described);
+        }
+    }
+    let mut f316_kernel = None;
+    for (label, form) in [("gpu-f32", RefImpl::F32), ("gpu-f316", RefImpl::F316)] {
+        let Some(gpu) = gpu.filter(|_| night.find(label).is_some()) else {
+            continue;
+        };
+        // Compiled (and warmed up) apart from the timed render.
+        let start = Instant::now();
+        let (kernel, program) = compile_gpu(gpu, form, &checked)?;
+        let setup_s = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let image = kernel_image(gpu, &kernel, &program)?;
+        row.costs
+            .push(cost(label, setup_s, start.elapsed().as_secs_f64(), &image));
+        images.push((label.into(), image));
+        if form == RefImpl::F316 {
+            f316_kernel = Some(kernel);
+        }
+    }
+    if name == "seed" {
+        row.unsupported.push(
+            "jack: the hand-written program answers the seed scene (compared in the levels, renders and pairs steps)".into(),
+        );
+    } else {
+        row.unsupported.push(jack_refusal(&checked, file));
+    }
+    let find = |label: &str| images.iter().find(|(l, _)| l == label).map(|(_, i)| i);
+    let mut comparisons = Vec::new();
+    if let (Some(a), Some(b)) = (find("ref-f316"), find("gpu-f316")) {
+        comparisons.push(bit_exact_pixels(&scope, a, b));
+    }
+    if let (Some(d), Some((gpu, k))) = (&f316, gpu.zip(f316_kernel.as_ref())) {
+        comparisons.push(bit_exact_sdf(&scope, d, gpu, k)?);
+    }
+    if let Some(oracle) = find("ref-f64") {
+        for label in ["ref-f32", "gpu-f32"] {
+            if let Some(image) = find(label) {
+                comparisons.push(float_pixels(&scope, oracle, label, image));
+            }
+        }
+    }
+    if let Some(d) = &f316 {
+        coverage(&mut row, d)?;
+    }
+    let report = night.builder.report_mut();
+    report.comparisons.extend(comparisons);
+    report.scenes.push(row);
+    Ok(())
+}
+
+fn cost(label: &str, setup_s: f64, render_s: f64, image: &SceneImage) -> SceneCost {
+    let pixels = image.pixels.len() as u64;
+    SceneCost {
+        implementation: label.into(),
+        setup_s,
+        render_s,
+        pixels,
+        per_pixel_s: render_s / pixels.max(1) as f64,
+    }
+}
+
+/// The kinds of the description's nodes.
+fn shapes(checked: &scene::Checked) -> Vec<String> {
+    use scene::desc::Node;
+    let kinds: BTreeSet<&str> = checked
+        .description
+        .nodes
+        .values()
+        .map(|n| match n {
+            Node::Plane(_) => "plane",
+            Node::Sphere(_) => "sphere",
+            Node::Torus(_) => "torus",
+            Node::Box(_) => "box",
+            Node::RoundBox(_) => "round_box",
+            Node::Capsule(_) => "capsule",
+            Node::Cylinder(_) => "cylinder",
+            Node::Union(_) => "union",
+            Node::SmoothUnion(_) => "smooth_union",
+            Node::Subtraction(_) => "subtraction",
+            Node::Intersection(_) => "intersection",
+            Node::Repeat(_) => "repeat",
+        })
+        .collect();
+    kinds.into_iter().map(String::from).collect()
+}
+
+fn pixel_text(p: &Outcome<ScenePixel>) -> String {
+    match p {
+        Outcome::Value(v) => format!("{:?} level {}", v.value.triple, v.level),
+        o => format!("{:?}", o.kind()),
+    }
+}
+
+fn example(case: String, a: String, b: String) -> DivergenceExample {
+    DivergenceExample {
+        case,
+        a,
+        b,
+        first_op: None,
+        repro: None,
+    }
+}
+
+/// ref-f316 against gpu-f316 on every pixel: triple, level and outcome.
+fn bit_exact_pixels(scope: &str, a: &SceneImage, b: &SceneImage) -> Comparison {
+    let mut c = comparison("pixels", scope, "ref-f316", "gpu-f316", BIT_EXACT);
+    for (i, (pa, pb)) in a.pixels.iter().zip(&b.pixels).enumerate() {
+        c.cases += 1;
+        let same = match (pa, pb) {
+            (Outcome::Value(x), Outcome::Value(y)) => {
+                x.level == y.level && x.value.triple == y.value.triple
+            }
+            (x, y) => x.kind() == y.kind(),
+        };
+        if !same {
+            c.divergences += 1;
+            if c.examples.len() < EXAMPLES {
+                let (x, y) = (i % a.width, i / a.width);
+                c.examples.push(example(
+                    format!("pixel({x},{y})"),
+                    pixel_text(pa),
+                    pixel_text(pb),
+                ));
+            }
+        }
+    }
+    c
+}
+
+/// Deterministic query points over the box [-4, 4]^3 (splitmix64).
+fn sdf_points() -> Vec<[F316; 3]> {
+    let mut state = 0x5eed_u64;
+    let mut unit = || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..SDF_POINTS)
+        .map(|_| {
+            [(); 3].map(|_| {
+                F316::from_f64_truncating(unit() * 8.0 - 4.0).expect("|x| <= 4 is in range")
+            })
+        })
+        .collect()
+}
+
+/// ref-f316 against gpu-f316 on SDF queries: distance and colour triples.
+fn bit_exact_sdf(
+    scope: &str,
+    ours: &Described,
+    gpu: &gpu::Gpu,
+    kernel: &gpu::SceneKernel,
+) -> Result<Comparison> {
+    let points = sdf_points();
+    let theirs = kernel.sdf(gpu, &points)?;
+    let mut c = comparison("sdf", scope, "ref-f316", "gpu-f316", BIT_EXACT);
+    for (p, g) in points.iter().zip(&theirs) {
+        c.cases += 1;
+        let r = ours.sdf(*p);
+        let same = match (&r, g) {
+            (Outcome::Value(v), Outcome::Value((sd, col))) => {
+                v.sd.triple == sd.triple && v.col.triple == col.triple
+            }
+            (x, y) => x.kind() == y.kind(),
+        };
+        if !same {
+            c.divergences += 1;
+            if c.examples.len() < EXAMPLES {
+                c.examples.push(example(
+                    format!("sdf({:?},{:?},{:?})", p[0], p[1], p[2]),
+                    format!("{r:?}"),
+                    format!("{g:?}"),
+                ));
+            }
+        }
+    }
+    Ok(c)
+}
+
+/// A float implementation's shades against ref-f64's: error figures over
+/// the pixels both answer; a divergence is a pixel whose level or outcome
+/// differs.
+fn float_pixels(scope: &str, oracle: &SceneImage, label: &str, image: &SceneImage) -> Comparison {
+    let mut c = comparison("pixels", scope, "ref-f64", label, ERROR_FIGURES);
+    let (mut sum, mut max, mut n) = (0.0f64, 0.0f64, 0u64);
+    for (i, (o, p)) in oracle.pixels.iter().zip(&image.pixels).enumerate() {
+        c.cases += 1;
+        let flip = match (o, p) {
+            (Outcome::Value(x), Outcome::Value(y)) => {
+                let e = (x.value.value - y.value.value).abs();
+                sum += e;
+                max = max.max(e);
+                n += 1;
+                x.level != y.level
+            }
+            (x, y) => x.kind() != y.kind(),
+        };
+        if flip {
+            c.divergences += 1;
+            if c.examples.len() < EXAMPLES {
+                let (x, y) = (i % oracle.width, i / oracle.width);
+                c.examples.push(example(
+                    format!("pixel({x},{y})"),
+                    format!("{o:?}"),
+                    format!("{p:?}"),
+                ));
+            }
+        }
+    }
+    c.error = Some(ErrorFigures {
+        mean_abs: sum / n.max(1) as f64,
+        max_abs: max,
+    });
+    c
+}
+
+fn comparison(level: &str, scope: &str, a: &str, b: &str, policy: &str) -> Comparison {
+    Comparison {
+        level: level.into(),
+        scope: scope.into(),
+        a: a.into(),
+        b: b.into(),
+        policy: policy.into(),
+        ..Comparison::default()
+    }
+}
+
+/// The sign class of an operand.
+fn class(v: F316) -> &'static str {
+    let x = v.to_f64();
+    if x < 0.0 {
+        "negative"
+    } else if x == 0.0 {
+        "zero"
+    } else {
+        "positive"
+    }
+}
+
+const CLASSES: [&str; 3] = ["negative", "zero", "positive"];
+
+/// The domains of `op`: every operand class combination, and a trap.
+fn domains(op: Op) -> Vec<String> {
+    let mut out: Vec<String> = if op.arity() == 1 {
+        CLASSES.iter().map(|a| format!("{op}({a})")).collect()
+    } else {
+        CLASSES
+            .iter()
+            .flat_map(|a| CLASSES.iter().map(move |b| format!("{op}({a},{b})")))
+            .collect()
+    };
+    out.push(format!("{op} -> trap"));
+    out
+}
+
+/// The domains one call hits.
+fn hits(r: &TraceRecord) -> [Option<String>; 2] {
+    let classes: Vec<&str> = r.args.iter().map(|&a| class(a)).collect();
+    let trap = !matches!(r.result, Outcome::Value(_));
+    [
+        Some(format!("{}({})", r.op, classes.join(","))),
+        trap.then(|| format!("{} -> trap", r.op)),
+    ]
+}
+
+/// What ref-f316 reaches over every `TRACE_STRIDE`-th pixel in x and y,
+/// and the operations of the program's statements.
+fn coverage(row: &mut SceneRow, f316: &Described) -> Result<()> {
+    let program = f316.program();
+    row.operations = scene::stats::operations(program)
+        .into_iter()
+        .map(String::from)
+        .collect();
+    let (w, h) = (program.pixels.width, program.pixels.height);
+    let mut reached: BTreeMap<Op, u64> = BTreeMap::new();
+    let mut seen: BTreeSet<String> = BTreeSet::new();
+    for y in (0..h).step_by(TRACE_STRIDE) {
+        for x in (0..w).step_by(TRACE_STRIDE) {
+            let trace = f316.trace_pixel(x, y)?;
+            row.traced_pixels += 1;
+            for r in &trace.records {
+                *reached.entry(r.op).or_default() += 1;
+                seen.extend(hits(r).into_iter().flatten());
+            }
+        }
+    }
+    row.never_reached = Op::ALL
+        .iter()
+        .filter(|op| !reached.contains_key(op))
+        .map(|op| op.to_string())
+        .collect();
+    row.domains_never_reached = reached
+        .keys()
+        .flat_map(|&op| domains(op))
+        .filter(|d| !seen.contains(d))
+        .collect();
+    row.reached = reached
+        .into_iter()
+        .map(|(op, n)| (op.to_string(), n))
+        .collect();
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_shipped_scene_resolves_by_name() {
+        let files = shipped().unwrap();
+        let names: Vec<String> = files
+            .iter()
+            .map(|f| f.file_stem().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names, ["rtdemo", "sdf-engine", "seed", "toon"]);
+        for (name, file) in names.iter().zip(&files) {
+            assert_eq!(&resolve(name).unwrap(), file);
+        }
+        let err = resolve("no-such-scene").unwrap_err().to_string();
+        assert!(err.contains("rtdemo, sdf-engine, seed, toon"), "{err}");
+    }
+
+    #[test]
+    fn a_call_hits_its_operand_classes_and_a_trap() {
+        let r = TraceRecord {
+            op: Op::Div,
+            args: vec![F316::NEG_ZERO, F316::from_f64_truncating(-2.0).unwrap()],
+            result: Outcome::SysError(3),
+            path: Vec::new(),
+        };
+        let [classes, trap] = hits(&r);
+        assert_eq!(classes.as_deref(), Some("div(zero,negative)"));
+        assert_eq!(trap.as_deref(), Some("div -> trap"));
+        assert!(domains(Op::Div).contains(&"div(zero,negative)".to_string()));
+        assert_eq!(domains(Op::Sqrt).len(), 4);
+    }
+}

@@ -1,0 +1,121 @@
+//! `harness nightly --steps scenes --scene NAME`: a described scene on the
+//! reference implementations, with what it uses, what it never reaches and
+//! its cost per pixel in the report; a bad scene file fails the night with
+//! its field named; an unknown scene name is refused before the run.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn harness(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_harness"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+fn night(out: &Path, scene: &str) -> Output {
+    harness(&[
+        "nightly",
+        "--impls",
+        "ref-f64,ref-f32,ref-f316",
+        "--steps",
+        "scenes",
+        "--scene",
+        scene,
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
+#[test]
+fn the_scene_step_reports_use_reach_and_cost() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("nightly");
+    let o = night(&out, "rtdemo");
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let scenes = report["scenes"].as_array().unwrap();
+    assert_eq!(scenes.len(), 1);
+    let s = &scenes[0];
+    assert_eq!(s["name"], "rtdemo");
+    assert_eq!(s["shapes"], serde_json::json!(["sphere", "union"]));
+    // The BBC demo normalises by a square root and a division: it never
+    // calls inv_sqrt, and its sqrt never sees a negative operand.
+    assert!(s["reached"]["sqrt"].as_u64().unwrap() > 0, "{s}");
+    assert!(s["never_reached"]
+        .as_array()
+        .unwrap()
+        .contains(&"inv_sqrt".into()));
+    assert!(s["domains_never_reached"]
+        .as_array()
+        .unwrap()
+        .contains(&"sqrt(negative)".into()));
+    assert_eq!(s["traced_pixels"], 40 * 30);
+    let costs = s["costs"].as_array().unwrap();
+    let names: Vec<&str> = costs
+        .iter()
+        .map(|c| c["implementation"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["ref-f64", "ref-f32", "ref-f316"]);
+    for c in costs {
+        assert_eq!(c["pixels"], 320 * 240);
+        assert!(c["per_pixel_s"].as_f64().unwrap() > 0.0, "{c}");
+    }
+    assert!(s["unsupported"][0]
+        .as_str()
+        .unwrap()
+        .contains("renders the seed scene only"));
+    let f32 = report["comparisons"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["scope"] == "scene rtdemo" && c["b"] == "ref-f32")
+        .expect("ref-f32 against ref-f64 on rtdemo");
+    assert_eq!(f32["policy"], "error figures");
+    assert_eq!(f32["cases"], 320 * 240);
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("<section id=scenes>") && html.contains("rtdemo"));
+}
+
+#[test]
+fn a_bad_scene_file_fails_the_night_naming_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("../vectors/scenes/rtdemo.json");
+    let text_of = std::fs::read_to_string(shipped).unwrap();
+    let bad = text_of.replacen("\"radius\": 1.0", "\"radius\": -1.0", 1);
+    assert_ne!(bad, text_of, "the shipped rtdemo has a sphere of radius 1");
+    let file = dir.path().join("bad.json");
+    std::fs::write(&file, bad).unwrap();
+    let out = dir.path().join("nightly");
+    let o = night(&out, file.to_str().unwrap());
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let problems = report["problems"].to_string();
+    assert!(
+        problems.contains("radius: must be positive, is -1"),
+        "{problems}"
+    );
+}
+
+#[test]
+fn an_unknown_scene_is_refused_before_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = night(&dir.path().join("nightly"), "no-such-scene");
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("neither a shipped scene (rtdemo, sdf-engine, seed, toon) nor a file"),
+        "{}",
+        text(&o)
+    );
+    assert!(!text(&o).contains("nightly: open"), "{}", text(&o));
+}
