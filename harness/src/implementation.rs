@@ -128,6 +128,18 @@ pub enum Answer {
     Dot { white: bool },
 }
 
+/// A Float316 operation's result as an answer.
+impl From<common::OpValue> for Answer {
+    fn from(r: common::OpValue) -> Answer {
+        match r {
+            common::OpValue::Bool(value) => Answer::Bool { value },
+            common::OpValue::Num(t) => Answer::Num {
+                value: Num::F316(t),
+            },
+        }
+    }
+}
+
 impl fmt::Display for Answer {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

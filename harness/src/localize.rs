@@ -315,12 +315,7 @@ fn eval_one(imp: &dyn Implementation, input: &Vector) -> Result<Outcome<Answer>,
 }
 
 fn to_op_answer(r: &Outcome<OpValue>) -> Outcome<Answer> {
-    r.map(|v| match v {
-        OpValue::Bool(value) => Answer::Bool { value },
-        OpValue::Num(t) => Answer::Num {
-            value: crate::implementation::Num::F316(t),
-        },
-    })
+    r.map(Answer::from)
 }
 
 fn from_op_answer(r: Outcome<Answer>) -> Outcome<OpValue> {

@@ -8,7 +8,7 @@ use crate::cast::file::{FieldError, Fields};
 use crate::cast::{Entry, Kind, Opener, Request};
 use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
 use common::image_consts::{HEIGHT, WIDTH};
-use common::{OpValue, Outcome, F316};
+use common::{Outcome, F316};
 use gpu::{Gpu, GpuError};
 use vectors::{Level, Vector};
 
@@ -100,24 +100,8 @@ impl GpuAdapter {
         Ok(match batch.first() {
             None => Vec::new(),
             Some(Vector::Op(_)) => {
-                let cases: Vec<_> = batch
-                    .iter()
-                    .filter_map(|v| match v {
-                        Vector::Op(o) => Some((o.op, o.a, o.b.unwrap_or(F316::ZERO))),
-                        _ => None,
-                    })
-                    .collect();
-                let out = self.gpu.f316_ops(&cases).map_err(failed)?;
-                out.into_iter()
-                    .map(|o| {
-                        o.map(|r| match r {
-                            OpValue::Bool(value) => Answer::Bool { value },
-                            OpValue::Num(t) => Answer::Num {
-                                value: Num::F316(t),
-                            },
-                        })
-                    })
-                    .collect()
+                let out = self.gpu.f316_ops(&super::op_cases(batch)).map_err(failed)?;
+                out.into_iter().map(|o| o.map(Answer::from)).collect()
             }
             Some(Vector::Sdf(_)) => {
                 let points: Vec<[F316; 3]> = batch

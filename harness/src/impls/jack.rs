@@ -16,7 +16,7 @@ use crate::implementation::{
     Answer, Bitmap, ImageAnswers, ImplError, Implementation, Num, Numbers,
 };
 use common::image_consts::{HEIGHT, WIDTH};
-use common::{Op, OpValue, Outcome, TraceRecord};
+use common::{Op, Outcome, TraceRecord};
 pub use jack::Profile;
 use jack::{Bindings, BoundProgram, Budgets, JackError, JackProgram, WholeRun};
 use serde::de::IntoDeserializer;
@@ -237,15 +237,6 @@ fn failed(e: JackError) -> ImplError {
     }
 }
 
-fn op_answer(r: OpValue) -> Answer {
-    match r {
-        OpValue::Bool(value) => Answer::Bool { value },
-        OpValue::Num(t) => Answer::Num {
-            value: Num::F316(t),
-        },
-    }
-}
-
 impl JackAdapter {
     /// The image: through the pixel statements, else by running the
     /// whole program.
@@ -280,7 +271,7 @@ impl JackAdapter {
                 .op(o.op, &o.args())
                 .map_err(failed)?
                 .outcome
-                .map(op_answer),
+                .map(Answer::from),
             Vector::Sdf(s) => self
                 .bound
                 .sdf(s.p)

@@ -22,3 +22,15 @@ pub const KINDS: &[&dyn Kind] = &[
     &shader::ShaderKind,
     &pipe::PipeKind,
 ];
+
+/// The operation cases of an ops-level batch, as the GPU kernels take them
+/// (a unary operation's second operand is zero).
+pub(crate) fn op_cases(batch: &[vectors::Vector]) -> Vec<(common::Op, common::F316, common::F316)> {
+    batch
+        .iter()
+        .filter_map(|v| match v {
+            vectors::Vector::Op(o) => Some((o.op, o.a, o.b.unwrap_or(common::F316::ZERO))),
+            _ => None,
+        })
+        .collect()
+}
