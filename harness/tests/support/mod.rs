@@ -2,7 +2,7 @@
 
 use harness::cast::Cast;
 use harness::implementation::Implementation;
-use harness::runner::{diff_set, RunOptions};
+use harness::runner::{diff_set, LevelReport, RunOptions};
 use vectors::Level;
 
 /// Assert that `subject` agrees with ref-f316 on the committed small set of
@@ -19,4 +19,20 @@ pub fn assert_agrees_with_ref_f316_on_the_small_sets(subject: &dyn Implementatio
         );
         assert_eq!(report.comparisons.len(), 1);
     }
+}
+
+/// `a` against `b` on the committed small ops set, asserted to diverge.
+#[allow(dead_code)] // the GPU tests, which include this module too, do not use it
+pub fn assert_diverges_on_the_small_ops_set(
+    a: &dyn Implementation,
+    b: &dyn Implementation,
+) -> LevelReport {
+    let set = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();
+    let report = diff_set(&[a, b], &set, RunOptions::default());
+    assert!(
+        report.diverged(),
+        "{}",
+        harness::text::level_report(&report)
+    );
+    report
 }
