@@ -9,7 +9,6 @@ mod support;
 use harness::cast::Cast;
 use harness::implementation::Implementation;
 use harness::localize::{localize, Localization};
-use harness::runner::{diff_set, RunOptions};
 use std::path::{Path, PathBuf};
 use vectors::{Level, PixelVector, Vector};
 
@@ -124,17 +123,7 @@ fn the_web_profiles_math_divide_in_a_bound_program_is_localized() {
     let cast = cast_with("");
     let reference = open(&cast, "ref-f316");
     let web = open(&cast, "port+web-divide");
-    let set = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();
-    let report = diff_set(
-        &[web.as_ref(), reference.as_ref()],
-        &set,
-        RunOptions::default(),
-    );
-    assert!(
-        report.diverged(),
-        "{}",
-        harness::text::level_report(&report)
-    );
+    let report = support::assert_ops_diverge(web.as_ref(), reference.as_ref());
     let input = report.comparisons[0].divergences[0].input.clone();
     let l = localize(web.as_ref(), reference.as_ref(), reference.as_ref(), &input).unwrap();
     // The web IDE's flooring Math.divide changes the port's sqrt (its

@@ -6,8 +6,7 @@ mod support;
 
 use harness::cast::Cast;
 use harness::localize::localize;
-use harness::runner::{diff_set, RunOptions};
-use vectors::{Level, PixelVector, Vector};
+use vectors::{PixelVector, Vector};
 
 #[test]
 fn jack_agrees_with_ref_f316_on_the_small_sets() {
@@ -19,17 +18,7 @@ fn jack_agrees_with_ref_f316_on_the_small_sets() {
 fn web_divide_profile_is_a_divergence_of_the_jack_program() {
     let reference = Cast::builtin().open("ref-f316").unwrap();
     let web = Cast::builtin().open("jack+web-divide").unwrap();
-    let set = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();
-    let report = diff_set(
-        &[reference.as_ref(), web.as_ref()],
-        &set,
-        RunOptions::default(),
-    );
-    assert!(
-        report.diverged(),
-        "{}",
-        harness::text::level_report(&report)
-    );
+    support::assert_ops_diverge(reference.as_ref(), web.as_ref());
 }
 
 #[test]

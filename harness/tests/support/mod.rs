@@ -2,7 +2,7 @@
 
 use harness::cast::Cast;
 use harness::implementation::Implementation;
-use harness::runner::{diff_set, RunOptions};
+use harness::runner::{diff_set, LevelReport, RunOptions};
 use vectors::Level;
 
 /// Assert that `subject` agrees with ref-f316 on the committed small set of
@@ -19,4 +19,17 @@ pub fn assert_agrees_with_ref_f316_on_the_small_sets(subject: &dyn Implementatio
         );
         assert_eq!(report.comparisons.len(), 1);
     }
+}
+
+/// The comparison of `a` with `b` on the committed small ops set, asserted
+/// to diverge.
+pub fn assert_ops_diverge(a: &dyn Implementation, b: &dyn Implementation) -> LevelReport {
+    let set = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();
+    let report = diff_set(&[a, b], &set, RunOptions::default());
+    assert!(
+        report.diverged(),
+        "{}",
+        harness::text::level_report(&report)
+    );
+    report
 }
