@@ -91,6 +91,16 @@ pub fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> Result<()>) ->
     result
 }
 
+/// Write `value` to `path` as JSON, atomically.
+pub fn write_json_atomically(path: &Path, value: &impl serde::Serialize) -> Result<()> {
+    write_atomically(path, |tmp| {
+        let f = std::fs::File::create(tmp)
+            .with_context(|| format!("cannot create {}", tmp.display()))?;
+        serde_json::to_writer(std::io::BufWriter::new(f), value)
+            .with_context(|| format!("cannot write {}", tmp.display()))
+    })
+}
+
 /// Write the bits as an 8-bit grayscale PNG (white 255, black 0).
 pub fn write_png(path: &Path, white: &[bool]) -> Result<()> {
     let samples = white.iter().map(|&w| if w { 255 } else { 0 }).collect();
@@ -145,12 +155,7 @@ pub fn run(args: RenderArgs, cast: &Cast) -> Result<ExitCode> {
             height: HEIGHT,
             pixels: &pixels,
         };
-        write_atomically(path, |tmp| {
-            let f = std::fs::File::create(tmp)
-                .with_context(|| format!("cannot create {}", tmp.display()))?;
-            serde_json::to_writer(std::io::BufWriter::new(f), &file)
-                .with_context(|| format!("cannot write {}", tmp.display()))
-        })?;
+        write_json_atomically(path, &file)?;
     }
     Ok(ExitCode::SUCCESS)
 }

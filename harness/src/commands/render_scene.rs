@@ -2,7 +2,7 @@
 //! the reference implementations and the GPU kernels are made from the
 //! description; the hand-written Jack program answers the seed scene only.
 
-use super::render::{write_atomically, RenderArgs};
+use super::render::{write_atomically, write_json_atomically, RenderArgs};
 use anyhow::{bail, Context, Result};
 use common::Outcome;
 use reference::{Described, RefImpl, Scalar, SceneImage, ScenePixel, Settings};
@@ -153,12 +153,7 @@ pub fn write(
             levels: image.levels,
             pixels: &image.pixels,
         };
-        write_atomically(path, |tmp| {
-            let f = std::fs::File::create(tmp)
-                .with_context(|| format!("cannot create {}", tmp.display()))?;
-            serde_json::to_writer(std::io::BufWriter::new(f), &file)
-                .with_context(|| format!("cannot write {}", tmp.display()))
-        })?;
+        write_json_atomically(path, &file)?;
     }
     Ok(())
 }

@@ -456,9 +456,22 @@ impl Explainer {
         if let Some(d) = &parted {
             e.error_of = format!("the margin of {} ({})", d.decision, d.path);
         }
+        // A flipped run keeps the base run's branches, so that the error
+        // it changes is the rounding's own, through the same operations:
+        // a flip that changed a decision on its way would measure that
+        // decision's jump, or miss the decision whose margin is measured.
+        let own_branches = Follow {
+            from: 0,
+            decisions: base
+                .decisions
+                .iter()
+                .map(|d| (d.decision, base.path(d.path), d.taken))
+                .collect(),
+        };
         let flipped = |site: &SiteKey| {
             run(&ShadowOptions {
                 flip: Some(site.clone()),
+                follow: Some(own_branches.clone()),
                 ..ShadowOptions::default()
             })
         };

@@ -21,9 +21,12 @@ pub fn assert_agrees_with_ref_f316_on_the_small_sets(subject: &dyn Implementatio
     }
 }
 
-/// The comparison of `a` with `b` on the committed small ops set, asserted
-/// to diverge.
-pub fn assert_ops_diverge(a: &dyn Implementation, b: &dyn Implementation) -> LevelReport {
+/// `a` against `b` on the committed small ops set, asserted to diverge.
+#[allow(dead_code)] // the GPU tests, which include this module too, do not use it
+pub fn assert_diverges_on_the_small_ops_set(
+    a: &dyn Implementation,
+    b: &dyn Implementation,
+) -> LevelReport {
     let set = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();
     let report = diff_set(&[a, b], &set, RunOptions::default());
     assert!(

@@ -776,6 +776,20 @@ mod tests {
         F316::new(rs, re, rm)
     }
 
+    /// The spec's arithmetic, and the variant whose `mul` keeps the low
+    /// product, with that flag.
+    fn with_and_without_low_product() -> [(bool, Arith); 2] {
+        [false, true].map(|keep| {
+            (
+                keep,
+                Arith {
+                    mul_keeps_low_product: keep,
+                    ..Arith::SPEC
+                },
+            )
+        })
+    }
+
     /// `mul` equals Jack's order for every mantissa word against zero,
     /// small, normalised, out-of-range and related mantissas, with edge
     /// exponents, zero operands and sign pairings, with and without the
@@ -785,11 +799,7 @@ mod tests {
         let exponents = [i16::MIN, 0, 127, i16::MAX];
         let signs = [(0, 0), (0, 1), (1, 1), (2, 3)];
         let others = |ma: i16| [ma, ma ^ 1, 0, 1, 127, 128, M_MIN, M_MAX, 16384, -1];
-        for keep in [false, true] {
-            let arith = Arith {
-                mul_keeps_low_product: keep,
-                ..Arith::SPEC
-            };
+        for (keep, arith) in with_and_without_low_product() {
             each_operand_pair(others, &exponents, &signs, |a, b| {
                 assert_eq!(
                     mul(&arith, a, b),
@@ -806,11 +816,7 @@ mod tests {
     #[test]
     fn small_mantissa_product_equals_jack_on_all_pairs() {
         use rayon::prelude::*;
-        for keep in [false, true] {
-            let arith = Arith {
-                mul_keeps_low_product: keep,
-                ..Arith::SPEC
-            };
+        for (keep, arith) in with_and_without_low_product() {
             (0..=M_MAX).into_par_iter().for_each(|a| {
                 for b in 0..=M_MAX {
                     assert_eq!(
