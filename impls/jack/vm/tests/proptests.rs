@@ -250,6 +250,9 @@ fn command() -> impl Strategy<Value = String> {
         4 => prop::sample::select(vec!["add", "sub", "neg", "eq", "gt", "lt", "and", "or", "not"]).prop_map(String::from),
         1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1"]).prop_map(String::from),
         1 => Just("push constant 24576\npop pointer 1\npush that 0".to_string()),
+        // THIS or THAT at SP (read through RAM[0]): their accesses meet
+        // the stack words that compiled code keeps in registers.
+        1 => (0u16..2).prop_map(|p| format!("push constant 0\npop pointer 1\npush that 0\npop pointer {p}")),
         1 => (0u8..3).prop_map(|l| format!("if-goto L{l}")),
         1 => (0u8..3).prop_map(|l| format!("goto L{l}")),
         1 => Just("return".to_string()),

@@ -78,6 +78,20 @@ fn stack_effect(op: Op) -> (i32, i32) {
     }
 }
 
+/// The lowest and highest stack pointer over `ops`, relative to SP before
+/// them.
+pub(crate) fn depth_range(ops: &[Op]) -> (i32, i32) {
+    let (mut depth, mut min_depth, mut max_depth) = (0i32, 0i32, 0i32);
+    for &op in ops {
+        let (pops, pushes) = stack_effect(op);
+        depth -= pops;
+        min_depth = min_depth.min(depth);
+        depth += pushes;
+        max_depth = max_depth.max(depth);
+    }
+    (min_depth, max_depth)
+}
+
 /// One basic block: instructions `start..end` (global indices) run
 /// compiled; `exit_at` is the instruction after them when the block ends
 /// by leaving compiled code for the interpreter.
@@ -129,7 +143,6 @@ pub(crate) fn blocks(
     let mut i = 0;
     while i < len {
         index[i] = Some(blocks.len() as u32);
-        let (mut depth, mut min_depth, mut max_depth) = (0i32, 0i32, 0i32);
         let (mut steps, mut checks_stack) = (0, false);
         let mut j = i;
         loop {
@@ -138,10 +151,6 @@ pub(crate) fn blocks(
                 break;
             }
             let (pops, pushes) = stack_effect(op);
-            depth -= pops;
-            min_depth = min_depth.min(depth);
-            depth += pushes;
-            max_depth = max_depth.max(depth);
             checks_stack |= pops + pushes > 0 || matches!(op, Op::Function { .. });
             steps += op.steps();
             j += 1;
@@ -149,6 +158,7 @@ pub(crate) fn blocks(
                 break;
             }
         }
+        let (min_depth, max_depth) = depth_range(&code[start as usize + i..start as usize + j]);
         blocks.push(Block {
             start: start + i as u32,
             end: start + j as u32,

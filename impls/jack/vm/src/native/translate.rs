@@ -10,9 +10,13 @@
 //! only the interpreter handles (a register or an address outside RAM
 //! through a computed address, a failed segment check, a division by zero,
 //! a built-in), it stores the exact state before that instruction and
-//! exits. Stack words are always written to RAM; a word the block pushed
-//! itself is popped from a register unless a computed store might have
-//! overwritten it.
+//! exits. Within a block the operand stack lives in SSA values (see
+//! [`Stack`]): each pushed word reaches RAM once, with its last value, where
+//! the block ends or leaves, or before an access that might touch it; the
+//! entry test shows that the block's `local` and `argument` words lie below
+//! its stack words, and the span test of a `this`/`that` run that its words
+//! miss them. Every access is then one load or store at a fixed offset
+//! from its segment's host address.
 
 use super::blocks::{self, Block, Kind, MAX_INLINE_LOCALS};
 use super::{Ctx, Fault, CONTINUE, NATIVE_DEPTH, RETURNED};
@@ -98,6 +102,8 @@ struct Translator<'a, 'b> {
     /// by instruction index relative to `block_start`.
     ptr_tests: Vec<PtrTest>,
     block_start: u32,
+    /// The current block's stack words, `lo..hi` (None if it has none).
+    stack_span: Option<(Value, Value)>,
 }
 
 /// How a `this` or `that` access of a block tests its address.
@@ -215,6 +221,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         flags_known: 0,
         ptr_tests: Vec::new(),
         block_start: 0,
+        stack_span: None,
     };
     t.load_state();
     // Dispatch on the block index; an index out of range (never passed)
@@ -368,8 +375,16 @@ impl Translator<'_, '_> {
         self.b.switch_to_block(cont);
     }
 
+    /// Write stack words (depth relative to `base`, value) to RAM.
+    fn store_pending(&mut self, base: Value, words: &[(i32, Value)]) {
+        for &(d, x) in words {
+            self.b.ins().store(MemFlagsData::trusted(), x, base, 2 * d);
+        }
+    }
+
     /// Leave for the interpreter at `at.pc`, in the state before it.
     fn exit_before(&mut self, at: &Before) {
+        self.store_pending(at.base, &at.pending);
         let steps = self.b.ins().iadd_imm_s(at.steps0, at.k as i64);
         self.b.def_var(self.v.steps, steps);
         let sp = self.b.ins().iadd_imm_s(at.sp0, i64::from(at.depth));
@@ -433,41 +448,110 @@ impl Translator<'_, '_> {
             let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, sp0, high);
             ok = self.b.ins().band(ok, c);
         }
+        // The stack words the block holds in registers: those it touches
+        // after its `function` line, whose zeroed locals go to RAM at once.
+        let code = &self.env.code[blk.start as usize..blk.end as usize];
+        let (locals, code) = match code {
+            [Op::Function { n_vars, .. }, rest @ ..] => (i32::from(*n_vars), rest),
+            _ => (0, code),
+        };
+        let (min_depth, max_depth) = blocks::depth_range(code);
+        self.stack_span = (min_depth < max_depth).then(|| {
+            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(locals + min_depth));
+            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(locals + max_depth));
+            (lo, hi)
+        });
+        if let Some((lo, _)) = self.stack_span {
+            // The block's `local` and `argument` words lie below its stack
+            // words, so the stack can stay in registers across them.
+            for (seg, var) in [(LOCAL, self.v.lcl), (ARGUMENT, self.v.arg)] {
+                if self.reach[seg].is_none() {
+                    continue;
+                }
+                if let Some(top) = reach(code)[seg] {
+                    let a = self.seg_addr(var, top);
+                    let c = self.b.ins().icmp(IntCC::UnsignedLessThan, a, lo);
+                    ok = self.b.ins().band(ok, c);
+                }
+            }
+        }
+        let base = self.word(sp0);
         let entry = Before {
             pc: blk.start,
             k: 0,
             depth: 0,
             steps0,
             sp0,
+            base,
+            pending: Vec::new(),
         };
         self.guard(ok, &entry);
 
         let mut s = Stack {
             sp0,
+            base,
             depth: 0,
-            known: Vec::new(),
+            slots: Vec::new(),
         };
         for pc in blk.start..blk.end {
             let op = self.env.code[pc as usize];
+            let may_touch_stack = self.may_touch_stack(op, pc);
+            if may_touch_stack {
+                s.flush(self);
+            }
             let before = Before {
                 pc,
                 k: u64::from(pc - blk.start),
                 depth: s.depth,
                 steps0,
                 sp0,
+                base,
+                pending: s.pending(),
             };
             self.op(op, &mut s, &before, blk);
+            if may_touch_stack {
+                s.forget();
+            }
+            if matches!(op, Op::Function { .. }) {
+                s.flush(self);
+                s.forget();
+            }
         }
         if blocks::kind(self.env.code[blk.end as usize - 1]) == Kind::Straight {
             // Falls through into the next block (or the interpreted
             // instruction that ends this one).
-            self.end_block(&s, steps0, blk);
+            self.end_block(&mut s, steps0, blk);
             self.jump_to(blk.end);
         }
     }
 
-    /// Define SP and the step count as they are after the whole block.
-    fn end_block(&mut self, s: &Stack, steps0: Value, blk: &Block) {
+    /// Whether `op` at `pc` reads or writes RAM where the block's
+    /// registers-held stack words might be (so they go to RAM before it,
+    /// and are read back after it): calls and returns, and the accesses
+    /// that no entry or span test separates from the stack.
+    fn may_touch_stack(&self, op: Op, pc: u32) -> bool {
+        let ptr_each = || self.ptr_tests[(pc - self.block_start) as usize] == PtrTest::Each;
+        match op {
+            Op::Call { .. } | Op::Return => true,
+            Op::PopRam(a) => usize::from(a) >= usize::from(STACK_BASE),
+            Op::PushLocal(_) | Op::PopLocal(_) => self.reach[LOCAL].is_none(),
+            Op::PushArg(_) | Op::PopArg(_) => self.reach[ARGUMENT].is_none(),
+            Op::PushThis(_)
+            | Op::PushThisChk(_)
+            | Op::PopThis(_)
+            | Op::PopThisChk(_)
+            | Op::PushThat(_)
+            | Op::PushThatChk(_)
+            | Op::PopThat(_)
+            | Op::PopThatChk(_) => ptr_each(),
+            _ => false,
+        }
+    }
+
+    /// Write the block's pending stack words, and define SP and the step
+    /// count as they are after the whole block.
+    fn end_block(&mut self, s: &mut Stack, steps0: Value, blk: &Block) {
+        s.flush(self);
         let steps = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
         self.b.def_var(self.v.steps, steps);
         let sp = s.sp(self);
@@ -482,11 +566,10 @@ impl Translator<'_, '_> {
     }
 
     /// Write RAM[a] through a computed address.
-    fn write(&mut self, a: Value, x: Value, s: &mut Stack, before: &Before) {
+    fn write(&mut self, a: Value, x: Value, before: &Before) {
         let ok = self.is_plain(a);
         self.guard(ok, before);
         self.store_word(a, x);
-        s.known.clear();
     }
 
     fn seg_addr(&mut self, var: Variable, i: u16) -> Value {
@@ -538,60 +621,95 @@ impl Translator<'_, '_> {
         self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit)
     }
 
-    /// The address of `this i` or `that i` (pointer register `var`), tested
-    /// as the block's span tests decided (`false`: the caller tests it).
-    fn ptr_addr(&mut self, var: Variable, i: u16, before: &Before) -> (Value, bool) {
+    /// Whether the words `var + 0 ..= var + top` (no wrapping) miss the
+    /// block's stack words.
+    fn off_stack(&mut self, var: Variable, top: u16) -> Option<Value> {
+        let (lo, hi) = self.stack_span?;
+        let first = self.b.use_var(var);
+        let last = self.seg_addr(var, top);
+        let below = self.b.ins().icmp(IntCC::UnsignedLessThan, last, lo);
+        let above = self
+            .b
+            .ins()
+            .icmp(IntCC::UnsignedGreaterThanOrEqual, first, hi);
+        Some(self.b.ins().bor(below, above))
+    }
+
+    /// The host address of the segment whose base register is `var`, whose
+    /// accesses `var + i` a test has shown to be plain words (at offset 2i).
+    fn seg_base(&mut self, var: Variable) -> Value {
+        let base = self.b.use_var(var);
+        self.word(base)
+    }
+
+    /// The host address of the segment of `this i` or `that i` (pointer
+    /// register `var`), tested as the block's span tests decided (None:
+    /// the caller tests the access's address).
+    fn ptr_base(&mut self, var: Variable, before: &Before) -> Option<Value> {
         let test = self.ptr_tests[(before.pc - self.block_start) as usize];
         if let PtrTest::First(top) = test {
-            let ok = self.span_ok(var, top);
+            let mut ok = self.span_ok(var, top);
+            if let Some(c) = self.off_stack(var, top) {
+                ok = self.b.ins().band(ok, c);
+            }
             self.guard(ok, before);
         }
-        (self.seg_addr(var, i), test != PtrTest::Each)
+        (test != PtrTest::Each).then(|| self.seg_base(var))
     }
 
     fn ptr_read(&mut self, var: Variable, i: u16, before: &Before) -> Value {
-        match self.ptr_addr(var, i, before) {
-            (a, true) => self.load_word(a),
-            (a, false) => self.read(a, before),
+        match self.ptr_base(var, before) {
+            Some(p) => self.load_at(p, i),
+            None => {
+                let a = self.seg_addr(var, i);
+                self.read(a, before)
+            }
         }
     }
 
-    fn ptr_write(&mut self, var: Variable, i: u16, x: Value, s: &mut Stack, before: &Before) {
-        match self.ptr_addr(var, i, before) {
-            (a, true) => {
-                self.store_word(a, x);
-                s.known.clear();
+    fn ptr_write(&mut self, var: Variable, i: u16, x: Value, before: &Before) {
+        match self.ptr_base(var, before) {
+            Some(p) => self.store_at(p, i, x),
+            None => {
+                let a = self.seg_addr(var, i);
+                self.write(a, x, before)
             }
-            (a, false) => self.write(a, x, s, before),
         }
+    }
+
+    /// Word `i` from host address `p`.
+    fn load_at(&mut self, p: Value, i: u16) -> Value {
+        self.b
+            .ins()
+            .load(T16, MemFlagsData::trusted(), p, 2 * i32::from(i))
+    }
+
+    /// Word `i` from host address `p` = x.
+    fn store_at(&mut self, p: Value, i: u16, x: Value) {
+        self.b
+            .ins()
+            .store(MemFlagsData::trusted(), x, p, 2 * i32::from(i));
     }
 
     /// RAM[base + i] of segment `seg` (`base` its register).
     fn seg_read(&mut self, seg: usize, var: Variable, i: u16, before: &Before) -> Value {
-        let a = self.seg_addr(var, i);
         if self.reach[seg].is_some() {
-            self.load_word(a)
+            let p = self.seg_base(var);
+            self.load_at(p, i)
         } else {
+            let a = self.seg_addr(var, i);
             self.read(a, before)
         }
     }
 
     /// RAM[base + i] = x, for segment `seg` (`base` its register).
-    fn seg_write(
-        &mut self,
-        seg: usize,
-        var: Variable,
-        i: u16,
-        x: Value,
-        s: &mut Stack,
-        before: &Before,
-    ) {
-        let a = self.seg_addr(var, i);
+    fn seg_write(&mut self, seg: usize, var: Variable, i: u16, x: Value, before: &Before) {
         if self.reach[seg].is_some() {
-            self.store_word(a, x);
-            s.known.clear();
+            let p = self.seg_base(var);
+            self.store_at(p, i, x);
         } else {
-            self.write(a, x, s, before);
+            let a = self.seg_addr(var, i);
+            self.write(a, x, before);
         }
     }
 
@@ -599,64 +717,64 @@ impl Translator<'_, '_> {
         match op {
             Op::PushConst(c) => {
                 let x = self.c16(i64::from(c));
-                s.push(self, x);
+                s.push(x);
             }
             Op::PushLocal(i) => {
                 let x = self.seg_read(LOCAL, self.v.lcl, i, before);
-                s.push(self, x);
+                s.push(x);
             }
             Op::PushArg(i) => {
                 self.arg_ok(i, before);
                 let x = self.seg_read(ARGUMENT, self.v.arg, i, before);
-                s.push(self, x);
+                s.push(x);
             }
             Op::PushThis(i) | Op::PushThisChk(i) => {
                 if matches!(op, Op::PushThisChk(_)) {
                     self.flag_ok(THIS_OK, before);
                 }
                 let x = self.ptr_read(self.v.this, i, before);
-                s.push(self, x);
+                s.push(x);
             }
             Op::PushThat(i) | Op::PushThatChk(i) => {
                 if matches!(op, Op::PushThatChk(_)) {
                     self.flag_ok(THAT_OK, before);
                 }
                 let x = self.ptr_read(self.v.that, i, before);
-                s.push(self, x);
+                s.push(x);
             }
             Op::PushAbs(a) => {
                 let a = self.c16(i64::from(a));
                 let x = self.load_word(a);
-                s.push(self, x);
+                s.push(x);
             }
             Op::PushPtr(p) => {
                 let x = self
                     .b
                     .use_var(if p == 0 { self.v.this } else { self.v.that });
-                s.push(self, x);
+                s.push(x);
             }
             Op::PopLocal(i) => {
                 let x = s.pop(self);
-                self.seg_write(LOCAL, self.v.lcl, i, x, s, before);
+                self.seg_write(LOCAL, self.v.lcl, i, x, before);
             }
             Op::PopArg(i) => {
                 self.arg_ok(i, before);
                 let x = s.pop(self);
-                self.seg_write(ARGUMENT, self.v.arg, i, x, s, before);
+                self.seg_write(ARGUMENT, self.v.arg, i, x, before);
             }
             Op::PopThis(i) | Op::PopThisChk(i) => {
                 if matches!(op, Op::PopThisChk(_)) {
                     self.flag_ok(THIS_OK, before);
                 }
                 let x = s.pop(self);
-                self.ptr_write(self.v.this, i, x, s, before);
+                self.ptr_write(self.v.this, i, x, before);
             }
             Op::PopThat(i) | Op::PopThatChk(i) => {
                 if matches!(op, Op::PopThatChk(_)) {
                     self.flag_ok(THAT_OK, before);
                 }
                 let x = s.pop(self);
-                self.ptr_write(self.v.that, i, x, s, before);
+                self.ptr_write(self.v.that, i, x, before);
             }
             Op::PopAbs(a) => {
                 // 5..=255: never a stack word.
@@ -668,9 +786,6 @@ impl Translator<'_, '_> {
                 let x = s.pop(self);
                 let addr = self.c16(i64::from(a));
                 self.store_word(addr, x);
-                if usize::from(a) >= 256 {
-                    s.known.clear();
-                }
             }
             Op::PopPtr(p) => {
                 let x = s.pop(self);
@@ -694,7 +809,7 @@ impl Translator<'_, '_> {
                     Op::Or => self.b.ins().bor(x, y),
                     _ => self.b.ins().imul(x, y),
                 };
-                s.push(self, r);
+                s.push(r);
             }
             Op::Eq | Op::Gt | Op::Lt => {
                 let y = s.pop(self);
@@ -706,7 +821,7 @@ impl Translator<'_, '_> {
                 };
                 let c = self.b.ins().icmp(cc, x, y);
                 let r = self.b.ins().bmask(T16, c);
-                s.push(self, r);
+                s.push(r);
             }
             Op::Neg | Op::Not => {
                 let x = s.pop(self);
@@ -715,7 +830,7 @@ impl Translator<'_, '_> {
                 } else {
                     self.b.ins().bnot(x)
                 };
-                s.push(self, r);
+                s.push(r);
             }
             Op::Divide => {
                 let y = s.pop(self);
@@ -724,7 +839,7 @@ impl Translator<'_, '_> {
                 let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, y, 0);
                 self.guard(ok, before);
                 let q = self.divide(x, y);
-                s.push(self, q);
+                s.push(q);
             }
             Op::Goto(t) => {
                 self.end_block(s, before.steps0, blk);
@@ -747,7 +862,7 @@ impl Translator<'_, '_> {
                 // The locals, zeroed (the block's entry test covers them).
                 for _ in 0..n_vars {
                     let zero = self.c16(0);
-                    s.push(self, zero);
+                    s.push(zero);
                 }
             }
             _ => unreachable!("interpreted instructions end blocks before them"),
@@ -954,7 +1069,6 @@ impl Translator<'_, '_> {
                 .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
             self.b.switch_to_block(cont);
         }
-        s.known.clear();
         self.jump_to(before.pc + 1);
     }
 
@@ -1066,8 +1180,9 @@ impl Translator<'_, '_> {
     }
 }
 
-/// What an instruction's side exit restores: its own index, and the step
-/// count and SP before it.
+/// What an instruction's side exit restores: its own index, the step
+/// count and SP before it, and the stack words the block has pushed but
+/// not yet written to RAM.
 struct Before {
     pc: u32,
     /// Instructions of the block before it, and SP relative to the entry.
@@ -1076,14 +1191,33 @@ struct Before {
     /// The step count and SP at the block's entry.
     steps0: Value,
     sp0: Value,
+    /// The host address of stack word `sp0`, and the unwritten words
+    /// (depth relative to `sp0`, value).
+    base: Value,
+    pending: Vec<(i32, Value)>,
 }
 
-/// The stack during one block: SP relative to its value at the entry, and
-/// the words the block pushed whose values are still in registers.
+/// One stack word the block has pushed or read.
+#[derive(Clone, Copy)]
+struct Slot {
+    depth: i32,
+    value: Value,
+    /// Pushed, not yet written to RAM.
+    dirty: bool,
+}
+
+/// The stack during one block, kept in SSA values (a compile-time stack):
+/// SP relative to its value at the entry, and the words whose values are
+/// in registers. A pushed word reaches RAM only where the block ends or
+/// leaves, before a call or return, and before an access that might touch
+/// it (the last value of each word, as the interpreter leaves it); the
+/// block's entry and span tests show the other accesses cannot.
 struct Stack {
     sp0: Value,
+    /// The host address of stack word `sp0` (words sp0+d at offset 2d).
+    base: Value,
     depth: i32,
-    known: Vec<(i32, Value)>,
+    slots: Vec<Slot>,
 }
 
 impl Stack {
@@ -1091,20 +1225,55 @@ impl Stack {
         t.b.ins().iadd_imm_s(self.sp0, i64::from(self.depth))
     }
 
-    fn push(&mut self, t: &mut Translator<'_, '_>, x: Value) {
-        let a = self.sp(t);
-        t.store_word(a, x);
-        self.known.retain(|&(d, _)| d != self.depth);
-        self.known.push((self.depth, x));
+    fn push(&mut self, x: Value) {
+        let depth = self.depth;
+        self.slots.retain(|s| s.depth != depth);
+        self.slots.push(Slot {
+            depth,
+            value: x,
+            dirty: true,
+        });
         self.depth += 1;
     }
 
     fn pop(&mut self, t: &mut Translator<'_, '_>) -> Value {
         self.depth -= 1;
-        if let Some(&(_, x)) = self.known.iter().rev().find(|(d, _)| *d == self.depth) {
-            return x;
+        let depth = self.depth;
+        if let Some(s) = self.slots.iter().find(|s| s.depth == depth) {
+            return s.value;
         }
-        let a = self.sp(t);
-        t.load_word(a)
+        let x =
+            t.b.ins()
+                .load(T16, MemFlagsData::trusted(), self.base, 2 * depth);
+        self.slots.push(Slot {
+            depth,
+            value: x,
+            dirty: false,
+        });
+        x
+    }
+
+    /// The words pushed and not yet written.
+    fn pending(&self) -> Vec<(i32, Value)> {
+        self.slots
+            .iter()
+            .filter(|s| s.dirty)
+            .map(|s| (s.depth, s.value))
+            .collect()
+    }
+
+    /// Write the pending words to RAM.
+    fn flush(&mut self, t: &mut Translator<'_, '_>) {
+        t.store_pending(self.base, &self.pending());
+        for s in &mut self.slots {
+            s.dirty = false;
+        }
+    }
+
+    /// Forget the words' values after a store that may have changed them
+    /// (the pending ones were flushed before it).
+    fn forget(&mut self) {
+        debug_assert!(self.slots.iter().all(|s| !s.dirty));
+        self.slots.clear();
     }
 }
