@@ -19,7 +19,7 @@
 //! from its segment's host address.
 
 use super::blocks::{self, Block, Kind, MAX_INLINE_LOCALS};
-use super::{Ctx, Fault, CONTINUE, NATIVE_DEPTH, RETURNED};
+use super::{Ctx, Fault, CALLED, CONTINUE, NATIVE_DEPTH, RETURNED};
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
 use crate::timing::{Timing, STACK_BASE};
@@ -181,8 +181,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let entry = b.create_block();
     b.append_block_params_for_function_params(entry);
     b.switch_to_block(entry);
-    let ctx = b.block_params(entry)[0];
-    let which = b.block_params(entry)[1];
+    let params = b.block_params(entry).to_vec();
+    let (ctx, which) = (params[0], params[1]);
     let v = Vars {
         sp: b.declare_var(T16),
         lcl: b.declare_var(T16),
@@ -223,9 +223,22 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         block_start: 0,
         stack_span: None,
     };
+    // A compiled call passes the registers; the dispatcher, the context.
+    let called = t.b.ins().icmp_imm_s(IntCC::Equal, which, CALLED);
+    let (from_call, from_ctx, join) = (t.b.create_block(), t.b.create_block(), t.b.create_block());
+    t.b.ins().brif(called, from_call, NONE, from_ctx, NONE);
+    t.b.switch_to_block(from_call);
+    t.enter_called(&params[2..]);
+    t.b.ins().jump(join, NONE);
+    t.b.switch_to_block(from_ctx);
     t.load_state();
-    // Dispatch on the block index; an index out of range (never passed)
-    // leaves at once with the pc the caller gave.
+    t.b.ins().jump(join, NONE);
+    t.b.switch_to_block(join);
+    // A call enters at the first block (index 0); the dispatcher at
+    // `which`, and an index out of range (never passed) leaves at once
+    // with the pc the caller gave.
+    let zero = t.c32(0);
+    let which = t.b.ins().select(called, zero, which);
     let default = t.b.create_block();
     if let Some(ok) = t.frame_ok() {
         // LCL or ARG such that some access of the function would not be
@@ -253,6 +266,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
             .collect();
     let def = t.b.func.dfg.block_call(default, NONE);
     let table = t.b.create_jump_table(JumpTableData::new(def, &calls));
+    let dispatch = t.b.create_block();
+    t.b.ins().brif(called, t.cl[0], NONE, dispatch, NONE);
+    t.b.switch_to_block(dispatch);
     t.b.ins().br_table(which, table);
 
     t.b.switch_to_block(default);
@@ -269,7 +285,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let pc = t.b.block_params(leave)[1];
     t.store_state();
     t.b.ins().store(mem, pc, ctx, field(offset_of!(Ctx, pc)));
-    t.b.ins().return_(&[code]);
+    let steps = t.b.use_var(t.v.steps);
+    t.b.ins().return_(&[code, steps]);
     t.b.seal_all_blocks();
     t.b.finalize(t.env.target);
 }
@@ -281,6 +298,42 @@ impl Translator<'_, '_> {
 
     fn c32(&mut self, v: i64) -> Value {
         self.b.ins().iconst(T32, v & 0xFFFF_FFFF)
+    }
+
+    /// Define the registers from a compiled call's arguments (see
+    /// `native::Entry`): the caller's SP (where the frame begins), THIS and
+    /// THAT, the argument count and entry flags, the step count.
+    fn enter_called(&mut self, args: &[Value]) {
+        let (base, ptrs, nargs_flags, steps) = (args[0], args[1], args[2], args[3]);
+        let base = self.b.ins().ireduce(T16, base);
+        let nargs = self.b.ins().ireduce(T16, nargs_flags);
+        let lcl = self.b.ins().iadd_imm_s(base, 5);
+        let arg = self.b.ins().isub(base, nargs);
+        let f = &self.env.program.functions[self.env.id as usize];
+        // Where a call's `function` line is a step, the callee's zeroes
+        // and pushes the locals; else the call has.
+        let locals = if self.env.timing.function_step {
+            0
+        } else {
+            f.n_vars
+        };
+        let sp = self.b.ins().iadd_imm_s(lcl, i64::from(locals));
+        let this = self.b.ins().ireduce(T16, ptrs);
+        let that = self.b.ins().ushr_imm_u(ptrs, 16);
+        let that = self.b.ins().ireduce(T16, that);
+        let flags = self.b.ins().ushr_imm_u(nargs_flags, 16);
+        for (var, x) in [
+            (self.v.sp, sp),
+            (self.v.lcl, lcl),
+            (self.v.arg, arg),
+            (self.v.this, this),
+            (self.v.that, that),
+            (self.v.nargs, nargs),
+            (self.v.flags, flags),
+            (self.v.steps, steps),
+        ] {
+            self.b.def_var(var, x);
+        }
     }
 
     /// Load the registers from the context into the variables.
@@ -974,7 +1027,8 @@ impl Translator<'_, '_> {
         for k in 0..i32::from(n_vars) {
             self.b.ins().store(mem, zero, p, 10 + 2 * k);
         }
-        // The frame stack entry.
+        // The frame stack entry (`Frame`, two words: caller and ret_pc; ret,
+        // nargs, flags, and watched = false).
         let frames = self
             .b
             .ins()
@@ -984,50 +1038,22 @@ impl Translator<'_, '_> {
             .ins()
             .imul_imm_s(len, std::mem::size_of::<Frame>() as i64);
         let fp = self.b.ins().iadd(frames, off);
-        let caller = self.c32(i64::from(self.env.id));
-        self.b
-            .ins()
-            .store(mem, caller, fp, field(offset_of!(Frame, caller)));
-        let ret_pc = self.c32(i64::from(before.pc + 1));
-        self.b
-            .ins()
-            .store(mem, ret_pc, fp, field(offset_of!(Frame, ret_pc)));
-        let ret_word = self.c16(i64::from(ret));
-        self.b
-            .ins()
-            .store(mem, ret_word, fp, field(offset_of!(Frame, ret)));
+        let head = i64::from(self.env.id) | i64::from(before.pc + 1) << 32;
+        let head = self.b.ins().iconst(T64, head);
+        self.b.ins().store(mem, head, fp, 0);
         let nargs = self.b.use_var(self.v.nargs);
-        self.b
-            .ins()
-            .store(mem, nargs, fp, field(offset_of!(Frame, nargs)));
+        let nargs = self.b.ins().uextend(T64, nargs);
+        let nargs = self.b.ins().ishl_imm_u(nargs, 16);
         let flags = self.b.use_var(self.v.flags);
-        self.b
-            .ins()
-            .istore8(mem, flags, fp, field(offset_of!(Frame, flags)));
-        let no = self.b.ins().iconst(types::I8, 0);
-        self.b
-            .ins()
-            .store(mem, no, fp, field(offset_of!(Frame, watched)));
+        let flags = self.b.ins().uextend(T64, flags);
+        let flags = self.b.ins().ishl_imm_u(flags, 32);
+        let tail = self.b.ins().bor(nargs, flags);
+        let tail = self.b.ins().bor_imm_u(tail, i64::from(ret));
+        self.b.ins().store(mem, tail, fp, 8);
         let len1 = self.b.ins().iadd_imm_s(len, 1);
         self.b
             .ins()
             .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
-
-        // The callee's registers.
-        let n16 = self.c16(i64::from(n));
-        let arg = self.b.ins().isub(base, n16);
-        self.b.def_var(self.v.arg, arg);
-        let lcl = self.b.ins().iadd_imm_s(base, 5);
-        self.b.def_var(self.v.lcl, lcl);
-        let sp = self.b.ins().iadd_imm_s(lcl, i64::from(n_vars));
-        self.b.def_var(self.v.sp, sp);
-        self.b.def_var(self.v.nargs, n16);
-        let fl = self.c32(i64::from(entry_flags));
-        self.b.def_var(self.v.flags, fl);
-        let steps0 = before.steps0;
-        let steps = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
-        self.b.def_var(self.v.steps, steps);
-        self.store_state();
         let cur = self.c32(i64::from(callee));
         self.b
             .ins()
@@ -1037,10 +1063,23 @@ impl Translator<'_, '_> {
             .ins()
             .store(mem, deeper, ctx, field(offset_of!(Ctx, depth)));
 
+        // The callee's registers go as arguments (`native::Entry`).
+        let this = self.b.use_var(self.v.this);
+        let this = self.b.ins().uextend(T32, this);
+        let that = self.b.use_var(self.v.that);
+        let that = self.b.ins().uextend(T32, that);
+        let that = self.b.ins().ishl_imm_u(that, 16);
+        let ptrs = self.b.ins().bor(this, that);
+        let nargs_flags = self.c32(i64::from(n) | i64::from(entry_flags) << 16);
+        let base32 = self.b.ins().uextend(T32, base);
+        let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
         let func = (self.env.callee)(self.b.func, callee);
-        let first = self.c32(0);
-        let call = self.b.ins().call(func, &[ctx, first]);
-        let code = self.b.inst_results(call)[0];
+        let called = self.c32(CALLED);
+        let call = self
+            .b
+            .ins()
+            .call(func, &[ctx, called, base32, ptrs, nargs_flags, steps]);
+        let (code, steps) = (self.b.inst_results(call)[0], self.b.inst_results(call)[1]);
         self.b
             .ins()
             .store(mem, depth, ctx, field(offset_of!(Ctx, depth)));
@@ -1053,22 +1092,45 @@ impl Translator<'_, '_> {
         self.b.ins().brif(returned, back, NONE, out, NONE);
         self.b.switch_to_block(out);
         // The callee left compiled code: the state is in the context.
-        self.b.ins().return_(&[code]);
+        self.b.ins().return_(&[code, steps]);
+
+        // It returned here, all in compiled code: SP is its ARG + 1, the
+        // registers are the frame's words in RAM (which the callee may have
+        // written), nargs and flags are this function's own.
         self.b.switch_to_block(back);
-        self.load_state();
-        if let Some(ok) = self.frame_ok() {
-            // The return restored LCL and ARG from RAM, which the callee
-            // may have changed: the same test as on entry.
-            let (cont, bad) = (self.b.create_block(), self.b.create_block());
-            self.b.ins().brif(ok, cont, NONE, bad, NONE);
-            self.b.switch_to_block(bad);
-            self.b.set_cold_block(bad);
-            let pc = self.c32(i64::from(before.pc + 1));
-            self.b
-                .ins()
-                .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
-            self.b.switch_to_block(cont);
+        let me = self.c32(i64::from(self.env.id));
+        self.b
+            .ins()
+            .store(mem, me, ctx, field(offset_of!(Ctx, cur)));
+        self.b.def_var(self.v.steps, steps);
+        let sp = self.b.ins().iadd_imm_s(base, 1 - i64::from(n));
+        self.b.def_var(self.v.sp, sp);
+        let (lcl, arg) = (self.b.use_var(self.v.lcl), self.b.use_var(self.v.arg));
+        let mut restored = Vec::new();
+        for (var, k) in [
+            (self.v.lcl, 1),
+            (self.v.arg, 2),
+            (self.v.this, 3),
+            (self.v.that, 4),
+        ] {
+            let x = self.b.ins().load(T16, mem, p, 2 * k);
+            self.b.def_var(var, x);
+            restored.push(x);
         }
+        // LCL and ARG as before the call keep the entry test's word; if the
+        // callee changed them, the interpreter runs on from the next one.
+        let same_lcl = self.b.ins().icmp(IntCC::Equal, restored[0], lcl);
+        let same_arg = self.b.ins().icmp(IntCC::Equal, restored[1], arg);
+        let same = self.b.ins().band(same_lcl, same_arg);
+        let (cont, bad) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(same, cont, NONE, bad, NONE);
+        self.b.switch_to_block(bad);
+        self.b.set_cold_block(bad);
+        let pc = self.c32(i64::from(before.pc + 1));
+        self.b
+            .ins()
+            .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+        self.b.switch_to_block(cont);
         self.jump_to(before.pc + 1);
     }
 
@@ -1128,6 +1190,25 @@ impl Translator<'_, '_> {
         // the saved registers (which that store may have changed).
         let x = s.pop(self);
         self.store_word(arg, x);
+        self.b
+            .ins()
+            .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
+        let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
+        self.b.def_var(self.v.steps, steps);
+        // Back into the caller's compiled code if it is below this one (it
+        // restores its registers from its frame), else to the dispatcher,
+        // which enters the caller at RET's block.
+        let depth = self
+            .b
+            .ins()
+            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
+        let (nested, top) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(depth, nested, NONE, top, NONE);
+        self.b.switch_to_block(nested);
+        let returned = self.c32(i64::from(RETURNED));
+        self.b.ins().return_(&[returned, steps]);
+
+        self.b.switch_to_block(top);
         let sp = self.b.ins().iadd_imm_s(arg, 1);
         self.b.def_var(self.v.sp, sp);
         let regs = [
@@ -1140,9 +1221,6 @@ impl Translator<'_, '_> {
             let r = self.b.ins().load(T16, mem, fr, at);
             self.b.def_var(var, r);
         }
-        self.b
-            .ins()
-            .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
         let caller = self
             .b
             .ins()
@@ -1160,22 +1238,10 @@ impl Translator<'_, '_> {
             .ins()
             .uload8(T32, mem, fp, field(offset_of!(Frame, flags)));
         self.b.def_var(self.v.flags, flags);
-        let steps0 = before.steps0;
-        let steps = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
-        self.b.def_var(self.v.steps, steps);
-        // Back into the caller's compiled code if it is below this one,
-        // else to the dispatcher, which enters the caller at RET's block.
-        let depth = self
-            .b
-            .ins()
-            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
-        let nested = self.b.ins().icmp_imm_s(IntCC::NotEqual, depth, 0);
-        let returned = self.c32(i64::from(RETURNED));
         let cont = self.c32(i64::from(CONTINUE));
-        let code = self.b.ins().select(nested, returned, cont);
         self.b.ins().jump(
             self.leave,
-            &[BlockArg::Value(code), BlockArg::Value(ret_pc)],
+            &[BlockArg::Value(cont), BlockArg::Value(ret_pc)],
         );
     }
 }
