@@ -92,7 +92,9 @@ pub(crate) struct Ctx {
     pub ram: *mut i16,
     pub frames: *mut Frame,
     pub frames_len: u64,
-    /// The frame stack's capacity, at most [`MAX_DEPTH`].
+    /// The frame stack's capacity, at most [`MAX_DEPTH`]; 0 where calls and
+    /// returns must not run compiled (a watcher or the function profile is
+    /// on), which fails compiled code's room test for both.
     pub frames_cap: u64,
     pub steps: u64,
     pub stop_at: u64,
@@ -103,8 +105,6 @@ pub(crate) struct Ctx {
     pub that: u16,
     pub nargs: u16,
     pub flags: u8,
-    /// Whether calls and returns may run compiled (no watcher, no profile).
-    pub inline: u8,
     pub cur: u32,
     pub pc: u32,
     /// Compiled functions currently nested on the host stack.
@@ -352,7 +352,11 @@ impl Machine {
             ram: std::ptr::null_mut(),
             frames: self.frames.as_mut_ptr(),
             frames_len: self.frames.len() as u64,
-            frames_cap: self.frames.capacity().min(MAX_DEPTH) as u64,
+            frames_cap: if !W && self.profile.is_none() {
+                self.frames.capacity().min(MAX_DEPTH) as u64
+            } else {
+                0
+            },
             steps: self.steps,
             stop_at,
             sp: reg(0),
@@ -362,7 +366,6 @@ impl Machine {
             that: reg(4),
             nargs: self.nargs,
             flags: self.flags,
-            inline: u8::from(!W && self.profile.is_none()),
             cur: self.cur,
             pc: self.pc,
             depth: 0,

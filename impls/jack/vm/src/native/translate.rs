@@ -1,10 +1,14 @@
 //! One VM function to Cranelift IR.
 //!
-//! The compiled function takes the machine state in a [`Ctx`] and the index
-//! of the block to start at, keeps SP, LCL, ARG, THIS, THAT, the flags, the
-//! argument count and the step count in registers, and returns a code (see
-//! `native::RETURNED`, `native::CONTINUE`; a code >= 0 is the instruction
-//! the interpreter must run next). Every block first checks that its whole
+//! The compiled function (signature `native::Entry`) takes the machine
+//! state in a [`Ctx`] and the index of the block to start at (from the
+//! dispatcher), or the callee's registers as arguments (from a compiled
+//! call), keeps SP, LCL, ARG, THIS, THAT, the flags, the argument count and
+//! the step count in registers, and returns a code (see `native::RETURNED`,
+//! `native::CONTINUE`; a code >= 0 is the instruction the interpreter must
+//! run next) and the step count. One test on entering compiled code covers
+//! every `local` and `argument` access of the function (`frame_ok`). Every
+//! block first checks that its whole
 //! step count fits under the stop and that its stack accesses stay between
 //! 256 and the profile's stack end (`Timing::stack_end`); otherwise, and wherever an instruction meets a case that
 //! only the interpreter handles (a register or an address outside RAM
@@ -83,7 +87,6 @@ struct Translator<'a, 'b> {
     ctx: Value,
     ram: Value,
     stop_at: Value,
-    inline: Value,
     /// The Cranelift block of each VM block.
     cl: Vec<ir::Block>,
     /// VM block index by instruction index relative to the function start.
@@ -104,6 +107,10 @@ struct Translator<'a, 'b> {
     block_start: u32,
     /// The current block's stack words, `lo..hi` (None if it has none).
     stack_span: Option<(Value, Value)>,
+    /// LCL + the highest `local` index and ARG + the highest `argument`
+    /// index, where `reach` covers them: LCL and ARG keep one value through
+    /// compiled code (a call that returns with others leaves it).
+    frame_tops: [Option<Value>; 2],
 }
 
 /// How a `this` or `that` access of a block tests its address.
@@ -196,9 +203,6 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let mem = MemFlagsData::trusted();
     let ram = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, ram)));
     let stop_at = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, stop_at)));
-    let inline = b
-        .ins()
-        .uload8(T32, mem, ctx, field(offset_of!(Ctx, inline)));
     let reach =
         reach(&env.code[start as usize..vm_blocks.last().map_or(start, |b| b.end) as usize]);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
@@ -212,7 +216,6 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         ctx,
         ram,
         stop_at,
-        inline,
         cl,
         block_at,
         start,
@@ -222,6 +225,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         ptr_tests: Vec::new(),
         block_start: 0,
         stack_span: None,
+        frame_tops: [None; 2],
     };
     // A compiled call passes the registers; the dispatcher, the context.
     let called = t.b.ins().icmp_imm_s(IntCC::Equal, which, CALLED);
@@ -234,6 +238,11 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     t.load_state();
     t.b.ins().jump(join, NONE);
     t.b.switch_to_block(join);
+    for (seg, var) in [(LOCAL, t.v.lcl), (ARGUMENT, t.v.arg)] {
+        if let Some(top) = t.reach[seg] {
+            t.frame_tops[seg] = Some(t.seg_addr(var, top));
+        }
+    }
     // A call enters at the first block (index 0); the dispatcher at
     // `which`, and an index out of range (never passed) leaves at once
     // with the pc the caller gave.
@@ -419,9 +428,19 @@ impl Translator<'_, '_> {
     /// Continue if `ok`, else leave for the interpreter at `at.pc` with
     /// the state before that instruction (computed only on the way out).
     fn guard(&mut self, ok: Value, at: &Before) {
-        let cont = self.b.create_block();
+        self.guard_all(&[ok], at);
+    }
+
+    /// Continue if every one of `conds` holds (each its own branch to one
+    /// shared exit), else leave as [`Self::guard`] does.
+    fn guard_all(&mut self, conds: &[Value], at: &Before) {
         let stub = self.b.create_block();
-        self.b.ins().brif(ok, cont, NONE, stub, NONE);
+        for &ok in conds {
+            let cont = self.b.create_block();
+            self.b.ins().brif(ok, cont, NONE, stub, NONE);
+            self.b.switch_to_block(cont);
+        }
+        let cont = self.b.current_block().expect("a block");
         self.b.switch_to_block(stub);
         self.b.set_cold_block(stub);
         self.exit_before(at);
@@ -484,22 +503,24 @@ impl Translator<'_, '_> {
         // no stack rule applies: from 256 (no pop at SP = 256) up to the
         // profile's stack end.
         let last = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
-        let mut ok = self
+        let mut ok = vec![self
             .b
             .ins()
-            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at);
+            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at)];
         if blk.checks_stack {
-            // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1).
-            let low = self.c16(i64::from(STACK_BASE) - i64::from(blk.min_depth));
-            let c = self
-                .b
-                .ins()
-                .icmp(IntCC::UnsignedGreaterThanOrEqual, sp0, low);
-            ok = self.b.ins().band(ok, c);
-            let end = i64::from(self.env.timing.stack_end());
-            let high = self.c16(end - i64::from(blk.max_depth));
-            let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, sp0, high);
-            ok = self.b.ins().band(ok, c);
+            // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1):
+            // low <= sp0 <= high, one unsigned test of sp0 - low.
+            let low = i64::from(STACK_BASE) - i64::from(blk.min_depth);
+            let high = i64::from(self.env.timing.stack_end()) - i64::from(blk.max_depth);
+            let c = if high < low {
+                self.b.ins().iconst(types::I8, 0)
+            } else {
+                let d = self.b.ins().iadd_imm_s(sp0, -low);
+                self.b
+                    .ins()
+                    .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, high - low)
+            };
+            ok.push(c);
         }
         // The stack words the block holds in registers: those it touches
         // after its `function` line, whose zeroed locals go to RAM at once.
@@ -517,14 +538,11 @@ impl Translator<'_, '_> {
         if let Some((lo, _)) = self.stack_span {
             // The block's `local` and `argument` words lie below its stack
             // words, so the stack can stay in registers across them.
-            for (seg, var) in [(LOCAL, self.v.lcl), (ARGUMENT, self.v.arg)] {
-                if self.reach[seg].is_none() {
-                    continue;
-                }
-                if let Some(top) = reach(code)[seg] {
-                    let a = self.seg_addr(var, top);
-                    let c = self.b.ins().icmp(IntCC::UnsignedLessThan, a, lo);
-                    ok = self.b.ins().band(ok, c);
+            let used = reach(code);
+            for seg in [LOCAL, ARGUMENT] {
+                if let (Some(top), Some(_)) = (self.frame_tops[seg], used[seg]) {
+                    let c = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo);
+                    ok.push(c);
                 }
             }
         }
@@ -538,7 +556,7 @@ impl Translator<'_, '_> {
             base,
             pending: Vec::new(),
         };
-        self.guard(ok, &entry);
+        self.guard_all(&ok, &entry);
 
         let mut s = Stack {
             sp0,
@@ -630,7 +648,12 @@ impl Translator<'_, '_> {
         self.b.ins().iadd_imm_s(base, i64::from(i))
     }
 
+    /// `argument i` is one of the arguments (the entry test covers it
+    /// where the function's accesses are covered).
     fn arg_ok(&mut self, i: u16, before: &Before) {
+        if self.reach[ARGUMENT].is_some() {
+            return;
+        }
         let nargs = self.b.use_var(self.v.nargs);
         let i = self.c16(i64::from(i));
         let ok = self.b.ins().icmp(IntCC::UnsignedGreaterThan, nargs, i);
@@ -646,8 +669,9 @@ impl Translator<'_, '_> {
     }
 
     /// Whether LCL and ARG leave every `local` and `argument` access of the
-    /// function (up to `reach`) on a plain word, without wrapping (None if
-    /// no access is covered so).
+    /// function (up to `reach`) on a plain word, without wrapping, and the
+    /// argument count covers every `argument` index (None if no access is
+    /// covered so).
     fn frame_ok(&mut self) -> Option<Value> {
         let mut ok = None;
         for (var, top) in [
@@ -655,7 +679,15 @@ impl Translator<'_, '_> {
             (self.v.arg, self.reach[ARGUMENT]),
         ] {
             let Some(top) = top else { continue };
-            let c = self.span_ok(var, top);
+            let mut c = self.span_ok(var, top);
+            if var == self.v.arg {
+                let nargs = self.b.use_var(self.v.nargs);
+                let fit =
+                    self.b
+                        .ins()
+                        .icmp_imm_u(IntCC::UnsignedGreaterThan, nargs, i64::from(top));
+                c = self.b.ins().band(c, fit);
+            }
             ok = Some(match ok {
                 None => c,
                 Some(o) => self.b.ins().band(o, c),
@@ -984,32 +1016,29 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
-        // Inline allowed, native nesting bounded, room in the frame stack,
-        // and the new frame in plain RAM.
-        let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, self.inline, 0);
-        let c = self
-            .b
-            .ins()
-            .icmp_imm_s(IntCC::UnsignedLessThan, depth, i64::from(NATIVE_DEPTH));
-        let ok = self.b.ins().band(ok, c);
-        let c = self.b.ins().icmp(IntCC::UnsignedLessThan, len, cap);
-        let ok = self.b.ins().band(ok, c);
+        // Native nesting bounded, room in the frame stack (none if calls
+        // must not run compiled), and the new frame in plain RAM.
+        let mut ok =
+            vec![self
+                .b
+                .ins()
+                .icmp_imm_s(IntCC::UnsignedLessThan, depth, i64::from(NATIVE_DEPTH))];
+        ok.push(self.b.ins().icmp(IntCC::UnsignedLessThan, len, cap));
         let base = s.sp(self);
         let base64 = self.b.ins().uextend(T64, base);
         let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
         let end = i64::from(self.env.timing.stack_end());
-        let c = self
-            .b
-            .ins()
-            .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end);
-        let ok = self.b.ins().band(ok, c);
-        let c = self.b.ins().icmp_imm_s(
+        ok.push(
+            self.b
+                .ins()
+                .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end),
+        );
+        ok.push(self.b.ins().icmp_imm_s(
             IntCC::UnsignedGreaterThanOrEqual,
             base64,
             i64::from(STACK_BASE),
-        );
-        let ok = self.b.ins().band(ok, c);
-        self.guard(ok, before);
+        ));
+        self.guard_all(&ok, before);
 
         // The frame in RAM: RET, LCL, ARG, THIS, THAT, then zeroed locals.
         let saved = [
@@ -1131,6 +1160,9 @@ impl Translator<'_, '_> {
             .ins()
             .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
         self.b.switch_to_block(cont);
+        // The same values: keep the ones the function entered with.
+        self.b.def_var(self.v.lcl, lcl);
+        self.b.def_var(self.v.arg, arg);
         self.jump_to(before.pc + 1);
     }
 
@@ -1144,9 +1176,14 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
-        let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, self.inline, 0);
-        let c = self.b.ins().icmp_imm_s(IntCC::NotEqual, len, 0);
-        let ok = self.b.ins().band(ok, c);
+        // A frame to return to (0 < len <= cap; cap is 0 if returns must
+        // not run compiled).
+        let cap = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
+        let below = self.b.ins().iadd_imm_s(len, -1);
+        let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, below, cap);
         self.guard(ok, before);
         let frames = self
             .b
