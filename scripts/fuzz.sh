@@ -22,11 +22,14 @@ if ! rustup toolchain list | grep -q '^nightly'; then
 fi
 if [ $# -gt 0 ]; then
     targets=("$@")
+    # Only the targets named (a build of every target takes far longer).
+    for t in "${targets[@]}"; do
+        cargo +nightly fuzz build "$t"
+    done
 else
     mapfile -t targets < <(cargo +nightly fuzz list)
+    cargo +nightly fuzz build
 fi
-
-cargo +nightly fuzz build
 crashed=0
 summary=fuzz/work/summary.txt
 mkdir -p fuzz/work

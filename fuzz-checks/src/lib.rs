@@ -8,11 +8,13 @@
 mod cast_file;
 mod differential;
 mod jack_source;
+mod pipe_reader;
 mod sets;
 
 pub use cast_file::{cast_file, project_file};
 pub use differential::f316_vs_jack;
 pub use jack_source::{jack_source, vm_source};
+pub use pipe_reader::pipe_reader;
 pub use sets::{scene, vector_set};
 
 /// A target's property: panics when the input breaks it.
@@ -20,11 +22,12 @@ pub type Check = fn(&[u8]);
 
 /// The targets by name, as `fuzz/fuzz_targets/NAME.rs` and the corpus
 /// folders `fuzz/corpus/NAME` call them.
-pub const TARGETS: [(&str, Check); 6] = [
+pub const TARGETS: [(&str, Check); 7] = [
     ("jack_source", jack_source),
     ("vm_source", vm_source),
     ("vector_set", vector_set),
     ("scene", scene),
     ("cast_file", cast_file),
     ("f316_vs_jack", f316_vs_jack),
+    ("pipe_reader", pipe_reader),
 ];

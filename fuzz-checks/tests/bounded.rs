@@ -75,6 +75,21 @@ fn seeds_reach_the_deep_paths() {
     );
     let scene = text("scene", "camera-march.json");
     serde_json::from_str::<reference::Scene>(&scene).expect("a seed is a scene");
+    // The adapters' real answers read back: the handshake, then every
+    // answer and batch end of the operations' exchange.
+    let exchange = text("pipe_reader", "ref-pipe-ops.txt");
+    let mut lines = exchange.lines();
+    let hello = harness::pipe::protocol::read_handshake(lines.next().unwrap()).unwrap();
+    let expect = harness::pipe::protocol::Expect {
+        level: vectors::Level::Ops,
+        op: Some(common::Op::Add),
+        numbers: hello.numbers,
+    };
+    let read: Vec<_> = lines
+        .filter(|l| !l.contains("\"value\":false") && !l.contains("\"value\":true"))
+        .map(|l| harness::pipe::protocol::read_line(l, &expect))
+        .collect();
+    assert!(read.len() > 5 && read.iter().all(Result::is_ok), "{read:?}");
     for seed in [
         "jack-inline.toml",
         "jack-bindings-file.toml",
@@ -165,6 +180,17 @@ proptest! {
     #[test]
     fn mutated_cast_files(bytes in mutated("cast_file", 6)) {
         check_of("cast_file")(&bytes);
+    }
+
+    #[test]
+    fn mutated_adapter_outputs(bytes in mutated("pipe_reader", 8)) {
+        check_of("pipe_reader")(&bytes);
+    }
+
+    /// Output that is not the protocol at all.
+    #[test]
+    fn arbitrary_adapter_outputs(bytes in prop::collection::vec(any::<u8>(), 0..512)) {
+        check_of("pipe_reader")(&bytes);
     }
 }
 

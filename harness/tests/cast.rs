@@ -5,7 +5,7 @@
 //! f32 one (`my-f32`); each is found by cast, diff, localize, check, bench
 //! and nightly, in the group its number type decides.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 const PROJECT: &str = r#"
@@ -170,22 +170,30 @@ fn bench_renders_a_declared_implementation() {
     assert!(row.trim_end().ends_with(" 0"), "{row}");
 }
 
-#[test]
-fn the_nightly_compares_declared_implementations_in_their_group_and_fails_on_a_bad_image() {
-    let dir = project();
-    let out = dir.path().join("reports/nightly");
+/// The nightly's levels, renders and pairs over the implementations
+/// `impls` (comma-separated) of the project in `dir`; returns its output
+/// and its report directory.
+fn nightly(dir: &Path, impls: &str) -> (Output, PathBuf) {
+    let out = dir.join("reports/nightly");
     let o = harness(
-        dir.path(),
+        dir,
         &[
             "nightly",
             "--impls",
-            "my-port,my-bad,my-f32",
+            impls,
             "--steps",
             "levels,renders,pairs",
             "--out",
             out.to_str().unwrap(),
         ],
     );
+    (o, out)
+}
+
+#[test]
+fn the_nightly_compares_declared_implementations_in_their_group_and_fails_on_a_bad_image() {
+    let dir = project();
+    let (o, out) = nightly(dir.path(), "my-port,my-bad,my-f32");
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
@@ -245,19 +253,7 @@ fn the_nightly_compares_declared_implementations_in_their_group_and_fails_on_a_b
 #[test]
 fn the_nightly_passes_with_a_clean_declared_implementation() {
     let dir = project();
-    let out = dir.path().join("reports/nightly");
-    let o = harness(
-        dir.path(),
-        &[
-            "nightly",
-            "--impls",
-            "my-port",
-            "--steps",
-            "levels,renders,pairs",
-            "--out",
-            out.to_str().unwrap(),
-        ],
-    );
+    let (o, _) = nightly(dir.path(), "my-port");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let line = String::from_utf8_lossy(&o.stdout);
     assert!(

@@ -22,11 +22,13 @@ pub struct NightlyArgs {
     #[arg(long, default_value = "reports/nightly")]
     pub out: PathBuf,
     /// The unary checks against a slow implementation (the Jack emulator)
-    /// take every N-th input (the others always take every input).
-    #[arg(long, default_value_t = 16)]
+    /// take every N-th input (the others always take every input); the
+    /// default is every input.
+    #[arg(long, default_value_t = 1)]
     pub jack_unary_step: usize,
-    /// Run only these steps (comma-separated: levels, unary, selftest,
-    /// renders, screens, pairs, explain, scenes, speed); default all.
+    /// Run only these steps (comma-separated: levels, unary, testfloat,
+    /// selftest, renders, screens, pairs, explain, scenes, speed); default
+    /// all.
     #[arg(long, value_delimiter = ',', value_name = "STEP,...")]
     pub steps: Option<Vec<String>>,
     /// Open only these implementations of the cast (comma-separated), with

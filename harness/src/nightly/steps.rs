@@ -11,14 +11,16 @@ use crate::measure::{self, FullRender};
 use crate::progress;
 use crate::report::images::Grid;
 use crate::report::model::{
-    BenchRow, Comparison, DivergenceExample, ErrorFigures, ImplStatus, Render, SelfTest,
+    BenchRow, CaseCount, Comparison, DivergenceExample, ErrorFigures, ImplStatus, Render, SelfTest,
 };
 use crate::report::{RenderImages, BIT_EXACT, ERROR_FIGURES};
 use crate::runner::{self, ImplRun, RunOptions};
 use crate::{selftest, stability};
 use anyhow::{Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
+use common::Op;
 use std::time::Instant;
+use vectors::gen::testfloat::{self, CaseLevel};
 
 /// One step of the night.
 pub trait Step {
@@ -44,6 +46,7 @@ pub fn all() -> Vec<Box<dyn Step>> {
             set: "pixels-nightly",
         }),
         Box::new(Unary),
+        Box::new(TestFloat),
         Box::new(SelfTestStep),
         Box::new(Renders),
         Box::new(Screens),
@@ -277,6 +280,64 @@ impl Step for Unary {
                     };
                     night.builder.report_mut().comparisons.push(row);
                 }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The TestFloat-style cases of every operation (docs/coverage.md), levels
+/// 1 and 2, through the tracer and every other opened Float316
+/// implementation, compared bit for bit with the tracer; the count of
+/// cases per operation and level goes into the report whether or not a
+/// second implementation opened.
+struct TestFloat;
+
+impl Step for TestFloat {
+    fn key(&self) -> &'static str {
+        "testfloat"
+    }
+
+    fn name(&self) -> String {
+        "testfloat levels 1 and 2".into()
+    }
+
+    fn run(&self, night: &mut Night<'_>) -> Result<()> {
+        let tracer = night.cast.tracer().name.as_str();
+        let names: Vec<&str> = std::iter::once(tracer)
+            .chain(night.names_where(|e| {
+                e.bit_exact() && e.name != tracer && e.answers(vectors::Level::Ops)
+            }))
+            .collect();
+        for level in CaseLevel::ALL {
+            for op in Op::ALL {
+                let set = testfloat::set(&[op], level, testfloat::DEFAULT_SEED);
+                let impls = night.opened_of(&names);
+                let report = runner::diff_set(&impls, &set, run_options(night));
+                record_failures(night, &report);
+                let rows: Vec<Comparison> = report
+                    .comparisons
+                    .iter()
+                    .map(|c| Comparison {
+                        level: level.table_category().into(),
+                        ..summarise(night, c, &set.name)
+                    })
+                    .collect();
+                let answered = report
+                    .runs
+                    .iter()
+                    .filter(|r| r.error.is_none())
+                    .map(|r| r.label.clone())
+                    .collect();
+                let built = night.builder.report_mut();
+                built.testfloat.push(CaseCount {
+                    op: op.to_string(),
+                    level: level.number(),
+                    cases: set.vectors.len() as u64,
+                    implementations: answered,
+                    divergences: rows.iter().map(|r| r.divergences).sum(),
+                });
+                built.comparisons.extend(rows);
             }
         }
         Ok(())

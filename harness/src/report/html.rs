@@ -164,11 +164,12 @@ pub fn render(report: &Report, history: &History) -> String {
         report.schema_version
     );
     h.push_str(
-        "<nav><a href=#summary>Summary</a><a href=#levels>Levels</a><a href=#renders>Renders</a><a href=#pairs>Image pairs</a>\
+        "<nav><a href=#summary>Summary</a><a href=#levels>Levels</a><a href=#testfloat>TestFloat</a><a href=#renders>Renders</a><a href=#pairs>Image pairs</a>\
          <a href=#cost>Cost map</a><a href=#speed>Speed vs error</a><a href=#stability>Stability</a><a href=#bench>Bench</a><a href=#scenes>Scenes</a><a href=#trend>Trend</a></nav>\n<main>\n",
     );
     summary(&mut h, report);
     levels(&mut h, report);
+    testfloat(&mut h, report);
     renders(&mut h, report);
     pairs(&mut h, report);
     cost_map(&mut h, report);
@@ -345,6 +346,59 @@ fn levels(h: &mut String, r: &Report) {
         }
     }
     h.push_str("</section>\n");
+}
+
+/// The TestFloat-style cases per operation: levels 1 and 2 side by side,
+/// where they ran and their bit-exact divergences (the comparisons are
+/// rows of Levels).
+fn testfloat(h: &mut String, r: &Report) {
+    h.push_str(
+        "<section id=testfloat><h2>TestFloat-style cases</h2><p>Every operation's cases in the manner of Berkeley TestFloat \
+         (sign x exponent table x mantissa pattern table; level 2 adds weighted random pairs; docs/coverage.md), \
+         compared bit for bit with the first implementation listed.</p>",
+    );
+    if r.testfloat.is_empty() {
+        h.push_str("<p>No TestFloat step in this run.</p></section>\n");
+        return;
+    }
+    let mut ops: Vec<&str> = Vec::new();
+    for c in &r.testfloat {
+        if !ops.contains(&c.op.as_str()) {
+            ops.push(&c.op);
+        }
+    }
+    table_head(
+        h,
+        [
+            "operation",
+            "level 1 cases",
+            "level 1 divergences",
+            "level 2 cases",
+            "level 2 divergences",
+            "implementations",
+        ],
+    );
+    for op in ops {
+        let at = |level: u8| r.testfloat.iter().find(|c| c.op == op && c.level == level);
+        let mut cells = vec![td_code(op)];
+        for level in [1, 2] {
+            match at(level) {
+                Some(c) => {
+                    let class = if c.divergences == 0 { "ok" } else { "bad" };
+                    cells.push(td_n(c.cases));
+                    cells.push(format!("<td class=\"n {class}\">{}</td>", c.divergences));
+                }
+                None => cells.extend([td("–"), td("–")]),
+            }
+        }
+        let names = at(2)
+            .or(at(1))
+            .map(|c| c.implementations.join(", "))
+            .unwrap_or_default();
+        cells.push(td(esc(&names)));
+        row(h, &cells);
+    }
+    h.push_str("</table></section>\n");
 }
 
 fn renders(h: &mut String, r: &Report) {
@@ -947,6 +1001,27 @@ mod tests {
     }
 
     #[test]
+    fn testfloat_counts_show_both_levels_per_operation() {
+        let mut r = Report::new(RunMeta::default());
+        let implementations = vec!["ref-f316".to_string(), "jack".to_string()];
+        for (level, cases, divergences) in [(1, 46_656, 0), (2, 1_254_528, 3)] {
+            r.testfloat.push(CaseCount {
+                op: "add".into(),
+                level,
+                cases,
+                implementations: implementations.clone(),
+                divergences,
+            });
+        }
+        let page = render(&r, &History::default());
+        assert!(page.contains(
+            "<tr><td><code>add</code></td><td class=n>46656</td><td class=\"n ok\">0</td><td class=n>1254528</td><td class=\"n bad\">3</td><td>ref-f316, jack</td></tr>"
+        ), "{page}");
+        let empty = render(&Report::new(RunMeta::default()), &History::default());
+        assert!(empty.contains("<p>No TestFloat step in this run.</p>"));
+    }
+
+    #[test]
     fn page_has_every_section_and_escapes_labels() {
         let mut r = Report::new(RunMeta {
             git_commit: "<x>".into(),
@@ -1024,6 +1099,7 @@ mod tests {
         for id in [
             "summary",
             "levels",
+            "testfloat",
             "renders",
             "pairs",
             "cost",

@@ -37,6 +37,10 @@ pub struct Report {
     /// The described scenes of the scene step (docs/scenes.md).
     #[serde(default)]
     pub scenes: Vec<SceneRow>,
+    /// The TestFloat-style cases of each operation at each level, and
+    /// where they ran (docs/coverage.md).
+    #[serde(default)]
+    pub testfloat: Vec<CaseCount>,
     /// Steps that could not run or failed, with the reason; the report is
     /// still written, these are listed at its top.
     pub problems: Vec<String>,
@@ -106,6 +110,23 @@ pub struct Comparison {
     pub error: Option<ErrorFigures>,
     /// A few divergent cases, in order.
     pub examples: Vec<DivergenceExample>,
+}
+
+/// The TestFloat-style cases of one operation at one level, run through
+/// the Float316 implementations and compared bit for bit with the first.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CaseCount {
+    /// The operation (`add`, `inv_sqrt`, ...).
+    pub op: String,
+    /// The TestFloat level (1 or 2).
+    pub level: u8,
+    /// Cases of the operation at this level.
+    pub cases: u64,
+    /// The implementations that answered them, the first the one the
+    /// others are compared with.
+    pub implementations: Vec<String>,
+    /// Bit-exact divergences from the first, summed over the others.
+    pub divergences: u64,
 }
 
 /// One described scene: what it uses, what it never reaches, its cost.

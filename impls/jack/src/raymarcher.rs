@@ -21,9 +21,13 @@ use std::sync::Arc;
 pub const OUT_OF_DOMAIN_CODE: i16 = 316;
 
 /// Instruction budgets per call; running out is reported as
-/// [`Outcome::Hang`]. The defaults are far above the costliest normal call
-/// (an operation costs under 40 000 instructions even with extreme
-/// exponents, a pixel under 1 000 000).
+/// [`Outcome::Hang`]. The defaults are well above the costliest normal
+/// call, so that running out means a loop that never ends: an operation
+/// ends within 33 108 instructions whatever its operands (`sub` at the
+/// largest exponent gap; the nightly's sets within 1 162, `inv_sqrt`;
+/// `cargo run -p jack --example op_budget`), a pixel under 1 000 000. A
+/// hang costs the whole budget, so the operation's is not larger than
+/// that needs: 1.5 times the costliest operation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Budgets {
     /// Per Float316 operation.
@@ -37,7 +41,7 @@ pub struct Budgets {
 impl Default for Budgets {
     fn default() -> Self {
         Budgets {
-            op: 100_000,
+            op: 50_000,
             sdf: 5_000_000,
             pixel: 50_000_000,
         }
