@@ -345,58 +345,45 @@ impl Translator<'_, '_> {
         }
     }
 
+    /// The registers as the context holds them: variable, field offset,
+    /// and width (the flags are one byte).
+    fn state_fields(&self) -> [(Variable, usize, ir::Type); 8] {
+        [
+            (self.v.sp, offset_of!(Ctx, sp), T16),
+            (self.v.lcl, offset_of!(Ctx, lcl), T16),
+            (self.v.arg, offset_of!(Ctx, arg), T16),
+            (self.v.this, offset_of!(Ctx, this), T16),
+            (self.v.that, offset_of!(Ctx, that), T16),
+            (self.v.nargs, offset_of!(Ctx, nargs), T16),
+            (self.v.flags, offset_of!(Ctx, flags), types::I8),
+            (self.v.steps, offset_of!(Ctx, steps), T64),
+        ]
+    }
+
     /// Load the registers from the context into the variables.
     fn load_state(&mut self) {
         let mem = MemFlagsData::trusted();
-        let ctx = self.ctx;
-        let regs = [
-            (self.v.sp, offset_of!(Ctx, sp)),
-            (self.v.lcl, offset_of!(Ctx, lcl)),
-            (self.v.arg, offset_of!(Ctx, arg)),
-            (self.v.this, offset_of!(Ctx, this)),
-            (self.v.that, offset_of!(Ctx, that)),
-            (self.v.nargs, offset_of!(Ctx, nargs)),
-        ];
-        for (var, o) in regs {
-            let x = self.b.ins().load(T16, mem, ctx, field(o));
+        for (var, o, ty) in self.state_fields() {
+            let x = if ty == types::I8 {
+                self.b.ins().uload8(T32, mem, self.ctx, field(o))
+            } else {
+                self.b.ins().load(ty, mem, self.ctx, field(o))
+            };
             self.b.def_var(var, x);
         }
-        let flags = self
-            .b
-            .ins()
-            .uload8(T32, mem, ctx, field(offset_of!(Ctx, flags)));
-        self.b.def_var(self.v.flags, flags);
-        let steps = self
-            .b
-            .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, steps)));
-        self.b.def_var(self.v.steps, steps);
     }
 
     /// Store the variables into the context.
     fn store_state(&mut self) {
         let mem = MemFlagsData::trusted();
-        let ctx = self.ctx;
-        let regs = [
-            (self.v.sp, offset_of!(Ctx, sp)),
-            (self.v.lcl, offset_of!(Ctx, lcl)),
-            (self.v.arg, offset_of!(Ctx, arg)),
-            (self.v.this, offset_of!(Ctx, this)),
-            (self.v.that, offset_of!(Ctx, that)),
-            (self.v.nargs, offset_of!(Ctx, nargs)),
-        ];
-        for (var, o) in regs {
+        for (var, o, ty) in self.state_fields() {
             let x = self.b.use_var(var);
-            self.b.ins().store(mem, x, ctx, field(o));
+            if ty == types::I8 {
+                self.b.ins().istore8(mem, x, self.ctx, field(o));
+            } else {
+                self.b.ins().store(mem, x, self.ctx, field(o));
+            }
         }
-        let flags = self.b.use_var(self.v.flags);
-        self.b
-            .ins()
-            .istore8(mem, flags, ctx, field(offset_of!(Ctx, flags)));
-        let steps = self.b.use_var(self.v.steps);
-        self.b
-            .ins()
-            .store(mem, steps, ctx, field(offset_of!(Ctx, steps)));
     }
 
     /// The host address of RAM word `a` (a 16-bit value known to be a
