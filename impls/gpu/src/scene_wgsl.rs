@@ -488,6 +488,58 @@ fn constants(out: &mut String, t: Target, p: &Program) {
     let _ = writeln!(out, "var<private> PIX: u32;\n");
 }
 
+/// The parts of the entry points that differ between the number types.
+struct EntryParts {
+    /// Items before the entry points.
+    helpers: &'static str,
+    zero: &'static str,
+    /// The pixel function's arguments from the column `x` and the row
+    /// counter `n`.
+    pixel_args: &'static str,
+    /// The output level of the pixel function's second result `r.s1`.
+    level: &'static str,
+    /// The pixel entry's stores of `value` and `level` (after the status).
+    store_pixel: &'static str,
+    /// The SDF entry: the call's arguments and its stores of `s`.
+    sdf_args: &'static str,
+    store_sdf: &'static str,
+}
+
+const F316_ENTRY: EntryParts = EntryParts {
+    helpers: "fn level_of(a: F) -> i32 {
+    if (a.e < 127) {
+        return 0;
+    }
+    let k = min(a.e - 127, 13);
+    let v = a.m >> u32(13 - k);
+    return select(v, -v, a.s == 1);
+}
+
+",
+    zero: "ZERO",
+    pixel_args: "from_int(i32(x)), from_int(n)",
+    level: "level_of(r.s1)",
+    store_pixel: "    outp[i * 5u] = bitcast<u32>(status);
+    store_f(i * 5u + 1u, value);
+    outp[i * 5u + 4u] = u32(level);",
+    sdf_args: "let p = load_v(i * 9u);\n    let s = s_f{sdf}(p.x, p.y, p.z);",
+    store_sdf: "    outp[i * 7u] = bitcast<u32>(status);
+    store_f(i * 7u + 1u, s.s0);
+    store_f(i * 7u + 4u, s.s1);",
+};
+
+const F32_ENTRY: EntryParts = EntryParts {
+    helpers: "",
+    zero: "0.0",
+    pixel_args: "f32(x), f32(n)",
+    level: "i32(r.s1)",
+    store_pixel: "    outp[i * 2u] = bitcast<u32>(value);
+    outp[i * 2u + 1u] = u32(level);",
+    sdf_args: "let s = s_f{sdf}(bitcast<f32>(inp[i * 3u]), bitcast<f32>(inp[i * 3u + 1u]), bitcast<f32>(inp[i * 3u + 2u]));",
+    store_sdf: "    outp[i * 2u] = bitcast<u32>(s.s0);
+    outp[i * 2u + 1u] = bitcast<u32>(s.s1);",
+};
+
 fn entries(out: &mut String, t: Target, p: &Program) {
     let px = &p.pixels;
     let setup = p.function(p.setup);
@@ -506,20 +558,14 @@ fn entries(out: &mut String, t: Target, p: &Program) {
     };
     let levels = px.levels;
     let (lo, hi) = (px.rows[0], px.rows[1]);
-    match t.0 {
-        Formulation::Float316 => {
-            let _ = write!(
-                out,
-                "fn level_of(a: F) -> i32 {{
-    if (a.e < 127) {{
-        return 0;
-    }}
-    let k = min(a.e - 127, 13);
-    let v = a.m >> u32(13 - k);
-    return select(v, -v, a.s == 1);
-}}
-
-@compute @workgroup_size(WG)
+    let e = match t.0 {
+        Formulation::Float316 => &F316_ENTRY,
+        Formulation::Ieee => &F32_ENTRY,
+    };
+    let (pixel, sdf) = (p.pixel, p.sdf);
+    let _ = write!(
+        out,
+        "{helpers}@compute @workgroup_size(WG)
 fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     let i = gid.x;
     if (i >= params.count) {{
@@ -528,18 +574,16 @@ fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     let x = inp[i * 2u];
     let y = inp[i * 2u + 1u];
     let n = {row};
-    var value = ZERO;
+    var value = {zero};
     var level = 0;
     if (n >= {lo} && n <= {hi}) {{
         PIX = {index};
         {load_uniforms}
-        let r = s_f{pixel}(from_int(i32(x)), from_int(n));
+        let r = s_f{pixel}({pixel_args});
         value = r.s0;
-        level = ((level_of(r.s1) % {levels}) + {levels}) % {levels};
+        level = (({level} % {levels}) + {levels}) % {levels};
     }}
-    outp[i * 5u] = bitcast<u32>(status);
-    store_f(i * 5u + 1u, value);
-    outp[i * 5u + 4u] = u32(level);
+{store_pixel}
 }}
 
 @compute @workgroup_size(WG)
@@ -548,58 +592,18 @@ fn sdf_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     if (i >= params.count) {{
         return;
     }}
-    let p = load_v(i * 9u);
-    let s = s_f{sdf}(p.x, p.y, p.z);
-    outp[i * 7u] = bitcast<u32>(status);
-    store_f(i * 7u + 1u, s.s0);
-    store_f(i * 7u + 4u, s.s1);
+    {sdf_call}
+{store_sdf}
 }}
 ",
-                pixel = p.pixel,
-                sdf = p.sdf,
-            );
-        }
-        Formulation::Ieee => {
-            let _ = write!(
-                out,
-                "@compute @workgroup_size(WG)
-fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
-    let i = gid.x;
-    if (i >= params.count) {{
-        return;
-    }}
-    let x = inp[i * 2u];
-    let y = inp[i * 2u + 1u];
-    let n = {row};
-    var value = 0.0;
-    var level = 0;
-    if (n >= {lo} && n <= {hi}) {{
-        PIX = {index};
-        {load_uniforms}
-        let r = s_f{pixel}(f32(x), f32(n));
-        value = r.s0;
-        level = ((i32(r.s1) % {levels}) + {levels}) % {levels};
-    }}
-    outp[i * 2u] = bitcast<u32>(value);
-    outp[i * 2u + 1u] = u32(level);
-}}
-
-@compute @workgroup_size(WG)
-fn sdf_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
-    let i = gid.x;
-    if (i >= params.count) {{
-        return;
-    }}
-    let s = s_f{sdf}(bitcast<f32>(inp[i * 3u]), bitcast<f32>(inp[i * 3u + 1u]), bitcast<f32>(inp[i * 3u + 2u]));
-    outp[i * 2u] = bitcast<u32>(s.s0);
-    outp[i * 2u + 1u] = bitcast<u32>(s.s1);
-}}
-",
-                pixel = p.pixel,
-                sdf = p.sdf,
-            );
-        }
-    }
+        helpers = e.helpers,
+        pixel_args = e.pixel_args,
+        zero = e.zero,
+        level = e.level,
+        store_pixel = e.store_pixel,
+        sdf_call = e.sdf_args.replace("{sdf}", &sdf.to_string()),
+        store_sdf = e.store_sdf,
+    );
 }
 
 /// A top-level item of a WGSL library: its name and text (with the
