@@ -6,7 +6,9 @@
 //! f32), of which the generated text keeps only the items it refers to.
 
 use common::F316;
-use scene::ir::{Binary, Dither, Formulation, Function, Logic, Program, Stmt, Unary, VecOp};
+use scene::ir::{
+    Binary, Dither, Formulation, FuncId, Function, Logic, Program, Stmt, Unary, VecOp,
+};
 use std::collections::{BTreeSet, HashMap};
 use std::fmt::Write;
 
@@ -189,10 +191,90 @@ impl Emitter<'_> {
 
     fn block(&mut self, stmts: &[Stmt]) {
         self.indent += 1;
-        for s in stmts {
-            self.stmt(s);
-        }
+        self.statements(stmts);
         self.indent -= 1;
+    }
+
+    /// A block's statements. Where it calls one function more than once
+    /// (the normal's four samples, the occlusion's five), the calls
+    /// become one call in a loop (see [`Emitter::one_call_site`]).
+    fn statements(&mut self, stmts: &[Stmt]) {
+        match repeated_call(stmts) {
+            Some((func, calls)) => self.one_call_site(stmts, func, &calls),
+            None => stmts.iter().for_each(|s| self.stmt(s)),
+        }
+    }
+
+    /// `stmts` with its calls of `func` (at positions `calls`) made through
+    /// one call site: a loop whose iteration `j` runs the statements before
+    /// call `j` (after taking call `j - 1`'s results), then the call. Every
+    /// operation runs once and in the same order as written, so the
+    /// results (and the first failure recorded) are the same; the kernel
+    /// holds one inlined copy of `func` instead of one per call, which is
+    /// what the device compiler's time grows with.
+    fn one_call_site(&mut self, stmts: &[Stmt], func: FuncId, calls: &[usize]) {
+        let Stmt::Call { args, .. } = &stmts[calls[0]] else {
+            unreachable!("positions of calls")
+        };
+        let n = self.t.num();
+        let i = self.loops;
+        self.loops += 1;
+        self.line("{");
+        self.indent += 1;
+        for k in 0..args.len() {
+            self.line(&format!("var a{i}_{k}: {n};"));
+        }
+        self.line(&format!("var c{i}: R{func};"));
+        self.line(&format!(
+            "for (var i{i}: u32 = 0u; i{i} < {}u; i{i} = i{i} + 1u) {{",
+            calls.len()
+        ));
+        self.indent += 1;
+        self.line(&format!("switch i{i} {{"));
+        let mut from = 0;
+        for (j, &at) in calls.iter().enumerate() {
+            self.indent += 1;
+            self.line(&format!("case {j}u: {{"));
+            self.indent += 1;
+            if j > 0 {
+                self.results(i, &stmts[calls[j - 1]]);
+            }
+            stmts[from..at].iter().for_each(|s| self.stmt(s));
+            if let Stmt::Call { args, .. } = &stmts[at] {
+                for (k, a) in args.iter().enumerate() {
+                    self.line(&format!("a{i}_{k} = r{a};"));
+                }
+            }
+            self.indent -= 1;
+            self.line("}");
+            self.indent -= 1;
+            from = at + 1;
+        }
+        self.line("    default: {}");
+        self.line("}");
+        let params: Vec<String> = (0..args.len()).map(|k| format!("a{i}_{k}")).collect();
+        self.line(&format!("c{i} = s_f{func}({});", params.join(", ")));
+        self.indent -= 1;
+        self.line("}");
+        self.results(i, &stmts[calls[calls.len() - 1]]);
+        self.indent -= 1;
+        self.line("}");
+        self.statements(&stmts[from..]);
+    }
+
+    /// Take the results of `call` from the loop's call value `c{i}`.
+    fn results(&mut self, i: usize, call: &Stmt) {
+        let Stmt::Call { results, tags, .. } = call else {
+            unreachable!("a call")
+        };
+        let mut l = String::new();
+        for (k, r) in results.iter().enumerate() {
+            let _ = write!(l, "r{r} = c{i}.s{k}; ");
+        }
+        for (k, t) in tags.iter().enumerate() {
+            let _ = write!(l, "t{t} = c{i}.t{k}; ");
+        }
+        self.line(l.trim_end());
     }
 
     fn stmt(&mut self, s: &Stmt) {
@@ -285,6 +367,8 @@ impl Emitter<'_> {
                 self.block(body);
                 self.line("}");
             }
+            // Only engines that explain runs take another side.
+            Stmt::Decide { .. } => {}
             Stmt::Call {
                 func,
                 args,
@@ -304,6 +388,34 @@ impl Emitter<'_> {
                 let _ = self.p;
             }
         }
+    }
+}
+
+/// The first function `stmts` calls more than once at its own level, with
+/// the positions of those calls, when the statements before its last call
+/// hold no `break` of an enclosing loop (a loop around them would catch it).
+fn repeated_call(stmts: &[Stmt]) -> Option<(FuncId, Vec<usize>)> {
+    let mut seen: Vec<FuncId> = Vec::new();
+    for s in stmts {
+        let Stmt::Call { func, .. } = s else { continue };
+        if seen.contains(func) {
+            let calls: Vec<usize> = (0..stmts.len())
+                .filter(|&k| matches!(&stmts[k], Stmt::Call { func: g, .. } if g == func))
+                .collect();
+            let last = *calls.last().expect("two calls");
+            return (!stmts[..last].iter().any(breaks_out)).then_some((*func, calls));
+        }
+        seen.push(*func);
+    }
+    None
+}
+
+/// Whether `s` holds a `break` that leaves it (one not inside a loop of its own).
+fn breaks_out(s: &Stmt) -> bool {
+    match s {
+        Stmt::Break { .. } => true,
+        Stmt::Loop { .. } => false,
+        _ => s.blocks().into_iter().flatten().any(breaks_out),
     }
 }
 
