@@ -68,6 +68,6 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Vectors(cmd) => commands::vectors::run(cmd),
         Command::Check(args) => commands::check::run(args, cast()),
         Command::Bench(args) => commands::bench::run(args, &cast()?),
-        Command::Nightly(args) => commands::nightly::run(args, &cast()?),
+        Command::Nightly(args) => commands::nightly::run(args, cast()?),
     }
 }

@@ -37,7 +37,7 @@ pub trait Kind: Sync {
     fn name(&self) -> &'static str;
 
     /// The built-in entries of this kind (the six of the design belong to
-    /// the `reference`, `jack` and `gpu` kinds).
+    /// the `reference`, `jack` and `shader` kinds).
     fn builtins(&self) -> Vec<Entry> {
         Vec::new()
     }
@@ -329,6 +329,14 @@ impl Cast {
         cast.declare(Source { file, text })?;
         cast.file = Some(file.to_path_buf());
         Ok(cast)
+    }
+
+    /// Add `entry` unless the cast has an entry of its name (a project
+    /// file's declaration of that name wins).
+    pub fn add_unless_declared(&mut self, entry: Entry) {
+        if self.get(&entry.name).is_none() {
+            self.entries.push(entry);
+        }
     }
 
     /// The project file read, if any.

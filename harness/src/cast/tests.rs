@@ -142,7 +142,7 @@ fn a_malformed_project_file_names_the_file_line_and_field() {
         ),
         (
             "[impl.x]\nkind = \"pythn\"\n",
-            "dir/harness.toml:2:8: impl.x.kind: unknown kind `pythn` (expected one of reference, jack, gpu",
+            "dir/harness.toml:2:8: impl.x.kind: unknown kind `pythn` (expected one of reference, jack, shader, pipe)",
         ),
         (
             "[impl.x]\nnumbers = \"f64\"\n",
@@ -175,8 +175,8 @@ fn a_malformed_project_file_names_the_file_line_and_field() {
         ("[impls.x]\n", "dir/harness.toml:1:2: impls: unknown field (expected `impl` or `roles`)"),
         ("[impl.x\nkind = 1\n", "dir/harness.toml:1:8: "),
         (
-            "[impl.x]\nkind = \"gpu\"\nnumbers = \"f64\"\n",
-            "dir/harness.toml:3:11: impl.x.numbers: the gpu kernels compute with float316 or f32, not f64",
+            "[impl.x]\nkind = \"shader\"\npath = \"x.wgsl\"\nnumbers = \"f64\"\n",
+            "dir/harness.toml:4:11: impl.x.numbers: unknown number type `f64` (expected f32 or float316)",
         ),
         (
             "[impl.x]\nkind = \"jack\"\nprofile = \"phone\"\n",

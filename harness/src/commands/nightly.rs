@@ -5,11 +5,13 @@
 //! the program screens, the pairs of renders with the divergent pixels of
 //! Float316 pairs localized, and their speed and error, written as one
 //! report directory (`report.json`, `index.html`, images) that replaces the
-//! previous one atomically, plus a line in the history file. The steps are
+//! previous one atomically, plus a line in the history file. The cast is
+//! the project's with the seed scene's Shadertoy port added. The steps are
 //! [`crate::nightly::steps`]. Exit 0 when the night passed
 //! ([`crate::nightly::Summary::passed`]), 1 when it did not.
 
 use crate::cast::Cast;
+use crate::impls::shader;
 use crate::nightly::{self, steps};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
@@ -41,8 +43,12 @@ pub struct NightlyArgs {
     pub scenes: Vec<String>,
 }
 
-/// Run the nightly job.
-pub fn run(args: NightlyArgs, cast: &Cast) -> Result<ExitCode> {
+/// Run the nightly job over `cast` and the seed scene's Shadertoy port
+/// ([`shader::seed_shadertoy`], unless the project file declares an entry
+/// of that name).
+pub fn run(args: NightlyArgs, mut cast: Cast) -> Result<ExitCode> {
+    cast.add_unless_declared(shader::seed_shadertoy());
+    let cast = &cast;
     let keys = steps::keys();
     if let Some(bad) = args
         .steps

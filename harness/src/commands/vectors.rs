@@ -1,7 +1,9 @@
 //! `harness vectors regenerate [--only NAME] [--dir DIR]`: rebuild the
 //! committed vector sets deterministically (same seed, same vectors);
 //! `harness vectors check FILE`: validate a set file; `harness vectors gen
-//! --level 1|2 [--op OP] --out FILE`: TestFloat-style Float316 cases.
+//! --level 1|2 [--op OP] --out FILE`: TestFloat-style Float316 cases;
+//! `harness vectors gen --scene FILE [--pixels] --out FILE`: a scene's own
+//! SDF points or pixels (`vectors::gen::scene_derived`).
 //!
 //! Pixel sets take their silhouette and shadow-edge pixels from ref-f316's
 //! shades, and their dither-tie pixels (dithered value exactly 0.5) from
@@ -16,6 +18,7 @@ use rayon::prelude::*;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use vectors::gen::pixels::PixelFacts;
+use vectors::gen::scene_derived;
 use vectors::gen::testfloat::{self, CaseLevel};
 use vectors::named::SETS;
 use vectors::{Level, PixelVector, Shard, Vector, VectorSet};
@@ -32,11 +35,20 @@ pub enum VectorsCommand {
         #[arg(long)]
         dir: Option<PathBuf>,
     },
-    /// Write TestFloat-style Float316 cases as a set (docs/coverage.md).
+    /// Write TestFloat-style Float316 cases as a set (docs/coverage.md),
+    /// or with --scene the vectors derived from a scene (docs/scenes.md).
     Gen {
         /// TestFloat level: 1 (quick) or 2 (thorough).
-        #[arg(long)]
-        level: CaseLevel,
+        #[arg(long, required_unless_present = "scene")]
+        level: Option<CaseLevel>,
+        /// A scene description: write its SDF points near every surface,
+        /// seam, blend region and repetition cell boundary.
+        #[arg(long, conflicts_with_all = ["level", "op", "shard"])]
+        scene: Option<PathBuf>,
+        /// With --scene: its pixels on silhouettes, the horizon, and
+        /// reflection, shadow and surface edges instead.
+        #[arg(long, requires = "scene")]
+        pixels: bool,
         /// Only this operation (default: every operation).
         #[arg(long)]
         op: Option<Op>,
@@ -140,14 +152,29 @@ pub fn run(cmd: VectorsCommand) -> anyhow::Result<ExitCode> {
         }
         VectorsCommand::Gen {
             level,
+            scene,
+            pixels,
             op,
             seed,
             shard,
             out,
         } => {
-            let ops = op.map_or_else(|| Op::ALL.to_vec(), |op| vec![op]);
-            let set = testfloat::set(&ops, level, seed);
-            let set = shard.unwrap_or(Shard::WHOLE).of_set(&set);
+            let set = match (scene, level) {
+                (Some(file), _) => {
+                    let checked = scene::load(&file)?;
+                    if pixels {
+                        scene_derived::pixel_set(&checked)?
+                    } else {
+                        scene_derived::sdf_set(&checked, seed)?
+                    }
+                }
+                (None, Some(level)) => {
+                    let ops = op.map_or_else(|| Op::ALL.to_vec(), |op| vec![op]);
+                    let set = testfloat::set(&ops, level, seed);
+                    shard.unwrap_or(Shard::WHOLE).of_set(&set)
+                }
+                (None, None) => bail!("say --level 1|2 or --scene FILE"),
+            };
             set.save(&out)?;
             println!("{}: {} vectors", out.display(), set.vectors.len());
             Ok(ExitCode::SUCCESS)

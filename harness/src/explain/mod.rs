@@ -32,8 +32,8 @@ use anyhow::{bail, Context, Result};
 use common::{Outcome, F316};
 use rayon::prelude::*;
 use reference::{
-    blame, Decision, DecisionRecord, Follow, RefImpl, Reference, Settings, ShadowOptions,
-    ShadowRun, SiteKey, Variant,
+    blame, Decision, DecisionRecord, Described, Follow, RefImpl, Reference, Settings,
+    ShadowOptions, ShadowRun, SiteKey, Variant,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -213,8 +213,47 @@ impl Explanation {
 #[derive(Clone, Debug)]
 pub struct Explainer {
     label: String,
-    low: Reference,
-    oracle: Reference,
+    low: Subject,
+    oracle: Subject,
+}
+
+/// What an explainer runs: the hand-written seed scene, or a scene made
+/// from its description (the interpreter reports the same decisions).
+#[derive(Clone, Debug)]
+enum Subject {
+    Seed(Box<Reference>),
+    Scene(Box<Described>),
+}
+
+impl Subject {
+    fn shadow_pixel(&self, x: usize, y: usize, options: &ShadowOptions) -> ShadowRun {
+        match self {
+            Subject::Seed(r) => r.shadow_pixel(x, y, options),
+            Subject::Scene(d) => d.shadow_pixel(x as u32, y as u32, options),
+        }
+    }
+
+    fn shadow_sdf(&self, p: [F316; 3], options: &ShadowOptions) -> ShadowRun {
+        match self {
+            Subject::Seed(r) => r.shadow_sdf(p, options),
+            Subject::Scene(d) => d.shadow_sdf(p, options),
+        }
+    }
+}
+
+/// The implementation and settings of a reference label.
+fn parse_label(label: &str) -> Result<(RefImpl, Settings)> {
+    let mut parts = label.split('+');
+    let name = parts.next().unwrap_or_default();
+    let implementation: RefImpl = name.parse()?;
+    if implementation == RefImpl::F64 {
+        bail!("{label} is the oracle itself");
+    }
+    let settings = parts.try_fold(Settings::default(), |s, v| {
+        let variant: Variant = v.parse()?;
+        anyhow::Ok(variant.apply(s))
+    })?;
+    Ok((implementation, settings))
 }
 
 /// The reference implementation whose explanation holds for `imp` (when
@@ -244,23 +283,29 @@ impl Explainer {
     /// The explainer of a reference label (`ref-f316`, `ref-f316+newton-1`,
     /// `ref-f32`) on the seed scene.
     pub fn new(label: &str) -> Result<Self> {
-        let mut parts = label.split('+');
-        let name = parts.next().unwrap_or_default();
-        let implementation: RefImpl = name.parse()?;
-        if implementation == RefImpl::F64 {
-            bail!("{label} is the oracle itself");
-        }
-        let settings = parts.try_fold(Settings::default(), |s, v| {
-            let variant: Variant = v.parse()?;
-            anyhow::Ok(variant.apply(s))
-        })?;
+        let (implementation, settings) = parse_label(label)?;
         let scene = reference::Scene::default();
         let low = Reference::new(implementation, &scene, settings)
             .with_context(|| format!("opening {label}"))?;
         Ok(Explainer {
             label: label.to_string(),
-            low,
-            oracle: Reference::seed(RefImpl::F64),
+            low: Subject::Seed(Box::new(low)),
+            oracle: Subject::Seed(Box::new(Reference::seed(RefImpl::F64))),
+        })
+    }
+
+    /// The explainer of a reference label on a described scene: both
+    /// sides made from the description.
+    pub fn for_scene(label: &str, scene: &scene::Checked) -> Result<Self> {
+        let (implementation, settings) = parse_label(label)?;
+        let low = Described::new(implementation, scene, settings)
+            .with_context(|| format!("opening {label} on scene {}", scene.description.name))?;
+        let oracle = Described::new(RefImpl::F64, scene, Settings::default())
+            .with_context(|| format!("opening {ORACLE} on scene {}", scene.description.name))?;
+        Ok(Explainer {
+            label: label.to_string(),
+            low: Subject::Scene(Box::new(low)),
+            oracle: Subject::Scene(Box::new(oracle)),
         })
     }
 
@@ -273,15 +318,10 @@ impl Explainer {
     pub fn pixel(&self, x: usize, y: usize) -> Explanation {
         let run = |o: &ShadowOptions| self.low.shadow_pixel(x, y, o);
         let oracle = self.oracle.shadow_pixel(x, y, &ShadowOptions::default());
-        let threshold = common::image_consts::BAYER[(y % 8) * 8 + (x % 8)];
-        let threshold = 1.0 - f64::from(threshold) / 64.0;
-        self.explain(
-            format!("pixel({x},{y})"),
-            "shade",
-            Some(threshold),
-            &oracle,
-            run,
-        )
+        // The seed's threshold; a described scene's output differs.
+        let threshold = matches!(self.low, Subject::Seed(_))
+            .then(|| 1.0 - f64::from(common::image_consts::BAYER[(y % 8) * 8 + (x % 8)]) / 64.0);
+        self.explain(format!("pixel({x},{y})"), "shade", threshold, &oracle, run)
     }
 
     /// Why the SDF query at `p` differs.
@@ -295,14 +335,17 @@ impl Explainer {
     /// The pixels of the image worth explaining: those whose dithered bit
     /// differs from the oracle's (`true`), or, when none does, the
     /// `largest` whose shades differ most (`false`).
-    pub fn image_pixels(&self, largest: usize) -> (Vec<(usize, usize)>, bool) {
-        let (low, oracle) = (self.low.render(), self.oracle.render());
+    pub fn image_pixels(&self, largest: usize) -> Result<(Vec<(usize, usize)>, bool)> {
+        let (Subject::Seed(low), Subject::Seed(oracle)) = (&self.low, &self.oracle) else {
+            bail!("--image explains the seed scene only; name pixels with --pixel on a described scene");
+        };
+        let (low, oracle) = (low.render(), oracle.render());
         let differing = differing_pixels(&low, &oracle);
-        if differing.is_empty() {
+        Ok(if differing.is_empty() {
             (largest_differences(&low, &oracle, largest), false)
         } else {
             (differing, true)
-        }
+        })
     }
 
     /// Every pixel of `pixels`, in parallel, in order.

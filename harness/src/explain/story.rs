@@ -19,6 +19,8 @@ fn meaning(decision: Decision, taken: bool) -> &'static str {
         (Decision::Miss, false) => "hits a surface",
         (Decision::Shadow, true) => "in shadow",
         (Decision::Shadow, false) => "lit",
+        (Decision::Bounce, true) => "meets a sphere and reflects",
+        (Decision::Bounce, false) => "meets no sphere",
         (Decision::AngleLow | Decision::ClampLow, true) => "clamped to 0",
         (Decision::AngleHigh | Decision::ClampHigh, true) => "clamped to 1",
         (_, false) if decision != Decision::Dither => "not clamped",

@@ -5,7 +5,6 @@
 //! To add a kind: write its module here and add it to [`KINDS`] (see
 //! [`crate::cast`] for the contract). Nothing else changes.
 
-pub mod gpu;
 pub mod jack;
 pub mod pipe;
 pub mod reference;
@@ -18,7 +17,6 @@ use crate::cast::Kind;
 pub const KINDS: &[&dyn Kind] = &[
     &reference::ReferenceKind,
     &jack::JackKind,
-    &gpu::GpuKind,
     &shader::ShaderKind,
     &pipe::PipeKind,
 ];
@@ -30,6 +28,28 @@ pub(crate) fn op_cases(batch: &[vectors::Vector]) -> Vec<(common::Op, common::F3
         .iter()
         .filter_map(|v| match v {
             vectors::Vector::Op(o) => Some((o.op, o.a, o.b.unwrap_or(common::F316::ZERO))),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The points of an sdf-level batch.
+pub(crate) fn sdf_points(batch: &[vectors::Vector]) -> Vec<[common::F316; 3]> {
+    batch
+        .iter()
+        .filter_map(|v| match v {
+            vectors::Vector::Sdf(s) => Some(s.p),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The pixels `(x, y)` of a pixel-level batch.
+pub(crate) fn pixel_coords(batch: &[vectors::Vector]) -> Vec<(u16, u16)> {
+    batch
+        .iter()
+        .filter_map(|v| match v {
+            vectors::Vector::Pixel(p) => Some((p.x, p.y)),
             _ => None,
         })
         .collect()

@@ -4,14 +4,19 @@
 //! outruns its time limit fails like a real component: the front end's
 //! diagnostic (file, line, column) or the timeout is the implementation's
 //! error, an endless loop's pixels are hangs, and the harness goes on.
+//!
+//! Its built-in entries are our own kernels, `gpu-f32` and `gpu-f316`:
+//! our WGSL (compiled into the binary), written to the same convention,
+//! run without the loop guard and time limit (their loops have constant
+//! bounds). Without an adapter they are unavailable, with the reason.
 
 use crate::cast::file::{FieldError, Fields};
 use crate::cast::{Entry, Kind, Opener, Request};
 use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
 use common::image_consts::{HEIGHT, WIDTH};
-use common::{Outcome, F316};
+use common::Outcome;
 use gpu::shader::{
-    Language, Shade, ShaderNum, ShaderNumbers, ShaderOptions, ShaderSource, UserShader,
+    Language, Provides, Shade, ShaderNum, ShaderNumbers, ShaderOptions, ShaderSource, UserShader,
 };
 use gpu::GpuError;
 use std::path::PathBuf;
@@ -19,12 +24,31 @@ use std::time::Duration;
 use toml::de::DeValue;
 use vectors::{Level, Vector};
 
-/// The `shader` kind (no built-in entries).
+/// The `shader` kind: our two kernels are its built-in entries.
 pub struct ShaderKind;
+
+/// The built-in entry of our own kernel computing with `numbers`.
+fn ours(numbers: ShaderNumbers) -> Entry {
+    let opener = ShaderOpener {
+        source: Source::Embedded(ShaderSource::ours(numbers)),
+        options: ShaderOptions::ours(numbers),
+    };
+    match numbers {
+        ShaderNumbers::Float316 => Entry::new("gpu-f316", "shader", Numbers::Float316, opener)
+            .about("the Float316 kernels (Float316 as i32 arithmetic), wgpu"),
+        ShaderNumbers::F32 => Entry::new("gpu-f32", "shader", Numbers::F32, opener)
+            .about("the f32 scene kernels, wgpu")
+            .levels(&[Level::Sdf, Level::Pixels, Level::Image]),
+    }
+}
 
 impl Kind for ShaderKind {
     fn name(&self) -> &'static str {
         "shader"
+    }
+
+    fn builtins(&self) -> Vec<Entry> {
+        vec![ours(ShaderNumbers::F32), ours(ShaderNumbers::Float316)]
     }
 
     fn declare(&self, name: &str, fields: &mut Fields<'_>) -> Result<Entry, FieldError> {
@@ -50,11 +74,13 @@ impl Kind for ShaderKind {
             options.shade = shade;
         }
         if let Some(limit) = positive(fields, "loop_limit")? {
-            options.loop_limit = u32::try_from(limit)
-                .map_err(|_| fields.error("loop_limit", "at most 4294967295"))?;
+            options.loop_limit = Some(
+                u32::try_from(limit)
+                    .map_err(|_| fields.error("loop_limit", "at most 4294967295"))?,
+            );
         }
         if let Some(seconds) = positive(fields, "timeout_s")? {
-            options.time_limit = Duration::from_secs(seconds);
+            options.time_limit = Some(Duration::from_secs(seconds));
         }
         // The front end alone (no device) decides the levels; a shader that
         // does not compile is still an entry, whose opening fails with the
@@ -62,17 +88,7 @@ impl Kind for ShaderKind {
         let levels = match ShaderSource::read(&path, language)
             .and_then(|source| UserShader::check(&source, &options))
         {
-            Ok(provides) => {
-                let mut levels = Vec::new();
-                if provides.ops() {
-                    levels.push(Level::Ops);
-                }
-                if provides.sdf() {
-                    levels.push(Level::Sdf);
-                }
-                levels.extend([Level::Pixels, Level::Image]);
-                levels
-            }
+            Ok(provides) => levels_of(&provides),
             Err(_) => vec![Level::Pixels, Level::Image],
         };
         let kind_numbers = match numbers {
@@ -84,14 +100,30 @@ impl Kind for ShaderKind {
             "shader",
             kind_numbers,
             ShaderOpener {
-                path: path.clone(),
-                language,
+                source: Source::File {
+                    path: path.clone(),
+                    language,
+                },
                 options,
             },
         )
         .about(format!("the shader {}, wgpu", path.display()))
         .levels(&levels))
     }
+}
+
+/// The levels a shader answers: ops and sdf when it defines `op` and
+/// `sdf`, pixels and image always.
+fn levels_of(provides: &Provides) -> Vec<Level> {
+    let mut levels = Vec::new();
+    if provides.ops() {
+        levels.push(Level::Ops);
+    }
+    if provides.sdf() {
+        levels.push(Level::Sdf);
+    }
+    levels.extend([Level::Pixels, Level::Image]);
+    levels
 }
 
 /// A positive integer field, if present.
@@ -110,17 +142,66 @@ fn positive(fields: &mut Fields<'_>, key: &str) -> Result<Option<u64>, FieldErro
         .ok_or_else(|| fields.error(key, "expected a positive integer"))
 }
 
+/// The name of the seed scene's Shadertoy port in the nightly's cast.
+pub const SEED_SHADERTOY: &str = "seed-shadertoy";
+
+/// The seed scene's Shadertoy port (examples/shaders/seed.glsl, compiled
+/// into the binary; grey, so its shade is `fragColor.r`) as the entry
+/// [`SEED_SHADERTOY`]: the nightly's cast has it by default, so that a
+/// user's shader runs every night, compared with ref-f64 by error figures
+/// and dithered-pixel flips like any f32 implementation.
+pub fn seed_shadertoy() -> Entry {
+    let source = ShaderSource::from_text(
+        "examples/shaders/seed.glsl",
+        include_str!("../../../examples/shaders/seed.glsl"),
+        Language::Glsl,
+    );
+    let options = ShaderOptions {
+        shade: Shade::Red,
+        ..ShaderOptions::default()
+    };
+    let levels = UserShader::check(&source, &options)
+        .map(|provides| levels_of(&provides))
+        .unwrap_or_else(|_| vec![Level::Pixels, Level::Image]);
+    Entry::new(
+        SEED_SHADERTOY,
+        "shader",
+        Numbers::F32,
+        ShaderOpener {
+            source: Source::Embedded(source),
+            options,
+        },
+    )
+    .about("the seed scene's Shadertoy port (examples/shaders/seed.glsl), wgpu")
+    .levels(&levels)
+}
+
+/// Where an entry's shader comes from.
+enum Source {
+    /// Compiled into the binary: our own kernels, the seed's Shadertoy port.
+    Embedded(ShaderSource),
+    /// A user's file.
+    File {
+        path: PathBuf,
+        language: Option<Language>,
+    },
+}
+
 /// Compiles the shader on the preferred adapter.
 struct ShaderOpener {
-    path: PathBuf,
-    language: Option<Language>,
+    source: Source,
     options: ShaderOptions,
 }
 
 impl Opener for ShaderOpener {
     fn open(&self, request: &Request<'_>) -> Result<Box<dyn Implementation>, ImplError> {
         request.seed_scene_only()?;
-        let source = ShaderSource::read(&self.path, self.language).map_err(failed)?;
+        let source = match &self.source {
+            Source::Embedded(source) => source.clone(),
+            Source::File { path, language } => {
+                ShaderSource::read(path, *language).map_err(failed)?
+            }
+        };
         let shader = UserShader::open(&source, &self.options).map_err(|e| match e {
             GpuError::NoAdapter { .. } => {
                 ImplError::Unavailable(format!("no usable wgpu adapter: {e}"))
@@ -184,14 +265,7 @@ impl Implementation for ShaderAdapter {
                 out.into_iter().map(|o| o.map(Answer::from)).collect()
             }
             Some(Vector::Sdf(_)) => {
-                let points: Vec<[F316; 3]> = batch
-                    .iter()
-                    .filter_map(|v| match v {
-                        Vector::Sdf(s) => Some(s.p),
-                        _ => None,
-                    })
-                    .collect();
-                let out = self.shader.sdf(&points).map_err(failed)?;
+                let out = self.shader.sdf(&super::sdf_points(batch)).map_err(failed)?;
                 out.into_iter()
                     .map(|o| {
                         o.map(|(sd, col)| Answer::Sdf {
@@ -202,14 +276,10 @@ impl Implementation for ShaderAdapter {
                     .collect()
             }
             Some(Vector::Pixel(_)) => {
-                let pixels: Vec<(u16, u16)> = batch
-                    .iter()
-                    .filter_map(|v| match v {
-                        Vector::Pixel(p) => Some((p.x, p.y)),
-                        _ => None,
-                    })
-                    .collect();
-                let out = self.shader.pixels(&pixels).map_err(failed)?;
+                let out = self
+                    .shader
+                    .pixels(&super::pixel_coords(batch))
+                    .map_err(failed)?;
                 out.into_iter()
                     .map(|o| {
                         o.map(|(shade, white)| Answer::Pixel {
@@ -239,8 +309,28 @@ impl Implementation for ShaderAdapter {
 mod tests {
     use crate::cast::Cast;
     use crate::implementation::Numbers;
+    use gpu::shader::{ShaderNumbers, ShaderOptions, ShaderSource, UserShader};
     use std::path::{Path, PathBuf};
     use vectors::Level;
+
+    /// gpu-f32 and gpu-f316 are shader entries over our own WGSL, and the
+    /// levels they list are what the front end finds in it.
+    #[test]
+    fn our_kernels_are_shader_entries_of_the_levels_their_wgsl_provides() {
+        let cast = Cast::builtin();
+        for (name, numbers) in [
+            ("gpu-f32", ShaderNumbers::F32),
+            ("gpu-f316", ShaderNumbers::Float316),
+        ] {
+            let entry = cast.get(name).expect("built-in");
+            assert_eq!(entry.kind, "shader");
+            let provides =
+                UserShader::check(&ShaderSource::ours(numbers), &ShaderOptions::ours(numbers))
+                    .expect("our WGSL follows the convention");
+            assert_eq!(entry.levels, super::levels_of(&provides), "{name}");
+        }
+        assert_eq!(cast.get("gpu-f316").unwrap().levels, Level::ALL);
+    }
 
     /// A project file at the repository's root, so that paths are the
     /// repository's.

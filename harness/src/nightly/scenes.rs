@@ -2,7 +2,9 @@
 //! every shipped one in `vectors/scenes/`) rendered from its description on
 //! each opened implementation that supports it: the Float316 ones compared
 //! bit for bit (gpu-f316 against ref-f316 on every pixel's shade and level,
-//! and on SDF queries), the float ones by their error against ref-f64; and
+//! and on SDF queries: uniform ones and those derived from the scene, near
+//! its surfaces, seams and cell boundaries), the float ones by their error
+//! against ref-f64; and
 //! per scene what it uses (shapes, Float316 operations), what it never
 //! reaches (operations, operand classes, traps, over traced ref-f316
 //! pixels) and its cost per pixel on each implementation.
@@ -63,6 +65,10 @@ const TRACE_STRIDE: usize = 8;
 
 /// SDF query points compared per scene.
 const SDF_POINTS: usize = 512;
+
+/// The seed of the scene-derived SDF points
+/// (`vectors::gen::scene_derived`).
+const DERIVED_SEED: u64 = 17;
 
 /// Examples kept per comparison.
 const EXAMPLES: usize = 5;
@@ -169,7 +175,13 @@ fn one_scene(night: &mut Night<'_>, gpu: Option<&gpu::Gpu>, file: &Path) -> Resu
         comparisons.push(bit_exact_pixels(&scope, a, b));
     }
     if let (Some(d), Some((gpu, k))) = (&f316, gpu.zip(f316_kernel.as_ref())) {
-        comparisons.push(bit_exact_sdf(&scope, d, gpu, k)?);
+        let mut points = sdf_points();
+        let derived = vectors::gen::scene_derived::sdf_set(&checked, DERIVED_SEED)?;
+        points.extend(derived.vectors.iter().filter_map(|v| match v {
+            vectors::Vector::Sdf(s) => Some(s.p),
+            _ => None,
+        }));
+        comparisons.push(bit_exact_sdf(&scope, d, gpu, k, &points)?);
     }
     if let Some(oracle) = find("ref-f64") {
         for label in ["ref-f32", "gpu-f32"] {
@@ -200,25 +212,11 @@ fn cost(label: &str, setup_s: f64, render_s: f64, image: &SceneImage) -> SceneCo
 
 /// The kinds of the description's nodes.
 fn shapes(checked: &scene::Checked) -> Vec<String> {
-    use scene::desc::Node;
     let kinds: BTreeSet<&str> = checked
         .description
         .nodes
         .values()
-        .map(|n| match n {
-            Node::Plane(_) => "plane",
-            Node::Sphere(_) => "sphere",
-            Node::Torus(_) => "torus",
-            Node::Box(_) => "box",
-            Node::RoundBox(_) => "round_box",
-            Node::Capsule(_) => "capsule",
-            Node::Cylinder(_) => "cylinder",
-            Node::Union(_) => "union",
-            Node::SmoothUnion(_) => "smooth_union",
-            Node::Subtraction(_) => "subtraction",
-            Node::Intersection(_) => "intersection",
-            Node::Repeat(_) => "repeat",
-        })
+        .map(scene::check::node_kind)
         .collect();
     kinds.into_iter().map(String::from).collect()
 }
@@ -285,15 +283,16 @@ fn sdf_points() -> Vec<[F316; 3]> {
         .collect()
 }
 
-/// ref-f316 against gpu-f316 on SDF queries: distance and colour triples.
+/// ref-f316 against gpu-f316 on SDF queries `points`: distance and colour
+/// triples.
 fn bit_exact_sdf(
     scope: &str,
     ours: &Described,
     gpu: &gpu::Gpu,
     kernel: &gpu::SceneKernel,
+    points: &[[F316; 3]],
 ) -> Result<Comparison> {
-    let points = sdf_points();
-    let theirs = kernel.sdf(gpu, &points)?;
+    let theirs = kernel.sdf(gpu, points)?;
     let mut c = comparison("sdf", scope, "ref-f316", "gpu-f316", BIT_EXACT);
     for (p, g) in points.iter().zip(&theirs) {
         c.cases += 1;

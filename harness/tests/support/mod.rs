@@ -22,7 +22,6 @@ pub fn assert_agrees_with_ref_f316_on_the_small_sets(subject: &dyn Implementatio
 }
 
 /// `a` against `b` on the committed small ops set, asserted to diverge.
-#[allow(dead_code)] // the GPU tests, which include this module too, do not use it
 pub fn assert_diverges_on_the_small_ops_set(
     a: &dyn Implementation,
     b: &dyn Implementation,

@@ -2,8 +2,7 @@
 //! kernel's pipeline, created once by [`Gpu::new`] and shared by all calls.
 
 use crate::error::GpuError;
-use crate::kernel::{Kernel, KernelSpec};
-use crate::{float316, float32};
+use crate::shader::{Compiled, ShaderNumbers, ShaderOptions, ShaderSource};
 use serde::{Deserialize, Serialize};
 use std::sync::{Arc, Mutex};
 
@@ -88,16 +87,14 @@ pub(crate) fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// The GPU context: adapter, device, queue and the pipelines of every
-/// kernel, created once. Methods take `&self`; buffers are reused between
-/// calls.
+/// The GPU context: adapter, device, queue and our two seed-scene kernels
+/// (`gpu-f32`, `gpu-f316`: our own WGSL run as shaders of the convention,
+/// [`ShaderSource::ours`]), created once; the scene kernels compile on the
+/// same device. Methods take `&self`; buffers are reused between calls.
 pub struct Gpu {
     pub(crate) dev: Device,
-    pub(crate) f316_ops: Kernel,
-    pub(crate) f316_sdf: Kernel,
-    pub(crate) f316_pixels: Kernel,
-    pub(crate) f32_sdf: Kernel,
-    pub(crate) f32_pixels: Kernel,
+    pub(crate) f316: Compiled,
+    pub(crate) f32: Compiled,
 }
 
 /// Preference among adapter kinds: real GPUs first, the CPU last.
@@ -199,37 +196,28 @@ impl Device {
 }
 
 impl Gpu {
-    /// Open the preferred adapter and compile every kernel. The time this
-    /// takes is the set-up cost, separate from any render.
+    /// Open the preferred adapter, compile both shaders' kernels and
+    /// dispatch each once. A driver may compile a kernel's machine code
+    /// only at its first dispatch (lavapipe does: 13 s for the Float316
+    /// pixel kernel when Mesa's shader cache is cold), and that belongs to
+    /// set-up, not to the first measured batch. The time this takes is the
+    /// set-up cost, separate from any render.
     ///
     /// `WGPU_BACKEND` (e.g. `vulkan`) restricts the backends tried.
     pub fn new() -> Result<Gpu, GpuError> {
         let dev = Device::open()?;
-        let compile = |spec: &KernelSpec| Kernel::new(&dev, spec);
-        let gpu = Gpu {
-            f316_ops: compile(&float316::OPS)?,
-            f316_sdf: compile(&float316::SDF)?,
-            f316_pixels: compile(&float316::PIXELS)?,
-            f32_sdf: compile(&float32::SDF)?,
-            f32_pixels: compile(&float32::PIXELS)?,
-            dev,
+        let ours = |numbers| {
+            Compiled::new(
+                &dev,
+                &ShaderSource::ours(numbers),
+                &ShaderOptions::ours(numbers),
+            )
         };
-        gpu.warm_up()?;
-        Ok(gpu)
-    }
-
-    /// Dispatch every kernel once on one item. A driver may compile a
-    /// kernel's machine code only at its first dispatch (lavapipe does:
-    /// 13 s for the Float316 pixel kernel when Mesa's shader cache is
-    /// cold), and that belongs to set-up, not to the first measured batch.
-    fn warm_up(&self) -> Result<(), GpuError> {
-        let one = common::F316::ONE;
-        self.f316_ops(&[(common::Op::Add, one, one)])?;
-        self.f316_sdf(&[[one; 3]])?;
-        self.f316_pixels(&[(256, 128)])?;
-        self.f32_sdf(&[[1.0; 3]])?;
-        self.f32_pixels(&[(256, 128)])?;
-        Ok(())
+        Ok(Gpu {
+            f316: ours(ShaderNumbers::Float316)?,
+            f32: ours(ShaderNumbers::F32)?,
+            dev,
+        })
     }
 
     /// The adapter the kernels run on.

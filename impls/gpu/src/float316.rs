@@ -1,23 +1,13 @@
-//! `gpu-f316`: Float316 as WGSL integer arithmetic (shaders/f316.wgsl),
-//! bit-exact with the reference. Kernels for single operations, scene
-//! distances and pixel shades.
+//! `gpu-f316`: Float316 as WGSL integer arithmetic (shaders/f316.wgsl, a
+//! Float316 shader of the convention), bit-exact with the reference.
+//! Single operations, scene distances and pixel shades, and the word
+//! encoding every Float316 kernel shares.
 
 use crate::context::Gpu;
 use crate::error::GpuError;
-use crate::image::{all_pixels, pixel_words};
-use crate::kernel::KernelSpec;
+use crate::image::all_pixels;
+use crate::shader::{sdf_words, ShaderNum, ShaderNumbers};
 use common::{Op, OpValue, Outcome, F316};
-
-const SOURCE: &str = include_str!("shaders/f316.wgsl");
-
-/// One operation: op code, a, b -> status, result.
-pub(crate) const OPS: KernelSpec = KernelSpec::new("f316 ops", SOURCE, "ops_main", 7, 4);
-
-/// Scene query: p -> status, sd, col.
-pub(crate) const SDF: KernelSpec = KernelSpec::new("f316 sdf", SOURCE, "sdf_main", 9, 7);
-
-/// Pixel shade: x, y -> status, value, white.
-pub(crate) const PIXELS: KernelSpec = KernelSpec::new("f316 pixels", SOURCE, "pixels_main", 2, 5);
 
 /// The op code the kernel switches on: the index in [`Op::ALL`].
 pub(crate) fn op_code(op: Op) -> u32 {
@@ -48,39 +38,26 @@ pub(crate) fn outcome<T>(status: u32, value: impl FnOnce() -> T) -> Outcome<T> {
     }
 }
 
+/// The triple of an answer of the Float316 shader.
+fn f316(n: ShaderNum) -> F316 {
+    n.f316().expect("a Float316 shader answers triples")
+}
+
 impl Gpu {
     /// Apply Float316 operations: `(op, a, b)` per case; unary operations
     /// ignore `b`. `gt` gives [`OpValue::Bool`], every other op a triple.
     pub fn f316_ops(&self, cases: &[(Op, F316, F316)]) -> Result<Vec<Outcome<OpValue>>, GpuError> {
-        let mut words = Vec::with_capacity(OPS.in_words * cases.len());
-        for &(op, a, b) in cases {
-            words.push(op_code(op));
-            push_triple(&mut words, a);
-            push_triple(&mut words, b);
-        }
-        let out = self.f316_ops.run(&self.dev, &words)?;
-        Ok(out
-            .chunks(OPS.out_words)
-            .zip(cases)
-            .map(|(o, &(op, _, _))| {
-                outcome(o[0], || match op {
-                    Op::Gt => OpValue::Bool(o[3] == 1),
-                    _ => OpValue::Num(triple(&o[1..4])),
-                })
-            })
-            .collect())
+        self.f316.ops(&self.dev, cases)
     }
 
     /// The scene at Float316 points: `(sd, col)` per point.
     pub fn f316_sdf(&self, points: &[[F316; 3]]) -> Result<Vec<Outcome<(F316, F316)>>, GpuError> {
-        let mut words = Vec::with_capacity(SDF.in_words * points.len());
-        for p in points {
-            p.iter().for_each(|&c| push_triple(&mut words, c));
-        }
-        let out = self.f316_sdf.run(&self.dev, &words)?;
-        Ok(out
-            .chunks(SDF.out_words)
-            .map(|o| outcome(o[0], || (triple(&o[1..4]), triple(&o[4..7]))))
+        let words = sdf_words(ShaderNumbers::Float316, points);
+        Ok(self
+            .f316
+            .sdf(&self.dev, &words)?
+            .into_iter()
+            .map(|o| o.map(|(sd, col)| (f316(sd), f316(col))))
             .collect())
     }
 
@@ -90,10 +67,11 @@ impl Gpu {
         &self,
         pixels: &[(u16, u16)],
     ) -> Result<Vec<Outcome<(F316, bool)>>, GpuError> {
-        let out = self.f316_pixels.run(&self.dev, &pixel_words(pixels)?)?;
-        Ok(out
-            .chunks(PIXELS.out_words)
-            .map(|o| outcome(o[0], || (triple(&o[1..4]), o[4] == 1)))
+        Ok(self
+            .f316
+            .pixels(&self.dev, pixels)?
+            .into_iter()
+            .map(|o| o.map(|(v, white)| (f316(v), white)))
             .collect())
     }
 

@@ -1,38 +1,47 @@
 //! `gpu-f32`: the float formulation of the scene (spec section 7) in WGSL
-//! f32 (shaders/f32.wgsl). Kernels for scene distances and pixel shades.
+//! f32 (shaders/f32.wgsl, an f32 shader of the convention). Scene
+//! distances and pixel shades; the harness clamps and dithers the shade.
 
 use crate::context::Gpu;
 use crate::error::GpuError;
-use crate::image::{all_pixels, pixel_words};
-use crate::kernel::KernelSpec;
+use crate::image::all_pixels;
+use crate::shader::ShaderNum;
+use common::Outcome;
 
-const SOURCE: &str = include_str!("shaders/f32.wgsl");
+/// The value of an answer of the f32 shader: its loops have constant
+/// bounds and it has no `status`, so every answer is a value.
+fn value<T>(o: Outcome<T>) -> Result<T, GpuError> {
+    let kind = o.kind();
+    o.value().ok_or_else(|| GpuError::Execution {
+        kernel: "f32".into(),
+        message: format!("the f32 kernel answered {kind}, not a value"),
+    })
+}
 
-/// Scene query: p -> sd, col.
-pub(crate) const SDF: KernelSpec = KernelSpec::new("f32 sdf", SOURCE, "sdf_main", 3, 2);
-
-/// Pixel shade: x, y -> value, white.
-pub(crate) const PIXELS: KernelSpec = KernelSpec::new("f32 pixels", SOURCE, "pixels_main", 2, 2);
+/// The number of an answer of the f32 shader.
+fn f32_of(n: ShaderNum) -> f32 {
+    n.f32().expect("an f32 shader answers f32")
+}
 
 impl Gpu {
     /// The scene at f32 points: `(sd, col)` per point.
     pub fn f32_sdf(&self, points: &[[f32; 3]]) -> Result<Vec<(f32, f32)>, GpuError> {
         let words: Vec<u32> = points.iter().flatten().map(|c| c.to_bits()).collect();
-        let out = self.f32_sdf.run(&self.dev, &words)?;
-        Ok(out
-            .chunks(SDF.out_words)
-            .map(|o| (f32::from_bits(o[0]), f32::from_bits(o[1])))
-            .collect())
+        self.f32
+            .sdf(&self.dev, &words)?
+            .into_iter()
+            .map(|o| value(o).map(|(sd, col)| (f32_of(sd), f32_of(col))))
+            .collect()
     }
 
     /// Pixel shades: the value clamped to [0, 1] before dithering and
     /// whether the dithered pixel is white, per `(x, y)`.
     pub fn f32_pixels(&self, pixels: &[(u16, u16)]) -> Result<Vec<(f32, bool)>, GpuError> {
-        let out = self.f32_pixels.run(&self.dev, &pixel_words(pixels)?)?;
-        Ok(out
-            .chunks(PIXELS.out_words)
-            .map(|o| (f32::from_bits(o[0]), o[1] == 1))
-            .collect())
+        self.f32
+            .pixels(&self.dev, pixels)?
+            .into_iter()
+            .map(|o| value(o).map(|(v, white)| (f32_of(v), white)))
+            .collect()
     }
 
     /// The whole image, row by row ([`all_pixels`] order).

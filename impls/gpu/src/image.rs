@@ -11,14 +11,16 @@ pub fn all_pixels() -> Vec<(u16, u16)> {
         .collect()
 }
 
-/// The dither matrix for the kernels, as WGSL generated from
-/// [`BAYER`] (so there is one copy of it): `BAYER` and `bayer(x, y)`.
-pub(crate) fn bayer_wgsl() -> String {
+/// The dither matrix as WGSL generated from [`BAYER`] (so there is one
+/// copy of it): the array `table` and `function(x, y)`, the entry of pixel
+/// (x, y). The kernels' prelude names them `BAYER` and `bayer`, the
+/// Float316 shader wrapper `harness_bayer_matrix` and `harness_bayer`.
+pub(crate) fn bayer_wgsl(table: &str, function: &str) -> String {
     let entries: Vec<String> = BAYER.iter().map(u8::to_string).collect();
     format!(
-        "var<private> BAYER: array<i32, 64> = array<i32, 64>({});\n\n\
-         // The Bayer entry of pixel (x, y): BAYER[(y mod 8) * 8 + (x mod 8)].\n\
-         fn bayer(x: u32, y: u32) -> i32 {{\n    return BAYER[(y % 8u) * 8u + (x % 8u)];\n}}\n",
+        "var<private> {table}: array<i32, 64> = array<i32, 64>({});\n\n\
+         // The Bayer entry of pixel (x, y): {table}[(y mod 8) * 8 + (x mod 8)].\n\
+         fn {function}(x: u32, y: u32) -> i32 {{\n    return {table}[(y % 8u) * 8u + (x % 8u)];\n}}\n",
         entries.join(", ")
     )
 }

@@ -1,10 +1,11 @@
 //! One compute kernel: its pipeline, its reusable buffers, and the batched
 //! run that feeds it input words and reads output words back once per batch.
 //!
-//! Every kernel has the same bindings (shaders/io.wgsl): input words, output
-//! words, and the item count of the batch. A kernel reads `in_words` and
-//! writes `out_words` words per item. Every kernel's source is compiled after
-//! the same prelude: those bindings and the Bayer matrix.
+//! Every kernel has the same bindings: input words, output words, and the
+//! item count of the batch (shaders/io.wgsl for the scene kernels, the
+//! shader wrapper's own names for shaders, shader/wrappers/io.*). A kernel
+//! reads `in_words` and writes `out_words` words per item. A scene kernel's
+//! source is compiled after the prelude: those bindings and the Bayer matrix.
 
 use crate::context::{lock, Device, Health};
 use crate::error::GpuError;
@@ -21,40 +22,6 @@ const MAX_BATCH_ITEMS: usize = 1 << 20;
 
 /// The bindings shared by every kernel, as WGSL.
 const IO_WGSL: &str = include_str!("shaders/io.wgsl");
-
-/// What a kernel is: its shader, entry point and strides.
-pub(crate) struct KernelSpec {
-    /// A name for errors and debuggers.
-    pub label: &'static str,
-    /// The kernel's WGSL, without the prelude (prepended here).
-    pub source: &'static str,
-    /// The entry point.
-    pub entry: &'static str,
-    /// Input words per item.
-    pub in_words: usize,
-    /// Output words per item.
-    pub out_words: usize,
-}
-
-impl KernelSpec {
-    /// The kernel `label`: entry point `entry` of `source`, reading
-    /// `in_words` and writing `out_words` words per item.
-    pub(crate) const fn new(
-        label: &'static str,
-        source: &'static str,
-        entry: &'static str,
-        in_words: usize,
-        out_words: usize,
-    ) -> KernelSpec {
-        KernelSpec {
-            label,
-            source,
-            entry,
-            in_words,
-            out_words,
-        }
-    }
-}
 
 /// The buffers of one batch size, reused between runs.
 struct Buffers {
@@ -122,7 +89,7 @@ fn scoped<T>(device: &wgpu::Device, f: impl FnOnce() -> T) -> (T, Option<wgpu::E
 
 /// The WGSL every kernel's source follows: the bindings and the Bayer matrix.
 fn prelude() -> String {
-    format!("{IO_WGSL}\n{}", bayer_wgsl())
+    format!("{IO_WGSL}\n{}", bayer_wgsl("BAYER", "bayer"))
 }
 
 /// Compile `source` (after the [`prelude`]) into a compute
@@ -180,25 +147,6 @@ pub(crate) fn compile_source(
 }
 
 impl Kernel {
-    /// Compile the kernel described by `spec`.
-    pub(crate) fn new(dev: &Device, spec: &KernelSpec) -> Result<Kernel, GpuError> {
-        let pipeline = compile(
-            &dev.device,
-            &dev.health,
-            &dev.layout,
-            spec.label,
-            spec.source,
-            spec.entry,
-        )?;
-        Ok(Kernel::from_pipeline(
-            spec.label.to_string(),
-            pipeline,
-            spec.in_words,
-            spec.out_words,
-            None,
-        ))
-    }
-
     /// A kernel around an already compiled `pipeline`; a batch that runs
     /// longer than `time_limit` is a [`GpuError::Timeout`].
     pub(crate) fn from_pipeline(

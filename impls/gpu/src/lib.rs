@@ -1,19 +1,22 @@
 //! The GPU implementations, as wgpu compute kernels:
 //!
-//! - `gpu-f32`: the float formulation of the seed scene (spec section 7) in
-//!   WGSL f32 ([`Gpu::f32_sdf`], [`Gpu::f32_pixels`], [`Gpu::render_f32`]);
 //! - a user's shader ([`shader`]): WGSL or Shadertoy-style GLSL, unmodified,
-//!   wrapped into the same kind of kernels ([`shader::UserShader`]);
+//!   wrapped into compute kernels ([`shader::UserShader`]);
+//! - `gpu-f32`: the float formulation of the seed scene (spec section 7) in
+//!   WGSL f32, a shader of the same convention ([`Gpu::f32_sdf`],
+//!   [`Gpu::f32_pixels`], [`Gpu::render_f32`]);
 //! - `gpu-f316`: Float316 ported to WGSL integer arithmetic with Jack's
-//!   16-bit semantics, bit-exact with `ref-f316` ([`Gpu::f316_ops`],
-//!   [`Gpu::f316_sdf`], [`Gpu::f316_pixels`], [`Gpu::render_f316`]).
+//!   16-bit semantics, a Float316 shader of the convention, bit-exact with
+//!   `ref-f316` ([`Gpu::f316_ops`], [`Gpu::f316_sdf`], [`Gpu::f316_pixels`],
+//!   [`Gpu::render_f316`]).
 //!
 //! - kernels generated from any scene description ([`Gpu::scene_kernel`],
 //!   [`scene_wgsl`]): the scene's intermediate form, one WGSL statement per
 //!   statement, with only the library functions the scene uses.
 //!
 //! [`Gpu::new`] picks an adapter (any real GPU, else Mesa's lavapipe on the
-//! CPU), opens the device and compiles every kernel once: that is the
+//! CPU), opens the device and compiles our two shaders' kernels once
+//! ([`shader::ShaderSource::ours`]): that is the
 //! set-up cost, measured apart from the renders. Every call batches its
 //! input to the device's limits, reuses its buffers and reads results back
 //! once per batch. Failures (no adapter, a shader that does not compile, a

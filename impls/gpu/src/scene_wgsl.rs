@@ -6,7 +6,9 @@
 //! f32), of which the generated text keeps only the items it refers to.
 
 use common::F316;
-use scene::ir::{Binary, Dither, Formulation, Function, Logic, Program, Stmt, Unary, VecOp};
+use scene::ir::{
+    Binary, Dither, Formulation, FuncId, Function, Logic, Program, Stmt, Unary, VecOp,
+};
 use std::collections::{BTreeSet, HashMap};
 use std::fmt::Write;
 
@@ -189,10 +191,90 @@ impl Emitter<'_> {
 
     fn block(&mut self, stmts: &[Stmt]) {
         self.indent += 1;
-        for s in stmts {
-            self.stmt(s);
-        }
+        self.statements(stmts);
         self.indent -= 1;
+    }
+
+    /// A block's statements. Where it calls one function more than once
+    /// (the normal's four samples, the occlusion's five), the calls
+    /// become one call in a loop (see [`Emitter::one_call_site`]).
+    fn statements(&mut self, stmts: &[Stmt]) {
+        match repeated_call(stmts) {
+            Some((func, calls)) => self.one_call_site(stmts, func, &calls),
+            None => stmts.iter().for_each(|s| self.stmt(s)),
+        }
+    }
+
+    /// `stmts` with its calls of `func` (at positions `calls`) made through
+    /// one call site: a loop whose iteration `j` runs the statements before
+    /// call `j` (after taking call `j - 1`'s results), then the call. Every
+    /// operation runs once and in the same order as written, so the
+    /// results (and the first failure recorded) are the same; the kernel
+    /// holds one inlined copy of `func` instead of one per call, which is
+    /// what the device compiler's time grows with.
+    fn one_call_site(&mut self, stmts: &[Stmt], func: FuncId, calls: &[usize]) {
+        let Stmt::Call { args, .. } = &stmts[calls[0]] else {
+            unreachable!("positions of calls")
+        };
+        let n = self.t.num();
+        let i = self.loops;
+        self.loops += 1;
+        self.line("{");
+        self.indent += 1;
+        for k in 0..args.len() {
+            self.line(&format!("var a{i}_{k}: {n};"));
+        }
+        self.line(&format!("var c{i}: R{func};"));
+        self.line(&format!(
+            "for (var i{i}: u32 = 0u; i{i} < {}u; i{i} = i{i} + 1u) {{",
+            calls.len()
+        ));
+        self.indent += 1;
+        self.line(&format!("switch i{i} {{"));
+        let mut from = 0;
+        for (j, &at) in calls.iter().enumerate() {
+            self.indent += 1;
+            self.line(&format!("case {j}u: {{"));
+            self.indent += 1;
+            if j > 0 {
+                self.results(i, &stmts[calls[j - 1]]);
+            }
+            stmts[from..at].iter().for_each(|s| self.stmt(s));
+            if let Stmt::Call { args, .. } = &stmts[at] {
+                for (k, a) in args.iter().enumerate() {
+                    self.line(&format!("a{i}_{k} = r{a};"));
+                }
+            }
+            self.indent -= 1;
+            self.line("}");
+            self.indent -= 1;
+            from = at + 1;
+        }
+        self.line("    default: {}");
+        self.line("}");
+        let params: Vec<String> = (0..args.len()).map(|k| format!("a{i}_{k}")).collect();
+        self.line(&format!("c{i} = s_f{func}({});", params.join(", ")));
+        self.indent -= 1;
+        self.line("}");
+        self.results(i, &stmts[calls[calls.len() - 1]]);
+        self.indent -= 1;
+        self.line("}");
+        self.statements(&stmts[from..]);
+    }
+
+    /// Take the results of `call` from the loop's call value `c{i}`.
+    fn results(&mut self, i: usize, call: &Stmt) {
+        let Stmt::Call { results, tags, .. } = call else {
+            unreachable!("a call")
+        };
+        let mut l = String::new();
+        for (k, r) in results.iter().enumerate() {
+            let _ = write!(l, "r{r} = c{i}.s{k}; ");
+        }
+        for (k, t) in tags.iter().enumerate() {
+            let _ = write!(l, "t{t} = c{i}.t{k}; ");
+        }
+        self.line(l.trim_end());
     }
 
     fn stmt(&mut self, s: &Stmt) {
@@ -285,6 +367,8 @@ impl Emitter<'_> {
                 self.block(body);
                 self.line("}");
             }
+            // Only engines that explain runs take another side.
+            Stmt::Decide { .. } => {}
             Stmt::Call {
                 func,
                 args,
@@ -304,6 +388,34 @@ impl Emitter<'_> {
                 let _ = self.p;
             }
         }
+    }
+}
+
+/// The first function `stmts` calls more than once at its own level, with
+/// the positions of those calls, when the statements before its last call
+/// hold no `break` of an enclosing loop (a loop around them would catch it).
+fn repeated_call(stmts: &[Stmt]) -> Option<(FuncId, Vec<usize>)> {
+    let mut seen: Vec<FuncId> = Vec::new();
+    for s in stmts {
+        let Stmt::Call { func, .. } = s else { continue };
+        if seen.contains(func) {
+            let calls: Vec<usize> = (0..stmts.len())
+                .filter(|&k| matches!(&stmts[k], Stmt::Call { func: g, .. } if g == func))
+                .collect();
+            let last = *calls.last().expect("two calls");
+            return (!stmts[..last].iter().any(breaks_out)).then_some((*func, calls));
+        }
+        seen.push(*func);
+    }
+    None
+}
+
+/// Whether `s` holds a `break` that leaves it (one not inside a loop of its own).
+fn breaks_out(s: &Stmt) -> bool {
+    match s {
+        Stmt::Break { .. } => true,
+        Stmt::Loop { .. } => false,
+        _ => s.blocks().into_iter().flatten().any(breaks_out),
     }
 }
 
@@ -376,6 +488,58 @@ fn constants(out: &mut String, t: Target, p: &Program) {
     let _ = writeln!(out, "var<private> PIX: u32;\n");
 }
 
+/// The parts of the entry points that differ between the number types.
+struct EntryParts {
+    /// Items before the entry points.
+    helpers: &'static str,
+    zero: &'static str,
+    /// The pixel function's arguments from the column `x` and the row
+    /// counter `n`.
+    pixel_args: &'static str,
+    /// The output level of the pixel function's second result `r.s1`.
+    level: &'static str,
+    /// The pixel entry's stores of `value` and `level` (after the status).
+    store_pixel: &'static str,
+    /// The SDF entry: the call's arguments and its stores of `s`.
+    sdf_args: &'static str,
+    store_sdf: &'static str,
+}
+
+const F316_ENTRY: EntryParts = EntryParts {
+    helpers: "fn level_of(a: F) -> i32 {
+    if (a.e < 127) {
+        return 0;
+    }
+    let k = min(a.e - 127, 13);
+    let v = a.m >> u32(13 - k);
+    return select(v, -v, a.s == 1);
+}
+
+",
+    zero: "ZERO",
+    pixel_args: "from_int(i32(x)), from_int(n)",
+    level: "level_of(r.s1)",
+    store_pixel: "    outp[i * 5u] = bitcast<u32>(status);
+    store_f(i * 5u + 1u, value);
+    outp[i * 5u + 4u] = u32(level);",
+    sdf_args: "let p = load_v(i * 9u);\n    let s = s_f{sdf}(p.x, p.y, p.z);",
+    store_sdf: "    outp[i * 7u] = bitcast<u32>(status);
+    store_f(i * 7u + 1u, s.s0);
+    store_f(i * 7u + 4u, s.s1);",
+};
+
+const F32_ENTRY: EntryParts = EntryParts {
+    helpers: "",
+    zero: "0.0",
+    pixel_args: "f32(x), f32(n)",
+    level: "i32(r.s1)",
+    store_pixel: "    outp[i * 2u] = bitcast<u32>(value);
+    outp[i * 2u + 1u] = u32(level);",
+    sdf_args: "let s = s_f{sdf}(bitcast<f32>(inp[i * 3u]), bitcast<f32>(inp[i * 3u + 1u]), bitcast<f32>(inp[i * 3u + 2u]));",
+    store_sdf: "    outp[i * 2u] = bitcast<u32>(s.s0);
+    outp[i * 2u + 1u] = bitcast<u32>(s.s1);",
+};
+
 fn entries(out: &mut String, t: Target, p: &Program) {
     let px = &p.pixels;
     let setup = p.function(p.setup);
@@ -394,20 +558,14 @@ fn entries(out: &mut String, t: Target, p: &Program) {
     };
     let levels = px.levels;
     let (lo, hi) = (px.rows[0], px.rows[1]);
-    match t.0 {
-        Formulation::Float316 => {
-            let _ = write!(
-                out,
-                "fn level_of(a: F) -> i32 {{
-    if (a.e < 127) {{
-        return 0;
-    }}
-    let k = min(a.e - 127, 13);
-    let v = a.m >> u32(13 - k);
-    return select(v, -v, a.s == 1);
-}}
-
-@compute @workgroup_size(WG)
+    let e = match t.0 {
+        Formulation::Float316 => &F316_ENTRY,
+        Formulation::Ieee => &F32_ENTRY,
+    };
+    let (pixel, sdf) = (p.pixel, p.sdf);
+    let _ = write!(
+        out,
+        "{helpers}@compute @workgroup_size(WG)
 fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     let i = gid.x;
     if (i >= params.count) {{
@@ -416,18 +574,16 @@ fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     let x = inp[i * 2u];
     let y = inp[i * 2u + 1u];
     let n = {row};
-    var value = ZERO;
+    var value = {zero};
     var level = 0;
     if (n >= {lo} && n <= {hi}) {{
         PIX = {index};
         {load_uniforms}
-        let r = s_f{pixel}(from_int(i32(x)), from_int(n));
+        let r = s_f{pixel}({pixel_args});
         value = r.s0;
-        level = ((level_of(r.s1) % {levels}) + {levels}) % {levels};
+        level = (({level} % {levels}) + {levels}) % {levels};
     }}
-    outp[i * 5u] = bitcast<u32>(status);
-    store_f(i * 5u + 1u, value);
-    outp[i * 5u + 4u] = u32(level);
+{store_pixel}
 }}
 
 @compute @workgroup_size(WG)
@@ -436,58 +592,18 @@ fn sdf_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
     if (i >= params.count) {{
         return;
     }}
-    let p = load_v(i * 9u);
-    let s = s_f{sdf}(p.x, p.y, p.z);
-    outp[i * 7u] = bitcast<u32>(status);
-    store_f(i * 7u + 1u, s.s0);
-    store_f(i * 7u + 4u, s.s1);
+    {sdf_call}
+{store_sdf}
 }}
 ",
-                pixel = p.pixel,
-                sdf = p.sdf,
-            );
-        }
-        Formulation::Ieee => {
-            let _ = write!(
-                out,
-                "@compute @workgroup_size(WG)
-fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
-    let i = gid.x;
-    if (i >= params.count) {{
-        return;
-    }}
-    let x = inp[i * 2u];
-    let y = inp[i * 2u + 1u];
-    let n = {row};
-    var value = 0.0;
-    var level = 0;
-    if (n >= {lo} && n <= {hi}) {{
-        PIX = {index};
-        {load_uniforms}
-        let r = s_f{pixel}(f32(x), f32(n));
-        value = r.s0;
-        level = ((i32(r.s1) % {levels}) + {levels}) % {levels};
-    }}
-    outp[i * 2u] = bitcast<u32>(value);
-    outp[i * 2u + 1u] = u32(level);
-}}
-
-@compute @workgroup_size(WG)
-fn sdf_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
-    let i = gid.x;
-    if (i >= params.count) {{
-        return;
-    }}
-    let s = s_f{sdf}(bitcast<f32>(inp[i * 3u]), bitcast<f32>(inp[i * 3u + 1u]), bitcast<f32>(inp[i * 3u + 2u]));
-    outp[i * 2u] = bitcast<u32>(s.s0);
-    outp[i * 2u + 1u] = bitcast<u32>(s.s1);
-}}
-",
-                pixel = p.pixel,
-                sdf = p.sdf,
-            );
-        }
-    }
+        helpers = e.helpers,
+        pixel_args = e.pixel_args,
+        zero = e.zero,
+        level = e.level,
+        store_pixel = e.store_pixel,
+        sdf_call = e.sdf_args.replace("{sdf}", &sdf.to_string()),
+        store_sdf = e.store_sdf,
+    );
 }
 
 /// A top-level item of a WGSL library: its name and text (with the

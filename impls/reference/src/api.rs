@@ -425,7 +425,7 @@ fn shadowed<E: Formulated>(
     e.finish(outcome(r))
 }
 
-fn output<E: Engine>(name: &'static str, v: Sh<E::N>) -> OutputValue {
+pub(crate) fn output<E: Engine>(name: &'static str, v: Sh<E::N>) -> OutputValue {
     OutputValue {
         name,
         lo: E::to_f64(v.lo),

@@ -3,12 +3,15 @@
 //! and interpreted on its engine (see `interp.rs`). Answers the image, a
 //! pixel, an SDF query, and Float316 op traces of the last two.
 
-use crate::api::{RefImpl, Scalar, SdfValue, Trace};
+use crate::api::{output, RefImpl, Scalar, SdfValue, Trace};
 use crate::engine::{outcome, Engine, R};
 use crate::float::FloatEngine;
 use crate::float316::F316Engine;
+use crate::formulation::Formulated;
 use crate::interp::{self, Hoisted, Machine, PrepareError, Prepared};
+use crate::recorder::{Decided, Recorder};
 use crate::settings::{Arith, Settings};
+use crate::shadow::{Sh, ShadowEngine, ShadowOptions, ShadowOutput, ShadowRun};
 use crate::tracer::Tracer;
 use common::{Outcome, F316};
 use rayon::prelude::*;
@@ -170,6 +173,81 @@ fn sdf_of<E: Engine>(
     })
 }
 
+/// Run `body` on a shadow of `inner` with `p`'s constants and camera
+/// set-up made by the same engine (so they are shadowed too).
+fn shadowed<E: Formulated>(
+    inner: E,
+    p: &Program,
+    options: &ShadowOptions,
+    body: impl FnOnce(&mut ShadowEngine<E>, &Prepared<Sh<E::N>>) -> R<ShadowOutput>,
+) -> ShadowRun {
+    let mut e = ShadowEngine::new(inner, options.clone());
+    // `Described::new` accepted the same constants and set-up in the low
+    // precision, which the shadow computes in.
+    let k = Prepared::new(p, &mut e).expect("the scene was prepared when the reference was made");
+    let r = body(&mut e, &k);
+    e.finish(outcome(r))
+}
+
+fn shadow_pixel_of<E: Formulated>(
+    inner: E,
+    p: &Program,
+    xy: (u32, u32),
+    options: &ShadowOptions,
+) -> ShadowRun {
+    shadowed(inner, p, options, |e, k| {
+        let mut m = Machine::new(p, k.zero);
+        let (value, level) = pixel_of(e, p, k, &mut m, xy)?;
+        Ok(ShadowOutput {
+            values: vec![output::<E>("shade", value)],
+            white: (p.pixels.levels == 2).then_some(level == 1),
+        })
+    })
+}
+
+fn shadow_sdf_of<E: Formulated>(
+    inner: E,
+    p: &Program,
+    q: [F316; 3],
+    options: &ShadowOptions,
+) -> ShadowRun {
+    shadowed(inner, p, options, |e, k| {
+        let args = [
+            ShadowEngine::<E>::from_triple(q[0])?,
+            ShadowEngine::<E>::from_triple(q[1])?,
+            ShadowEngine::<E>::from_triple(q[2])?,
+        ];
+        let mut m = Machine::new(p, k.zero);
+        let r = e.frame(
+            || "sdf".into(),
+            |e| interp::run(e, p, k, &mut m, p.sdf, &args, 0),
+        )?;
+        Ok(ShadowOutput {
+            values: vec![
+                output::<E>("sd", r.results.get(0)),
+                output::<E>("col", r.results.get(1)),
+            ],
+            white: None,
+        })
+    })
+}
+
+fn decided_pixel_of<E: Engine>(
+    inner: E,
+    p: &Program,
+    k: &Prepared<E::N>,
+    xy: (u32, u32),
+) -> (Outcome<ScenePixel>, Vec<Decided>) {
+    let mut log = Vec::new();
+    let mut e = Recorder {
+        inner,
+        log: &mut log,
+    };
+    let mut m = Machine::new(p, k.zero);
+    let pixel = scene_pixel::<E>(pixel_of(&mut e, p, k, &mut m, xy));
+    (pixel, log)
+}
+
 fn scalar<E: Engine>(v: E::N) -> Scalar {
     Scalar {
         value: E::to_f64(v),
@@ -277,6 +355,38 @@ impl Described {
             Encoded::F316(k) => sdf_of(&mut F316Engine::new(self.arith), p, k, q),
             Encoded::F64(k) => sdf_of(&mut FloatEngine::new(), p, k, q),
             Encoded::F32(k) => sdf_of(&mut FloatEngine::new(), p, k, q),
+        }
+    }
+
+    /// Pixel (x, y) with every value shadowed in f64, its decisions
+    /// recorded (see `Reference::shadow_pixel`, the same for the
+    /// hand-written seed scene).
+    pub fn shadow_pixel(&self, x: u32, y: u32, options: &ShadowOptions) -> ShadowRun {
+        let p = &self.program;
+        match &self.encoded {
+            Encoded::F316(_) => shadow_pixel_of(F316Engine::new(self.arith), p, (x, y), options),
+            Encoded::F64(_) => shadow_pixel_of(FloatEngine::<f64>::new(), p, (x, y), options),
+            Encoded::F32(_) => shadow_pixel_of(FloatEngine::<f32>::new(), p, (x, y), options),
+        }
+    }
+
+    /// One SDF query, shadowed (see [`Described::shadow_pixel`]).
+    pub fn shadow_sdf(&self, q: [F316; 3], options: &ShadowOptions) -> ShadowRun {
+        let p = &self.program;
+        match &self.encoded {
+            Encoded::F316(_) => shadow_sdf_of(F316Engine::new(self.arith), p, q, options),
+            Encoded::F64(_) => shadow_sdf_of(FloatEngine::<f64>::new(), p, q, options),
+            Encoded::F32(_) => shadow_sdf_of(FloatEngine::<f32>::new(), p, q, options),
+        }
+    }
+
+    /// Pixel (x, y) and the branch decisions its run takes, in order.
+    pub fn decided_pixel(&self, x: u32, y: u32) -> (Outcome<ScenePixel>, Vec<Decided>) {
+        let p = &self.program;
+        match &self.encoded {
+            Encoded::F316(k) => decided_pixel_of(F316Engine::new(self.arith), p, k, (x, y)),
+            Encoded::F64(k) => decided_pixel_of(FloatEngine::<f64>::new(), p, k, (x, y)),
+            Encoded::F32(k) => decided_pixel_of(FloatEngine::<f32>::new(), p, k, (x, y)),
         }
     }
 

@@ -21,61 +21,9 @@ pub enum Trap {
     OutOfDomain,
 }
 
-/// A branch decision of the pipeline, as [`Engine::decide`] reports it.
-/// These are where two precisions' runs of one pixel can part.
-#[derive(
-    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
-)]
-#[serde(rename_all = "kebab-case")]
-pub enum Decision {
-    /// `union(a, b)`: `a` kept when `gt(b.sd, a.sd)`.
-    Union,
-    /// The floor's checker parity: `mod2(floor(x) + floor(z))` is 1.
-    Checker,
-    /// A march step hits: `gt(precision, sd)`.
-    MarchHit,
-    /// A march step is past the far limit: `gt(depth, max_distance)`.
-    MarchFar,
-    /// The view ray misses (background): `gt(depth, max_distance)`.
-    Miss,
-    /// The point is in shadow: `gt(distance to light, shadow depth)`.
-    Shadow,
-    /// `angle`: the dot product's sign bit is set (clamped to 0).
-    AngleLow,
-    /// `angle`: the dot product is above 1 (clamped to 1).
-    AngleHigh,
-    /// The shade is above 1 (clamped to 1).
-    ClampHigh,
-    /// The shade's sign bit is set (clamped to 0).
-    ClampLow,
-    /// The dithered value is above the threshold (the pixel is white).
-    Dither,
-}
-
-impl Decision {
-    /// Its name in reports (`march-hit`, `shadow`, ...).
-    pub const fn name(self) -> &'static str {
-        match self {
-            Decision::Union => "union",
-            Decision::Checker => "checker",
-            Decision::MarchHit => "march-hit",
-            Decision::MarchFar => "march-far",
-            Decision::Miss => "miss",
-            Decision::Shadow => "shadow",
-            Decision::AngleLow => "angle-low",
-            Decision::AngleHigh => "angle-high",
-            Decision::ClampHigh => "clamp-high",
-            Decision::ClampLow => "clamp-low",
-            Decision::Dither => "dither",
-        }
-    }
-}
-
-impl std::fmt::Display for Decision {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+/// A branch decision of the pipeline, as [`Engine::decide`] reports it
+/// (defined with the scene's intermediate form, which marks them).
+pub use scene::ir::Decision;
 
 /// A result inside the scene: a value or a trap.
 pub type R<T> = Result<T, Trap>;

@@ -5,7 +5,7 @@
 
 use crate::engine::{outcome, Engine, Trap, R};
 use crate::vec3::{self, V3};
-use scene::ir::{Binary, Dither, FuncId, Logic, Program, Stmt, Unary, VecOp};
+use scene::ir::{Binary, Dither, FuncId, Logic, Program, Stmt, Taken, Unary, VecOp};
 
 /// A program's constants, matrices and uniforms encoded for one engine.
 #[derive(Clone, Debug)]
@@ -69,8 +69,10 @@ impl<N: Copy> Prepared<N> {
 }
 
 /// `p` for runs that record nothing: frames spliced into their blocks
-/// (they only name trace paths), and every constant whose register nothing
-/// else writes hoisted out of the statements into [`Hoisted`] preloads.
+/// (they only name trace paths), decisions left out (only engines that
+/// explain runs take another side), and every constant whose register
+/// nothing else writes hoisted out of the statements into [`Hoisted`]
+/// preloads.
 pub fn untraced(p: &Program) -> (Program, Hoisted) {
     let mut q = p.clone();
     let mut hoisted = Vec::new();
@@ -104,6 +106,10 @@ fn count_writes(block: &[Stmt], writes: &mut [u32]) {
             | Stmt::Length { dst, .. }
             | Stmt::Select { dst, .. } => one(*dst, 1),
             Stmt::Vector { dst, .. } => one(*dst, 3),
+            Stmt::Decide {
+                taken: Taken::Parity(r),
+                ..
+            } => one(*r, 1),
             Stmt::Call { results, .. } => results.iter().for_each(|&r| one(r, 1)),
             Stmt::If {
                 then, otherwise, ..
@@ -129,6 +135,7 @@ fn flatten(
     for s in block {
         match s {
             Stmt::Frame { body, .. } => out.extend(flatten(body, writes, fi, hoisted)),
+            Stmt::Decide { .. } => {}
             Stmt::Const { dst, index } if writes[usize::from(dst)] == 1 => {
                 hoisted.push((fi, dst, index))
             }
@@ -434,6 +441,29 @@ fn exec<E: Engine>(
             Stmt::Frame { name, body } => {
                 if e.frame(|| name.clone(), |e| exec(e, cx, m, f, body))? == Flow::Break {
                     return Ok(Flow::Break);
+                }
+            }
+            Stmt::Decide {
+                decision,
+                taken,
+                a,
+                b,
+            } => {
+                let operands = [w.s[usize::from(*a)], w.s[usize::from(*b)]];
+                let decision = *decision;
+                match *taken {
+                    Taken::Bool(c) => {
+                        let c = usize::from(c);
+                        w.b[c] = e.decide(decision, operands, w.b[c]);
+                    }
+                    Taken::Parity(r) => {
+                        let r = usize::from(r);
+                        let odd = E::to_f64(w.s[r]) != 0.0;
+                        let now = e.decide(decision, operands, odd);
+                        if now != odd {
+                            w.s[r] = if now { cx.k.one } else { cx.k.zero };
+                        }
+                    }
                 }
             }
             Stmt::Call {

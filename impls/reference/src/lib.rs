@@ -20,6 +20,7 @@ mod float316;
 mod formulation;
 mod interp;
 mod pipeline;
+mod recorder;
 mod scene;
 mod settings;
 mod shadow;
@@ -33,6 +34,7 @@ pub use api::{
 pub use described::{Described, DescribedError, SceneImage, ScenePixel};
 pub use engine::{Decision, Engine, Trap, R};
 pub use formulation::{Formulated, Formulation};
+pub use recorder::Decided;
 pub use scene::{Camera, Floor, March, Scene, SceneError, Shading, Sphere, Torus};
 pub use settings::{Arith, Settings, UnknownVariant, Variant, VariantKind};
 pub use shadow::{

@@ -1,7 +1,9 @@
 //! A builder for [`Program`]s: register allocation, nested blocks, the
 //! constant pool. The lowering (`lower.rs`) speaks only through it.
 
-use crate::ir::{BReg, Binary, Constant, FuncId, Function, Logic, Reg, Stmt, TReg, Unary, VecOp};
+use crate::ir::{
+    BReg, Binary, Constant, Decision, FuncId, Function, Logic, Reg, Stmt, TReg, Taken, Unary, VecOp,
+};
 
 /// The function being built.
 #[derive(Default)]
@@ -229,12 +231,39 @@ impl Builder {
         dst
     }
 
-    /// `dot(a, b)` clamped as an angle, in a frame `angle`.
+    /// `dot(a, b)` clamped as an angle, in a frame `angle`: 0 when its
+    /// sign bit is set, else 1 when it is above 1 (the two decisions
+    /// reported where the hand-written pipeline reports them).
     pub fn angle(&mut self, a: Reg, b: Reg) -> Reg {
         self.frame("angle", |s| {
             let d = s.dot(a, b);
-            s.un(Unary::Clamp01, d)
+            let zero = s.k(0.0, "angle");
+            let one = s.k(1.0, "angle");
+            let out = s.reg();
+            let low = s.sign_bit(d);
+            s.decide(Decision::AngleLow, low, d, zero);
+            s.if_else(
+                low,
+                |s| s.copy(out, zero),
+                |s| {
+                    let high = s.gt(d, one);
+                    s.decide(Decision::AngleHigh, high, d, one);
+                    let v = s.select(high, one, d);
+                    s.copy(out, v);
+                },
+            );
+            out
         })
+    }
+
+    /// Report the decision `decision`, held in `taken`, on `a` and `b`.
+    pub fn decide(&mut self, decision: Decision, taken: BReg, a: Reg, b: Reg) {
+        self.push(Stmt::Decide {
+            decision,
+            taken: Taken::Bool(taken),
+            a,
+            b,
+        });
     }
 
     pub fn gt(&mut self, a: Reg, b: Reg) -> BReg {

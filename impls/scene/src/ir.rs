@@ -211,6 +211,87 @@ pub enum Stmt {
         name: String,
         body: Vec<Stmt>,
     },
+    /// The pipeline takes the branch `decision` here, as `taken` holds it,
+    /// on the operands `a`, `b` (for `gt(a, b)`: `a`, `b`). An engine that
+    /// explains runs records it and may take the other side: `taken` is
+    /// then rewritten. Back ends that only compute emit nothing for it.
+    Decide {
+        decision: Decision,
+        taken: Taken,
+        a: Reg,
+        b: Reg,
+    },
+}
+
+/// A branch decision of the pipeline, marked by [`Stmt::Decide`] and
+/// reported to the reference's engines (`Engine::decide`). These are where
+/// two precisions' runs of one pixel can part.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Decision {
+    /// `union(a, b)`: `a` kept when `gt(b.sd, a.sd)`.
+    Union,
+    /// The floor's checker parity: `mod2(floor(x) + floor(z))` is 1.
+    Checker,
+    /// A march step hits: `gt(precision, sd)`.
+    MarchHit,
+    /// A march step is past the far limit: `gt(depth, max_distance)`.
+    MarchFar,
+    /// The view ray misses (background): `gt(depth, max_distance)`.
+    Miss,
+    /// The point is in shadow: `gt(distance to light, shadow depth)`.
+    Shadow,
+    /// `angle`: the dot product's sign bit is set (clamped to 0).
+    AngleLow,
+    /// `angle`: the dot product is above 1 (clamped to 1).
+    AngleHigh,
+    /// The shade is above 1 (clamped to 1).
+    ClampHigh,
+    /// The shade's sign bit is set (clamped to 0).
+    ClampLow,
+    /// The dithered value is above the threshold (the pixel is white).
+    Dither,
+    /// A reflected ray meets a sphere and bounces (described scenes with
+    /// analytic spheres): `found` on `[nearest t, 0]`.
+    Bounce,
+}
+
+impl Decision {
+    /// Its name in reports (`march-hit`, `shadow`, ...).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Decision::Union => "union",
+            Decision::Checker => "checker",
+            Decision::MarchHit => "march-hit",
+            Decision::MarchFar => "march-far",
+            Decision::Miss => "miss",
+            Decision::Shadow => "shadow",
+            Decision::AngleLow => "angle-low",
+            Decision::AngleHigh => "angle-high",
+            Decision::ClampHigh => "clamp-high",
+            Decision::ClampLow => "clamp-low",
+            Decision::Dither => "dither",
+            Decision::Bounce => "bounce",
+        }
+    }
+}
+
+impl std::fmt::Display for Decision {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Where a [`Stmt::Decide`] finds the side taken.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+pub enum Taken {
+    /// A boolean register.
+    Bool(BReg),
+    /// A parity register (0 or 1, from `mod2`): taken when it is not 0;
+    /// the other side sets it to exactly 1 or 0.
+    Parity(Reg),
 }
 
 /// Boolean operators.
@@ -371,20 +452,25 @@ fn unnamed(block: Vec<Stmt>) -> Vec<Stmt> {
     out
 }
 
+impl Stmt {
+    /// The blocks nested in the statement: an `if`'s two, a `switch`'s
+    /// cases, a loop's or a frame's body.
+    pub fn blocks(&self) -> Vec<&[Stmt]> {
+        match self {
+            Stmt::If {
+                then, otherwise, ..
+            } => vec![then, otherwise],
+            Stmt::Switch { cases, .. } => cases.iter().map(Vec::as_slice).collect(),
+            Stmt::Loop { body, .. } | Stmt::Frame { body, .. } => vec![body],
+            _ => Vec::new(),
+        }
+    }
+}
+
 fn walk<'a>(block: &'a [Stmt], out: &mut Vec<&'a Stmt>) {
     for s in block {
         out.push(s);
-        match s {
-            Stmt::If {
-                then, otherwise, ..
-            } => {
-                walk(then, out);
-                walk(otherwise, out);
-            }
-            Stmt::Switch { cases, .. } => cases.iter().for_each(|c| walk(c, out)),
-            Stmt::Loop { body, .. } | Stmt::Frame { body, .. } => walk(body, out),
-            _ => {}
-        }
+        s.blocks().into_iter().for_each(|b| walk(b, out));
     }
 }
 
@@ -446,6 +532,13 @@ fn check_block(
             Stmt::Frame { body, .. } => {
                 check_block(p, index, f, body, in_loop)?;
                 true
+            }
+            Stmt::Decide { taken, a, b, .. } => {
+                let taken_ok = match taken {
+                    Taken::Bool(c) => *c < f.bools,
+                    Taken::Parity(r) => s_ok(*r, 1),
+                };
+                taken_ok && s_ok(*a, 1) && s_ok(*b, 1)
             }
             Stmt::Call {
                 func,

@@ -10,8 +10,8 @@ use crate::desc::{
     Transform,
 };
 use crate::ir::{
-    BReg, Binary, Dither, Formulation, FuncId, Logic, Pixels, Program, Reg, Stmt, TReg, Unary,
-    VecOp,
+    BReg, Binary, Decision, Dither, Formulation, FuncId, Logic, Pixels, Program, Reg, Stmt, TReg,
+    Taken, Unary, VecOp,
 };
 use common::image_consts::BAYER;
 
@@ -143,6 +143,7 @@ impl Lower<'_> {
     /// `union(a, b)`: a if `gt(b.sd, a.sd)`, else b (spec section 4).
     fn union(&mut self, a: Surf, b: Surf) -> Surf {
         let c = self.b.gt(b.sd, a.sd);
+        self.b.decide(Decision::Union, c, b.sd, a.sd);
         self.b.select_surf(c, a, b)
     }
 
@@ -381,6 +382,12 @@ impl Lower<'_> {
                 let fz = b.un(Unary::Floor, q + 2);
                 let sum = b.add(fx, fz);
                 let parity = b.un(Unary::Mod2, sum);
+                b.push(Stmt::Decide {
+                    decision: Decision::Checker,
+                    taken: Taken::Parity(parity),
+                    a: q,
+                    b: q + 2,
+                });
                 let odd = b.k(*odd_add, &format!("{origin}.colour.checker.odd_add"));
                 let checker = b.mul(parity, odd);
                 let even = b.k(*even, &format!("{origin}.colour.checker.even"));
@@ -554,6 +561,7 @@ impl Lower<'_> {
         let (depth, col, tag) = self.march(ro, rd, steps, "march step");
         let maxd = self.b.k(max_distance, "method.sphere_trace.max_distance");
         let miss = self.b.gt(depth, maxd);
+        self.b.decide(Decision::Miss, miss, depth, maxd);
         let value = self.b.reg();
         self.if_else(
             miss,
@@ -610,7 +618,9 @@ impl Lower<'_> {
                 b: sd,
             });
             let hit = b.gt(prec, sd);
+            b.decide(Decision::MarchHit, hit, prec, sd);
             let far = b.gt(depth, maxd);
+            b.decide(Decision::MarchFar, far, depth, maxd);
             let stop = b.logic(Logic::Or, hit, far);
             b.push(Stmt::Break { cond: stop });
         });
@@ -938,6 +948,7 @@ impl Lower<'_> {
             let to = m.b.vec(VecOp::Sub, light, o);
             let dist = m.b.length(to);
             let dark = m.b.gt(dist, sdepth);
+            m.b.decide(Decision::Shadow, dark, dist, sdepth);
             m.b.if_else(
                 dark,
                 |b| {
@@ -1086,6 +1097,7 @@ impl Lower<'_> {
                     |_| {},
                 );
             }
+            b.decide(Decision::Bounce, found, best_t, zero);
             let miss = b.not(found);
             b.push(Stmt::Break { cond: miss });
             // X = X + T*U (and so on), then the reflection about the
@@ -1158,7 +1170,13 @@ impl Lower<'_> {
         let zero = b.k(0.0, "image.output");
         let half = b.k(0.5, "image.output");
         let above = b.gt(value, one);
+        b.decide(Decision::ClampHigh, above, value, one);
         let neg = b.sign_bit(value);
+        b.if_else(
+            above,
+            |_| {},
+            |b| b.decide(Decision::ClampLow, neg, value, zero),
+        );
         let low = b.select(neg, zero, value);
         let v = b.select(above, one, low);
         let (matrix, size): (Vec<u8>, f64) = match out {
@@ -1170,7 +1188,9 @@ impl Lower<'_> {
         let form = self.form;
         let (white, dither) = b.frame("dither", |b| {
             if matrix.is_empty() {
-                return (b.gt(v, half), Dither::None);
+                let white = b.gt(v, half);
+                b.decide(Decision::Dither, white, v, half);
+                return (white, Dither::None);
             }
             let centre = size / 2.0;
             let dithered = match form {
@@ -1198,7 +1218,9 @@ impl Lower<'_> {
             } else {
                 Dither::Bayer4
             };
-            (b.gt(dithered, half), kind)
+            let white = b.gt(dithered, half);
+            b.decide(Decision::Dither, white, dithered, half);
+            (white, kind)
         });
         let level = b.select(white, one, zero);
         (v, level, dither)

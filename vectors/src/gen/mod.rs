@@ -6,6 +6,7 @@
 pub mod classes;
 pub mod ops;
 pub mod pixels;
+pub mod scene_derived;
 pub mod sdf;
 pub mod testfloat;
 

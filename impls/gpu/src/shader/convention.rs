@@ -369,14 +369,27 @@ fn sized(text: &str) -> String {
         .replace("HARNESS_HEIGHT", &format!("{HEIGHT}.0"))
 }
 
-/// The WGSL that follows the user's code: bindings, loop-guard state and
-/// one entry point per provided entry.
+/// What a WGSL shader may call besides its own code: for Float316 the
+/// spec's dither matrix, `harness_bayer(x, y)` (a Float316 shader dithers
+/// itself); nothing for f32.
+pub(crate) fn wgsl_provided(numbers: ShaderNumbers) -> String {
+    match numbers {
+        ShaderNumbers::F32 => String::new(),
+        ShaderNumbers::Float316 => {
+            crate::image::bayer_wgsl("harness_bayer_matrix", "harness_bayer")
+        }
+    }
+}
+
+/// The WGSL that follows the user's code: bindings, loop-guard state,
+/// [`wgsl_provided`], and one entry point per provided entry.
 pub(crate) fn wgsl_wrapper(numbers: ShaderNumbers, provides: &Provides) -> String {
     let status = if provides.status { "status" } else { "0" };
     let mut text = IO_WGSL.replace("HARNESS_USER_STATUS", status);
     if numbers == ShaderNumbers::Float316 {
         text.push_str(F316_IO_WGSL);
     }
+    text.push_str(&wgsl_provided(numbers));
     for entry in &provides.entries {
         text.push_str(match (numbers, entry) {
             (ShaderNumbers::F32, Entry::Pixels) => F32_PIXELS_WGSL,

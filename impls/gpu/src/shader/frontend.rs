@@ -1,5 +1,6 @@
 //! From a user's source to validated naga modules, one per kernel: parse
-//! the user's code alone (its errors point into its file), check it against
+//! the user's code alone, with only the helpers it may call (its errors
+//! point into its file), check it against
 //! the convention, parse it again followed by the wrapper, install the loop
 //! guard, validate. No device is needed.
 
@@ -23,12 +24,12 @@ pub(crate) struct Front {
     pub kernels: Vec<KernelModule>,
 }
 
-/// Parse, check, wrap, guard (`loop_limit` iterations per invocation) and
-/// validate `source` computing with `numbers`.
+/// Parse, check, wrap, guard (`loop_limit` iterations per invocation;
+/// `None`: no guard) and validate `source` computing with `numbers`.
 pub(crate) fn front(
     source: &ShaderSource,
     numbers: ShaderNumbers,
-    loop_limit: u32,
+    loop_limit: Option<u32>,
 ) -> Result<Front, GpuError> {
     match source.language {
         Language::Wgsl => wgsl(source, numbers, loop_limit),
@@ -36,14 +37,21 @@ pub(crate) fn front(
     }
 }
 
-fn wgsl(source: &ShaderSource, numbers: ShaderNumbers, limit: u32) -> Result<Front, GpuError> {
+fn wgsl(
+    source: &ShaderSource,
+    numbers: ShaderNumbers,
+    limit: Option<u32>,
+) -> Result<Front, GpuError> {
     let user = &source.text;
+    // The user's code with only what it may call (after it, so that its
+    // offsets stay its own).
+    let alone_text = format!("{user}\n{}", convention::wgsl_provided(numbers));
     let alone = Wrapped {
         name: &source.name,
-        source: user,
+        source: &alone_text,
         user_len: user.len(),
     };
-    let parsed = naga::front::wgsl::parse_str(user).map_err(|e| alone.wgsl(&e))?;
+    let parsed = naga::front::wgsl::parse_str(&alone_text).map_err(|e| alone.wgsl(&e))?;
     let provides = convention::check(&parsed, &source.name, Language::Wgsl, numbers)?;
     let text = format!("{user}\n{}", convention::wgsl_wrapper(numbers, &provides));
     let wrapped = Wrapped {
@@ -64,7 +72,11 @@ fn wgsl(source: &ShaderSource, numbers: ShaderNumbers, limit: u32) -> Result<Fro
     Ok(Front { provides, kernels })
 }
 
-fn glsl(source: &ShaderSource, numbers: ShaderNumbers, limit: u32) -> Result<Front, GpuError> {
+fn glsl(
+    source: &ShaderSource,
+    numbers: ShaderNumbers,
+    limit: Option<u32>,
+) -> Result<Front, GpuError> {
     let user = blank_version(&source.text);
     let name = source.name.as_str();
     let parse =
@@ -114,10 +126,12 @@ fn is_missing_entry_point(errors: &glsl::ParseErrors) -> bool {
     matches!(errors.errors.as_slice(), [only] if only.to_string() == "Missing entry point")
 }
 
-/// Install the loop guard and validate.
-fn finish(mut module: Module, limit: u32, wrapped: &Wrapped) -> Result<Module, GpuError> {
-    let guarded = guard::install(&mut module, limit);
-    debug_assert!(guarded, "the wrappers declare the loop guard's variables");
+/// Install the loop guard (unless `limit` is `None`) and validate.
+fn finish(mut module: Module, limit: Option<u32>, wrapped: &Wrapped) -> Result<Module, GpuError> {
+    if let Some(limit) = limit {
+        let guarded = guard::install(&mut module, limit);
+        debug_assert!(guarded, "the wrappers declare the loop guard's variables");
+    }
     Validator::new(ValidationFlags::all(), Capabilities::all())
         .validate(&module)
         .map_err(|e| wrapped.validation(&e))?;
@@ -163,7 +177,7 @@ mod tests {
             void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n\
             vec2 uv = fragCoord / iResolution.xy;\n\
             fragColor = vec4(uv, 0.5 + 0.5 * cos(iTime), 1.0);\n}\n";
-        let front = front(&glsl_source(text), ShaderNumbers::F32, 100).expect("parses");
+        let front = front(&glsl_source(text), ShaderNumbers::F32, Some(100)).expect("parses");
         assert_eq!(front.kernels.len(), 1);
         assert!(!front.provides.sdf());
     }
@@ -172,7 +186,7 @@ mod tests {
     fn a_syntax_error_points_into_the_users_file() {
         let text = "void mainImage(out vec4 fragColor, in vec2 fragCoord) {\n\
             fragColor = vec4(1.0)\n}\n";
-        let error = front(&glsl_source(text), ShaderNumbers::F32, 100)
+        let error = front(&glsl_source(text), ShaderNumbers::F32, Some(100))
             .err()
             .expect("a syntax error");
         let message = error.to_string();
@@ -183,7 +197,7 @@ mod tests {
     #[test]
     fn a_missing_main_image_is_named() {
         let text = "void mainimage(out vec4 c, in vec2 p) { c = vec4(1.0); }\n";
-        let error = front(&glsl_source(text), ShaderNumbers::F32, 100)
+        let error = front(&glsl_source(text), ShaderNumbers::F32, Some(100))
             .err()
             .expect("no mainImage");
         let message = error.to_string();
@@ -198,7 +212,7 @@ mod tests {
         let text = "fn pixel(coord: vec2<f32>, resolution: vec2<f32>) -> f32 {\n    \
             let a: f32 = 1u;\n    return a;\n}\n";
         let source = ShaderSource::from_text("user.wgsl", text, Language::Wgsl);
-        let message = front(&source, ShaderNumbers::F32, 100)
+        let message = front(&source, ShaderNumbers::F32, Some(100))
             .err()
             .expect("a type error")
             .to_string();
@@ -209,7 +223,7 @@ mod tests {
     fn a_convention_function_of_another_type_is_an_error() {
         let text = "fn pixel(coord: vec2<f32>) -> f32 { return coord.x; }\n";
         let source = ShaderSource::from_text("user.wgsl", text, Language::Wgsl);
-        let message = front(&source, ShaderNumbers::F32, 100)
+        let message = front(&source, ShaderNumbers::F32, Some(100))
             .err()
             .expect("wrong type")
             .to_string();
@@ -227,7 +241,7 @@ mod tests {
             loop { s += 1.0; if (s > 100.0) { break; } }\n\
             return s;\n}\n";
         let source = ShaderSource::from_text("user.wgsl", text, Language::Wgsl);
-        let front = front(&source, ShaderNumbers::F32, 100).expect("valid");
+        let front = front(&source, ShaderNumbers::F32, Some(100)).expect("valid");
         let module = &front.kernels[0].module;
         let (_, pixel) = module
             .functions

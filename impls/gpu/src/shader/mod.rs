@@ -72,6 +72,22 @@ impl ShaderSource {
     pub fn name(&self) -> &str {
         &self.name
     }
+
+    /// Our own seed-scene kernels, shaders of the convention compiled into
+    /// the crate: the WGSL of `gpu-f32` (f32) or of `gpu-f316` (Float316).
+    pub fn ours(numbers: ShaderNumbers) -> ShaderSource {
+        let (name, text) = match numbers {
+            ShaderNumbers::F32 => (
+                "impls/gpu/src/shaders/f32.wgsl",
+                include_str!("../shaders/f32.wgsl"),
+            ),
+            ShaderNumbers::Float316 => (
+                "impls/gpu/src/shaders/f316.wgsl",
+                include_str!("../shaders/f316.wgsl"),
+            ),
+        };
+        ShaderSource::from_text(name, text, Language::Wgsl)
+    }
 }
 
 /// How a shader is run.
@@ -82,10 +98,12 @@ pub struct ShaderOptions {
     /// Where a GLSL shader's shade comes from (`fragColor`'s channel or luminance).
     pub shade: Shade,
     /// Loop iterations one invocation may run, all loops together, before
-    /// its answer is a hang.
-    pub loop_limit: u32,
-    /// How long one batch may run on the device before it is abandoned.
-    pub time_limit: Duration,
+    /// its answer is a hang (`None`: no loop guard, for a shader whose
+    /// every loop has a constant bound).
+    pub loop_limit: Option<u32>,
+    /// How long one batch may run on the device before it is abandoned
+    /// (`None`: no limit).
+    pub time_limit: Option<Duration>,
 }
 
 impl ShaderOptions {
@@ -100,6 +118,19 @@ impl ShaderOptions {
     /// limit: the driver may compile the kernel's machine code then
     /// (lavapipe does, 13 s for our Float316 kernel with a cold cache).
     pub const COMPILE_ALLOWANCE: Duration = Duration::from_secs(300);
+
+    /// How our own kernels ([`ShaderSource::ours`]) run: no loop guard and
+    /// no time limit. Every loop of theirs has a constant bound, and the
+    /// guard's count would add work to every iteration of the Float316
+    /// arithmetic's loops (docs/shaders.md, "Our own kernels").
+    pub fn ours(numbers: ShaderNumbers) -> ShaderOptions {
+        ShaderOptions {
+            numbers,
+            loop_limit: None,
+            time_limit: None,
+            ..ShaderOptions::default()
+        }
+    }
 }
 
 impl Default for ShaderOptions {
@@ -107,8 +138,8 @@ impl Default for ShaderOptions {
         ShaderOptions {
             numbers: ShaderNumbers::F32,
             shade: Shade::Luminance,
-            loop_limit: ShaderOptions::LOOP_LIMIT,
-            time_limit: ShaderOptions::TIME_LIMIT,
+            loop_limit: Some(ShaderOptions::LOOP_LIMIT),
+            time_limit: Some(ShaderOptions::TIME_LIMIT),
         }
     }
 }
@@ -122,9 +153,28 @@ pub enum ShaderNum {
     F316(F316),
 }
 
-/// A user's shader compiled on a device, ready to answer.
-pub struct UserShader {
-    dev: Device,
+impl ShaderNum {
+    /// The value of an f32 shader's answer.
+    pub fn f32(self) -> Option<f32> {
+        match self {
+            ShaderNum::F32(v) => Some(v),
+            ShaderNum::F316(_) => None,
+        }
+    }
+
+    /// The triple of a Float316 shader's answer.
+    pub fn f316(self) -> Option<F316> {
+        match self {
+            ShaderNum::F316(t) => Some(t),
+            ShaderNum::F32(_) => None,
+        }
+    }
+}
+
+/// A shader's kernels compiled on a device (the device is the caller's:
+/// [`UserShader`] opens one per shader, [`crate::Gpu`] shares one between
+/// our two kernels and the scene kernels).
+pub(crate) struct Compiled {
     name: String,
     language: Language,
     options: ShaderOptions,
@@ -134,20 +184,30 @@ pub struct UserShader {
     ops: Option<Kernel>,
 }
 
-impl UserShader {
-    /// Run the front end only (no device): what the shader provides, or
-    /// the diagnostic that says why it cannot run.
-    pub fn check(source: &ShaderSource, options: &ShaderOptions) -> Result<Provides, GpuError> {
-        frontend::front(source, options.numbers, options.loop_limit).map(|f| f.provides)
+impl Compiled {
+    /// Run the front end on `source`, compile its kernels on `dev` and
+    /// dispatch each once (a driver may compile machine code at the first
+    /// dispatch: that is set-up, not image time, and has
+    /// [`ShaderOptions::COMPILE_ALLOWANCE`] beyond the time limit).
+    pub(crate) fn new(
+        dev: &Device,
+        source: &ShaderSource,
+        options: &ShaderOptions,
+    ) -> Result<Compiled, GpuError> {
+        let front = frontend::front(source, options.numbers, options.loop_limit)?;
+        Compiled::from_front(dev, source, options, front)
     }
 
-    /// Compile `source` on the preferred adapter and dispatch each kernel
-    /// once (a driver may compile machine code at the first dispatch: that
-    /// is set-up, not image time, and has [`ShaderOptions::COMPILE_ALLOWANCE`]
-    /// beyond the time limit).
-    pub fn open(source: &ShaderSource, options: &ShaderOptions) -> Result<UserShader, GpuError> {
-        let front = frontend::front(source, options.numbers, options.loop_limit)?;
-        let dev = Device::open()?;
+    /// [`Compiled::new`] after the front end.
+    fn from_front(
+        dev: &Device,
+        source: &ShaderSource,
+        options: &ShaderOptions,
+        front: frontend::Front,
+    ) -> Result<Compiled, GpuError> {
+        let first_limit = options
+            .time_limit
+            .map(|limit| limit + ShaderOptions::COMPILE_ALLOWANCE);
         let mut kernels: [Option<Kernel>; 3] = [None, None, None];
         for kernel in front.kernels {
             let label = format!("{} {}", source.name, kernel.entry.name());
@@ -165,12 +225,11 @@ impl UserShader {
                 pipeline,
                 in_words,
                 out_words,
-                Some(options.time_limit + ShaderOptions::COMPILE_ALLOWANCE),
+                first_limit,
             ));
         }
         let [pixels, sdf, ops] = kernels;
-        let mut shader = UserShader {
-            dev,
+        let mut compiled = Compiled {
             name: source.name.clone(),
             language: source.language,
             options: *options,
@@ -179,49 +238,29 @@ impl UserShader {
             sdf,
             ops,
         };
-        shader.warm_up()?;
+        compiled.warm_up(dev)?;
         for kernel in [
-            Some(&mut shader.pixels),
-            shader.sdf.as_mut(),
-            shader.ops.as_mut(),
+            Some(&mut compiled.pixels),
+            compiled.sdf.as_mut(),
+            compiled.ops.as_mut(),
         ]
         .into_iter()
         .flatten()
         {
-            kernel.set_time_limit(Some(options.time_limit));
+            kernel.set_time_limit(options.time_limit);
         }
-        Ok(shader)
+        Ok(compiled)
     }
 
-    fn warm_up(&self) -> Result<(), GpuError> {
-        self.pixels(&[(256, 128)])?;
+    fn warm_up(&self, dev: &Device) -> Result<(), GpuError> {
+        self.pixels(dev, &[(256, 128)])?;
         if self.sdf.is_some() {
-            self.sdf(&[[F316::ONE; 3]])?;
+            self.sdf(dev, &sdf_words(self.options.numbers, &[[F316::ONE; 3]]))?;
         }
         if self.ops.is_some() {
-            self.ops(&[(Op::Add, F316::ONE, F316::ONE)])?;
+            self.ops(dev, &[(Op::Add, F316::ONE, F316::ONE)])?;
         }
         Ok(())
-    }
-
-    /// The shader's file name.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// The numbers it computes with.
-    pub fn numbers(&self) -> ShaderNumbers {
-        self.options.numbers
-    }
-
-    /// The levels beyond pixels and image it answers.
-    pub fn provides(&self) -> &Provides {
-        &self.provides
-    }
-
-    /// The adapter it runs on.
-    pub fn adapter_info(&self) -> &AdapterDescription {
-        &self.dev.adapter
     }
 
     fn number(&self, words: &[u32]) -> ShaderNum {
@@ -231,15 +270,13 @@ impl UserShader {
         }
     }
 
-    /// Pixel shades: the value before dithering (clamped to [0, 1] for
-    /// f32, where the harness dithers as the spec says) and whether the
-    /// dithered pixel is white, per `(x, y)` of the 512x256 image (row 0 at
-    /// the top).
-    pub fn pixels(
+    /// See [`UserShader::pixels`].
+    pub(crate) fn pixels(
         &self,
+        dev: &Device,
         pixels: &[(u16, u16)],
     ) -> Result<Vec<Outcome<(ShaderNum, bool)>>, GpuError> {
-        let out = self.pixels.run(&self.dev, &pixel_words(pixels)?)?;
+        let out = self.pixels.run(dev, &pixel_words(pixels)?)?;
         let (_, stride) = Entry::Pixels.words(self.language, self.options.numbers);
         Ok(out
             .chunks(stride)
@@ -264,31 +301,17 @@ impl UserShader {
             .collect())
     }
 
-    /// The whole image, row by row ([`all_pixels`] order).
-    pub fn render(&self) -> Result<Vec<Outcome<(ShaderNum, bool)>>, GpuError> {
-        self.pixels(&all_pixels())
-    }
-
-    /// The scene's distance and colour at Float316 points (an f32 shader
-    /// gets each coordinate's value rounded to f32).
-    pub fn sdf(
+    /// The distance and colour at the points `words` holds ([`sdf_words`]).
+    pub(crate) fn sdf(
         &self,
-        points: &[[F316; 3]],
+        dev: &Device,
+        words: &[u32],
     ) -> Result<Vec<Outcome<(ShaderNum, ShaderNum)>>, GpuError> {
         let kernel = self
             .sdf
             .as_ref()
             .ok_or_else(|| self.not_provided("sdf(p)"))?;
-        let mut words = Vec::new();
-        for p in points {
-            for c in p {
-                match self.options.numbers {
-                    ShaderNumbers::F32 => words.push((c.to_f64() as f32).to_bits()),
-                    ShaderNumbers::Float316 => push_triple(&mut words, *c),
-                }
-            }
-        }
-        let out = kernel.run(&self.dev, &words)?;
+        let out = kernel.run(dev, words)?;
         let (_, stride) = Entry::Sdf.words(self.language, self.options.numbers);
         let half = (stride - 1) / 2;
         Ok(out
@@ -301,21 +324,23 @@ impl UserShader {
             .collect())
     }
 
-    /// Float316 operations `(op, a, b)`; the op code is the index in
-    /// [`Op::ALL`], unary operations ignore `b`, and `gt` answers in the
-    /// result's `m` (0 or 1).
-    pub fn ops(&self, cases: &[(Op, F316, F316)]) -> Result<Vec<Outcome<OpValue>>, GpuError> {
+    /// See [`UserShader::ops`].
+    pub(crate) fn ops(
+        &self,
+        dev: &Device,
+        cases: &[(Op, F316, F316)],
+    ) -> Result<Vec<Outcome<OpValue>>, GpuError> {
         let kernel = self
             .ops
             .as_ref()
             .ok_or_else(|| self.not_provided("op(code, a, b)"))?;
-        let mut words = Vec::new();
+        let mut words = Vec::with_capacity(7 * cases.len());
         for &(op, a, b) in cases {
             words.push(crate::float316::op_code(op));
             push_triple(&mut words, a);
             push_triple(&mut words, b);
         }
-        let out = kernel.run(&self.dev, &words)?;
+        let out = kernel.run(dev, &words)?;
         Ok(out
             .chunks(4)
             .zip(cases)
@@ -333,6 +358,98 @@ impl UserShader {
             shader: self.name.clone(),
             what: what.to_string(),
         }
+    }
+}
+
+/// Float316 points as an sdf kernel's input words: triples, or for an f32
+/// shader each coordinate's value rounded to f32.
+pub(crate) fn sdf_words(numbers: ShaderNumbers, points: &[[F316; 3]]) -> Vec<u32> {
+    let mut words = Vec::with_capacity(9 * points.len());
+    for p in points {
+        for c in p {
+            match numbers {
+                ShaderNumbers::F32 => words.push((c.to_f64() as f32).to_bits()),
+                ShaderNumbers::Float316 => push_triple(&mut words, *c),
+            }
+        }
+    }
+    words
+}
+
+/// A user's shader compiled on a device of its own, ready to answer.
+pub struct UserShader {
+    dev: Device,
+    compiled: Compiled,
+}
+
+impl UserShader {
+    /// Run the front end only (no device): what the shader provides, or
+    /// the diagnostic that says why it cannot run.
+    pub fn check(source: &ShaderSource, options: &ShaderOptions) -> Result<Provides, GpuError> {
+        frontend::front(source, options.numbers, options.loop_limit).map(|f| f.provides)
+    }
+
+    /// Compile `source` on the preferred adapter and dispatch each kernel
+    /// once (see [`ShaderOptions::COMPILE_ALLOWANCE`]).
+    pub fn open(source: &ShaderSource, options: &ShaderOptions) -> Result<UserShader, GpuError> {
+        // The front end first: a shader that does not compile needs no device.
+        let front = frontend::front(source, options.numbers, options.loop_limit)?;
+        let dev = Device::open()?;
+        let compiled = Compiled::from_front(&dev, source, options, front)?;
+        Ok(UserShader { dev, compiled })
+    }
+
+    /// The shader's file name.
+    pub fn name(&self) -> &str {
+        &self.compiled.name
+    }
+
+    /// The numbers it computes with.
+    pub fn numbers(&self) -> ShaderNumbers {
+        self.compiled.options.numbers
+    }
+
+    /// The levels beyond pixels and image it answers.
+    pub fn provides(&self) -> &Provides {
+        &self.compiled.provides
+    }
+
+    /// The adapter it runs on.
+    pub fn adapter_info(&self) -> &AdapterDescription {
+        &self.dev.adapter
+    }
+
+    /// Pixel shades: the value before dithering (clamped to [0, 1] for
+    /// f32, where the harness dithers as the spec says) and whether the
+    /// dithered pixel is white, per `(x, y)` of the 512x256 image (row 0 at
+    /// the top).
+    pub fn pixels(
+        &self,
+        pixels: &[(u16, u16)],
+    ) -> Result<Vec<Outcome<(ShaderNum, bool)>>, GpuError> {
+        self.compiled.pixels(&self.dev, pixels)
+    }
+
+    /// The whole image, row by row ([`all_pixels`] order).
+    pub fn render(&self) -> Result<Vec<Outcome<(ShaderNum, bool)>>, GpuError> {
+        self.pixels(&all_pixels())
+    }
+
+    /// The scene's distance and colour at Float316 points (an f32 shader
+    /// gets each coordinate's value rounded to f32).
+    pub fn sdf(
+        &self,
+        points: &[[F316; 3]],
+    ) -> Result<Vec<Outcome<(ShaderNum, ShaderNum)>>, GpuError> {
+        let words = sdf_words(self.compiled.options.numbers, points);
+        self.compiled.sdf(&self.dev, &words)
+    }
+
+    /// Float316 operations `(op, a, b)`; the op code is the index in
+    /// [`Op::ALL`], unary operations ignore `b`, and `gt` answers in the
+    /// result's `m` (0 or 1).
+    pub fn ops(&self, cases: &[(Op, F316, F316)]) -> Result<Vec<Outcome<OpValue>>, GpuError> {
+        self.compiled.ops(&self.dev, cases)
     }
 
     /// Release the device now; every later call fails with

@@ -10,6 +10,12 @@
 // program would halt on Sys.error or loop forever): `fail` records the first
 // failure in `status` and the computation runs on with bounded loops; the
 // kernel then reports the status instead of the value.
+//
+// `gpu-f316` runs this file as a Float316 shader of the harness's convention
+// (docs/shaders.md): `pixel`, `sdf` and `op` at the end are what the wrapper
+// calls, `status` is read after each call, and `harness_bayer` is the
+// wrapper's dither matrix. The scene kernels (scene_wgsl.rs) take its other
+// items as a library.
 
 struct F {
     s: i32,
@@ -28,7 +34,7 @@ struct Surface {
     col: F,
 }
 
-// Outcome kinds, as decoded in float316.rs. A Sys.error code is stored in the
+// Outcome kinds, as decoded in float316.rs (the convention's `status`). A Sys.error code is stored in the
 // bits above the kind: kind | (code << 4).
 const K_VALUE: i32 = 0;
 const K_SYS_ERROR: i32 = 1;
@@ -412,7 +418,8 @@ fn light(p: V, n: V) -> F {
     return add(diffuse, s);
 }
 
-fn pixel(u: F, v: F) -> F {
+// The shade of the image point (u, v), before clamping and dithering.
+fn seed_shade(u: F, v: F) -> F {
     let forward = vnormalize(vsub(CAM, LOOK_AT));
     let right = vnormalize(vcross(WORLD_UP, forward));
     let up = vcross(forward, right);
@@ -450,10 +457,10 @@ fn from_int(n: i32) -> F {
     return F(0, 127 + top, n << u32(13 - top));
 }
 
-// The dither threshold (B - 32) / 64 as an exact Float316 (`bayer` is in the
-// prelude every kernel gets, see kernel.rs).
+// The dither threshold (B - 32) / 64 as an exact Float316 (`harness_bayer`
+// is the shader wrapper's Bayer matrix).
 fn dither(x: i32, y: i32) -> F {
-    let k = bayer(u32(x), u32(y)) - 32;
+    let k = harness_bayer(u32(x), u32(y)) - 32;
     if (k == 0) {
         return ZERO;
     }
@@ -474,7 +481,7 @@ struct Shade {
 fn image_pixel(x: i32, y: i32) -> Shade {
     let u = div(sub(from_int(x), C256), C256);
     let v = negated(div(sub(from_int(y), C128), C256));
-    var value = pixel(u, v);
+    var value = seed_shade(u, v);
     if (gt(value, ONE)) {
         value = ONE;
     } else if (value.s == 1) {
@@ -484,21 +491,7 @@ fn image_pixel(x: i32, y: i32) -> Shade {
     return Shade(value, white);
 }
 
-// ---- Kernels ----
-
-fn load_f(base: u32) -> F {
-    return F(bitcast<i32>(inp[base]), bitcast<i32>(inp[base + 1u]), bitcast<i32>(inp[base + 2u]));
-}
-
-fn load_v(base: u32) -> V {
-    return V(load_f(base), load_f(base + 3u), load_f(base + 6u));
-}
-
-fn store_f(base: u32, a: F) {
-    outp[base] = bitcast<u32>(a.s);
-    outp[base + 1u] = bitcast<u32>(a.e);
-    outp[base + 2u] = bitcast<u32>(a.m);
-}
+// ---- Operations by code ----
 
 // Op codes follow common::Op::ALL.
 fn apply(op: u32, a: F, b: F) -> F {
@@ -542,41 +535,30 @@ fn apply(op: u32, a: F, b: F) -> F {
     }
 }
 
-// In: op, a (3 words), b (3 words). Out: status, result (3 words; gt puts
-// 0 or 1 in the last word).
-@compute @workgroup_size(WG)
-fn ops_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= params.count) {
-        return;
-    }
-    let r = apply(inp[i * 7u], load_f(i * 7u + 1u), load_f(i * 7u + 4u));
-    outp[i * 4u] = bitcast<u32>(status);
-    store_f(i * 4u + 1u, r);
+// ---- The shader convention (docs/shaders.md) ----
+
+fn f316_of(t: vec3<i32>) -> F {
+    return F(t.x, t.y, t.z);
 }
 
-// In: p (9 words). Out: status, sd (3 words), col (3 words).
-@compute @workgroup_size(WG)
-fn sdf_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= params.count) {
-        return;
-    }
-    let s = scene(load_v(i * 9u));
-    outp[i * 7u] = bitcast<u32>(status);
-    store_f(i * 7u + 1u, s.sd);
-    store_f(i * 7u + 4u, s.col);
+fn fields_of(a: F) -> vec3<i32> {
+    return vec3<i32>(a.s, a.e, a.m);
 }
 
-// In: x, y. Out: status, value before dithering (3 words), white (0 or 1).
-@compute @workgroup_size(WG)
-fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= params.count) {
-        return;
-    }
-    let shade = image_pixel(i32(inp[i * 2u]), i32(inp[i * 2u + 1u]));
-    outp[i * 5u] = bitcast<u32>(status);
-    store_f(i * 5u + 1u, shade.value);
-    outp[i * 5u + 4u] = select(0u, 1u, shade.white);
+// One operation (codes as in `apply`; gt answers 0 or 1 in m).
+fn op(code: u32, a: vec3<i32>, b: vec3<i32>) -> vec3<i32> {
+    return fields_of(apply(code, f316_of(a), f316_of(b)));
+}
+
+// The scene's distance and colour at p.
+fn sdf(p: array<vec3<i32>, 3>) -> array<vec3<i32>, 2> {
+    let s = scene(V(f316_of(p[0]), f316_of(p[1]), f316_of(p[2])));
+    return array<vec3<i32>, 2>(fields_of(s.sd), fields_of(s.col));
+}
+
+// Pixel (x, y), row 0 at the top: the clamped shade before dithering and
+// the dithered bit.
+fn pixel(coord: vec2<i32>) -> vec4<i32> {
+    let shade = image_pixel(coord.x, coord.y);
+    return vec4<i32>(shade.value.s, shade.value.e, shade.value.m, select(0, 1, shade.white));
 }

@@ -2,6 +2,10 @@
 // the spec's evaluation order. Lengths and dot products are written out
 // (x*x + y*y + z*z) instead of using the built-ins, whose formulas are the
 // driver's choice.
+//
+// `gpu-f32` runs this file as a shader of the harness's convention
+// (docs/shaders.md): `pixel` and `sdf` at the end are what the wrapper
+// calls. The scene kernels (scene_wgsl.rs) take its other items as a library.
 
 struct Surface {
     sd: f32,
@@ -109,7 +113,8 @@ fn light(p: vec3<f32>, n: vec3<f32>) -> f32 {
     return diffuse + specular;
 }
 
-fn pixel(u: f32, v: f32) -> f32 {
+// The shade of the image point (u, v), before clamping and dithering.
+fn seed_shade(u: f32, v: f32) -> f32 {
     let forward = normalize3(CAM - LOOK_AT);
     let right = normalize3(cross3(WORLD_UP, forward));
     let up = cross3(forward, right);
@@ -137,33 +142,21 @@ fn pixel(u: f32, v: f32) -> f32 {
     return value;
 }
 
-// In: p (3 words, f32 bits). Out: sd, col (f32 bits).
-@compute @workgroup_size(WG)
-fn sdf_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= params.count) {
-        return;
-    }
-    let p = vec3<f32>(bitcast<f32>(inp[i * 3u]), bitcast<f32>(inp[i * 3u + 1u]), bitcast<f32>(inp[i * 3u + 2u]));
-    let s = scene(p);
-    outp[i * 2u] = bitcast<u32>(s.sd);
-    outp[i * 2u + 1u] = bitcast<u32>(s.col);
+// ---- The shader convention (docs/shaders.md) ----
+
+// The shade of the pixel whose centre is `coord` (origin at the top left);
+// the harness clamps it to [0, 1] and dithers it (spec section 7).
+fn pixel(coord: vec2<f32>, resolution: vec2<f32>) -> f32 {
+    // The pixel's integer coordinates (exact in f32), then the spec's u, v.
+    let x = coord.x - 0.5;
+    let y = coord.y - 0.5;
+    let u = (x - 0.5 * 512.0) / 256.0;
+    let v = -((y - 0.5 * 256.0) / 256.0);
+    return seed_shade(u, v);
 }
 
-// In: x, y. Out: the clamped value before dithering (f32 bits), white (0 or 1).
-@compute @workgroup_size(WG)
-fn pixels_main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let i = gid.x;
-    if (i >= params.count) {
-        return;
-    }
-    let x = inp[i * 2u];
-    let y = inp[i * 2u + 1u];
-    let u = (f32(x) - 0.5 * 512.0) / 256.0;
-    let v = -((f32(y) - 0.5 * 256.0) / 256.0);
-    let value = clamp(pixel(u, v), 0.0, 1.0);
-    // `bayer` is in the prelude every kernel gets (see kernel.rs).
-    let dithered = (value + f32(bayer(x, y)) / 64.0) - 0.5;
-    outp[i * 2u] = bitcast<u32>(value);
-    outp[i * 2u + 1u] = select(0u, 1u, dithered > 0.5);
+// The scene's distance and colour at p.
+fn sdf(p: vec3<f32>) -> vec2<f32> {
+    let s = scene(p);
+    return vec2<f32>(s.sd, s.col);
 }

@@ -20,3 +20,19 @@ fn select316(f: F, t: F, c: bool) -> F {
     }
     return f;
 }
+
+// A triple and a vector from the input words, a triple into the output
+// words (the prelude's bindings).
+fn load_f(base: u32) -> F {
+    return F(bitcast<i32>(inp[base]), bitcast<i32>(inp[base + 1u]), bitcast<i32>(inp[base + 2u]));
+}
+
+fn load_v(base: u32) -> V {
+    return V(load_f(base), load_f(base + 3u), load_f(base + 6u));
+}
+
+fn store_f(base: u32, a: F) {
+    outp[base] = bitcast<u32>(a.s);
+    outp[base + 1u] = bitcast<u32>(a.e);
+    outp[base + 2u] = bitcast<u32>(a.m);
+}

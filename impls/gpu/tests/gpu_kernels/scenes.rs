@@ -1,6 +1,7 @@
 //! Kernels generated from scene descriptions: on every shipped scene the
 //! Float316 kernel agrees with ref-f316 (made from the same description)
-//! bit for bit on the whole image and on SDF queries near the surfaces;
+//! bit for bit on the whole image and on SDF queries, uniform ones and
+//! those derived from the scene (`vectors::gen::scene_derived`);
 //! the f32 kernel renders and is compared with ref-f64 by its error.
 
 use crate::support::{gpu, Rng};
@@ -22,16 +23,23 @@ fn same(g: &Outcome<GpuPixel>, r: &Outcome<ScenePixel>) -> bool {
     }
 }
 
-/// Points around the scene: a grid over the view, some on the way to the
-/// camera's target.
-fn points() -> Vec<[F316; 3]> {
+/// Points around the scene, and those derived from it: near every
+/// surface, seam, blend region and repetition cell boundary.
+fn points(scene: &scene::Checked) -> Vec<[F316; 3]> {
     let mut rng = Rng::new(17);
-    (0..512)
+    let mut points: Vec<[F316; 3]> = (0..512)
         .map(|_| {
             [(); 3]
                 .map(|_| F316::from_f64_truncating(rng.unit() * 8.0 - 4.0).expect("a small value"))
         })
-        .collect()
+        .collect();
+    let derived = vectors::gen::scene_derived::sdf_points(scene, 17, 8).unwrap();
+    assert!(!derived.is_empty());
+    points.extend(derived.iter().filter_map(|v| match v {
+        vectors::Vector::Sdf(s) => Some(s.p),
+        _ => None,
+    }));
+    points
 }
 
 /// ref-f316 and gpu-f316 from `path` agree on every pixel and SDF point;
@@ -57,7 +65,7 @@ fn check(path: &str) -> usize {
         bad.first().map(|&i| theirs[i]),
         bad.first().map(|&i| ours.pixels[i])
     );
-    let pts = points();
+    let pts = points(&c);
     let g = kernel.sdf(gpu, &pts).unwrap();
     for (p, g) in pts.iter().zip(&g) {
         let r = f316.sdf(*p);

@@ -175,8 +175,8 @@ fn an_endless_loop_is_a_hang() {
 #[test]
 fn a_dispatch_past_its_time_limit_is_a_timeout() {
     let options = ShaderOptions {
-        loop_limit: 20_000,
-        time_limit: Duration::from_millis(200),
+        loop_limit: Some(20_000),
+        time_limit: Some(Duration::from_millis(200)),
         ..ShaderOptions::default()
     };
     // Opening dispatches one pixel: well within the limit.
@@ -231,4 +231,31 @@ fn shadertoy_idioms_run_unmodified() {
         shade.iter().any(|&v| (v - sky).abs() > 0.1),
         "not a flat image"
     );
+}
+
+/// A Shadertoy shader of another scene, written as an outsider would and
+/// declared by following docs/shaders.md alone (tests/shaders/two_shapes.glsl:
+/// `#define`, a `mat2` rotation of a swizzle, an int `for` loop with
+/// `break`, integer literals in float constructors), runs unmodified: every
+/// pixel answers, the sky is Shadertoy's sky colour by luminance, the
+/// box's face in its own shadow is dark.
+#[test]
+fn an_outsiders_shadertoy_shader_runs_unmodified() {
+    let Some(shader) = open("tests/shaders/two_shapes.glsl", ShaderOptions::default()) else {
+        return;
+    };
+    assert!(!shader.provides().sdf());
+    let (shade, _) = f32_image(shader.render().expect("render"));
+    // The top left pixel sees only sky: pow(vec3(.6, .7, .9), vec3(.4545)).
+    let sky: f64 = [(0.2126, 0.6), (0.7152, 0.7), (0.0722, 0.9)]
+        .iter()
+        .map(|(w, c): &(f64, f64)| w * c.powf(0.4545))
+        .sum();
+    assert!(
+        (f64::from(shade[0]) - sky).abs() < 1e-4,
+        "{} vs {sky}",
+        shade[0]
+    );
+    let box_face = shade[140 * 512 + 190];
+    assert!(box_face < 0.5, "{box_face}");
 }

@@ -78,6 +78,9 @@ pub(crate) enum Fault {
 pub(crate) const RETURNED: i32 = -1;
 /// Code: continue in compiled code at `Ctx::pc` of function `Ctx::cur`.
 pub(crate) const CONTINUE: i32 = -2;
+/// The block index a compiled call passes: the registers come as the
+/// entry's other arguments, not in the context.
+pub(crate) const CALLED: i64 = -1;
 /// Compiled functions nested deeper than this leave calls to the
 /// interpreter, which bounds the host stack compiled code uses.
 pub(crate) const NATIVE_DEPTH: u32 = 256;
@@ -89,7 +92,9 @@ pub(crate) struct Ctx {
     pub ram: *mut i16,
     pub frames: *mut Frame,
     pub frames_len: u64,
-    /// The frame stack's capacity, at most [`MAX_DEPTH`].
+    /// The frame stack's capacity, at most [`MAX_DEPTH`]; 0 where calls and
+    /// returns must not run compiled (a watcher or the function profile is
+    /// on), which fails compiled code's room test for both.
     pub frames_cap: u64,
     pub steps: u64,
     pub stop_at: u64,
@@ -100,15 +105,26 @@ pub(crate) struct Ctx {
     pub that: u16,
     pub nargs: u16,
     pub flags: u8,
-    /// Whether calls and returns may run compiled (no watcher, no profile).
-    pub inline: u8,
     pub cur: u32,
     pub pc: u32,
     /// Compiled functions currently nested on the host stack.
     pub depth: u32,
 }
 
-type Entry = unsafe extern "C" fn(*mut Ctx, u32) -> i32;
+/// A compiled function: (context, block index or [`CALLED`], and for a
+/// call the caller's SP, THIS | THAT << 16, the argument count | the entry
+/// flags << 16, the step count) -> (code, step count). The dispatcher
+/// enters at a block with the registers in the context, and finds them
+/// there on the way out; a compiled call gets them as arguments, and on
+/// [`RETURNED`] reads the caller's from the frame it pushed.
+type Entry = unsafe extern "C" fn(*mut Ctx, i32, u32, u32, u32, u64) -> Exit;
+
+/// What a compiled function returns (two registers).
+#[repr(C)]
+struct Exit {
+    code: i32,
+    steps: u64,
+}
 
 /// A program's compiled code: one native function per VM function, and for
 /// each instruction the function it belongs to and the index of the block
@@ -180,9 +196,18 @@ impl Native {
             .map_err(|e| format!("cranelift: {e}"))?;
         let mut module = JITModule::new(JITBuilder::with_isa(isa, default_libcall_names()));
         let mut sig = module.make_signature();
-        sig.params.push(AbiParam::new(types::I64));
-        sig.params.push(AbiParam::new(types::I32));
+        for t in [
+            types::I64,
+            types::I32,
+            types::I32,
+            types::I32,
+            types::I32,
+            types::I64,
+        ] {
+            sig.params.push(AbiParam::new(t));
+        }
         sig.returns.push(AbiParam::new(types::I32));
+        sig.returns.push(AbiParam::new(types::I64));
         let ids: Vec<FuncId> = (0..program.functions.len())
             .map(|i| {
                 module
@@ -327,7 +352,11 @@ impl Machine {
             ram: std::ptr::null_mut(),
             frames: self.frames.as_mut_ptr(),
             frames_len: self.frames.len() as u64,
-            frames_cap: self.frames.capacity().min(MAX_DEPTH) as u64,
+            frames_cap: if !W && self.profile.is_none() {
+                self.frames.capacity().min(MAX_DEPTH) as u64
+            } else {
+                0
+            },
             steps: self.steps,
             stop_at,
             sp: reg(0),
@@ -337,7 +366,6 @@ impl Machine {
             that: reg(4),
             nargs: self.nargs,
             flags: self.flags,
-            inline: u8::from(!W && self.profile.is_none()),
             cur: self.cur,
             pc: self.pc,
             depth: 0,
@@ -347,7 +375,7 @@ impl Machine {
         // reads and writes RAM words 5..RAM_SIZE only (all it checks), and
         // frame slots below `frames_cap`, setting `frames_len` to cover
         // exactly the slots it filled.
-        let code = unsafe { native.entries[self.cur as usize](&mut ctx, block) };
+        let exit = unsafe { native.entries[self.cur as usize](&mut ctx, block as i32, 0, 0, 0, 0) };
         // SAFETY: see above: slots 0..frames_len are initialised.
         unsafe { self.frames.set_len(ctx.frames_len as usize) };
         let w = self.ram.words_mut();
@@ -357,11 +385,14 @@ impl Machine {
         {
             w[i] = r as i16;
         }
+        // Whatever code leaves compiled code with, the state is in the
+        // context (the step count also comes back in a register).
+        debug_assert_eq!(exit.steps, ctx.steps);
         self.steps = ctx.steps;
         self.pc = ctx.pc;
         self.cur = ctx.cur;
         self.nargs = ctx.nargs;
         self.flags = ctx.flags;
-        code
+        exit.code
     }
 }

@@ -1,10 +1,14 @@
 //! One VM function to Cranelift IR.
 //!
-//! The compiled function takes the machine state in a [`Ctx`] and the index
-//! of the block to start at, keeps SP, LCL, ARG, THIS, THAT, the flags, the
-//! argument count and the step count in registers, and returns a code (see
-//! `native::RETURNED`, `native::CONTINUE`; a code >= 0 is the instruction
-//! the interpreter must run next). Every block first checks that its whole
+//! The compiled function (signature `native::Entry`) takes the machine
+//! state in a [`Ctx`] and the index of the block to start at (from the
+//! dispatcher), or the callee's registers as arguments (from a compiled
+//! call), keeps SP, LCL, ARG, THIS, THAT, the flags, the argument count and
+//! the step count in registers, and returns a code (see `native::RETURNED`,
+//! `native::CONTINUE`; a code >= 0 is the instruction the interpreter must
+//! run next) and the step count. One test on entering compiled code covers
+//! every `local` and `argument` access of the function (`frame_ok`). Every
+//! block first checks that its whole
 //! step count fits under the stop and that its stack accesses stay between
 //! 256 and the profile's stack end (`Timing::stack_end`); otherwise, and wherever an instruction meets a case that
 //! only the interpreter handles (a register or an address outside RAM
@@ -19,7 +23,7 @@
 //! from its segment's host address.
 
 use super::blocks::{self, Block, Kind, MAX_INLINE_LOCALS};
-use super::{Ctx, Fault, CONTINUE, NATIVE_DEPTH, RETURNED};
+use super::{Ctx, Fault, CALLED, CONTINUE, NATIVE_DEPTH, RETURNED};
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
 use crate::timing::{Timing, STACK_BASE};
@@ -83,7 +87,6 @@ struct Translator<'a, 'b> {
     ctx: Value,
     ram: Value,
     stop_at: Value,
-    inline: Value,
     /// The Cranelift block of each VM block.
     cl: Vec<ir::Block>,
     /// VM block index by instruction index relative to the function start.
@@ -104,6 +107,10 @@ struct Translator<'a, 'b> {
     block_start: u32,
     /// The current block's stack words, `lo..hi` (None if it has none).
     stack_span: Option<(Value, Value)>,
+    /// LCL + the highest `local` index and ARG + the highest `argument`
+    /// index, where `reach` covers them: LCL and ARG keep one value through
+    /// compiled code (a call that returns with others leaves it).
+    frame_tops: [Option<Value>; 2],
 }
 
 /// How a `this` or `that` access of a block tests its address.
@@ -181,8 +188,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let entry = b.create_block();
     b.append_block_params_for_function_params(entry);
     b.switch_to_block(entry);
-    let ctx = b.block_params(entry)[0];
-    let which = b.block_params(entry)[1];
+    let params = b.block_params(entry).to_vec();
+    let (ctx, which) = (params[0], params[1]);
     let v = Vars {
         sp: b.declare_var(T16),
         lcl: b.declare_var(T16),
@@ -196,9 +203,6 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let mem = MemFlagsData::trusted();
     let ram = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, ram)));
     let stop_at = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, stop_at)));
-    let inline = b
-        .ins()
-        .uload8(T32, mem, ctx, field(offset_of!(Ctx, inline)));
     let reach =
         reach(&env.code[start as usize..vm_blocks.last().map_or(start, |b| b.end) as usize]);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
@@ -212,7 +216,6 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         ctx,
         ram,
         stop_at,
-        inline,
         cl,
         block_at,
         start,
@@ -222,10 +225,29 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         ptr_tests: Vec::new(),
         block_start: 0,
         stack_span: None,
+        frame_tops: [None; 2],
     };
+    // A compiled call passes the registers; the dispatcher, the context.
+    let called = t.b.ins().icmp_imm_s(IntCC::Equal, which, CALLED);
+    let (from_call, from_ctx, join) = (t.b.create_block(), t.b.create_block(), t.b.create_block());
+    t.b.ins().brif(called, from_call, NONE, from_ctx, NONE);
+    t.b.switch_to_block(from_call);
+    t.enter_called(&params[2..]);
+    t.b.ins().jump(join, NONE);
+    t.b.switch_to_block(from_ctx);
     t.load_state();
-    // Dispatch on the block index; an index out of range (never passed)
-    // leaves at once with the pc the caller gave.
+    t.b.ins().jump(join, NONE);
+    t.b.switch_to_block(join);
+    for (seg, var) in [(LOCAL, t.v.lcl), (ARGUMENT, t.v.arg)] {
+        if let Some(top) = t.reach[seg] {
+            t.frame_tops[seg] = Some(t.seg_addr(var, top));
+        }
+    }
+    // A call enters at the first block (index 0); the dispatcher at
+    // `which`, and an index out of range (never passed) leaves at once
+    // with the pc the caller gave.
+    let zero = t.c32(0);
+    let which = t.b.ins().select(called, zero, which);
     let default = t.b.create_block();
     if let Some(ok) = t.frame_ok() {
         // LCL or ARG such that some access of the function would not be
@@ -253,6 +275,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
             .collect();
     let def = t.b.func.dfg.block_call(default, NONE);
     let table = t.b.create_jump_table(JumpTableData::new(def, &calls));
+    let dispatch = t.b.create_block();
+    t.b.ins().brif(called, t.cl[0], NONE, dispatch, NONE);
+    t.b.switch_to_block(dispatch);
     t.b.ins().br_table(which, table);
 
     t.b.switch_to_block(default);
@@ -269,7 +294,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let pc = t.b.block_params(leave)[1];
     t.store_state();
     t.b.ins().store(mem, pc, ctx, field(offset_of!(Ctx, pc)));
-    t.b.ins().return_(&[code]);
+    let steps = t.b.use_var(t.v.steps);
+    t.b.ins().return_(&[code, steps]);
     t.b.seal_all_blocks();
     t.b.finalize(t.env.target);
 }
@@ -283,58 +309,81 @@ impl Translator<'_, '_> {
         self.b.ins().iconst(T32, v & 0xFFFF_FFFF)
     }
 
+    /// Define the registers from a compiled call's arguments (see
+    /// `native::Entry`): the caller's SP (where the frame begins), THIS and
+    /// THAT, the argument count and entry flags, the step count.
+    fn enter_called(&mut self, args: &[Value]) {
+        let (base, ptrs, nargs_flags, steps) = (args[0], args[1], args[2], args[3]);
+        let base = self.b.ins().ireduce(T16, base);
+        let nargs = self.b.ins().ireduce(T16, nargs_flags);
+        let lcl = self.b.ins().iadd_imm_s(base, 5);
+        let arg = self.b.ins().isub(base, nargs);
+        let f = &self.env.program.functions[self.env.id as usize];
+        // Where a call's `function` line is a step, the callee's zeroes
+        // and pushes the locals; else the call has.
+        let locals = if self.env.timing.function_step {
+            0
+        } else {
+            f.n_vars
+        };
+        let sp = self.b.ins().iadd_imm_s(lcl, i64::from(locals));
+        let this = self.b.ins().ireduce(T16, ptrs);
+        let that = self.b.ins().ushr_imm_u(ptrs, 16);
+        let that = self.b.ins().ireduce(T16, that);
+        let flags = self.b.ins().ushr_imm_u(nargs_flags, 16);
+        for (var, x) in [
+            (self.v.sp, sp),
+            (self.v.lcl, lcl),
+            (self.v.arg, arg),
+            (self.v.this, this),
+            (self.v.that, that),
+            (self.v.nargs, nargs),
+            (self.v.flags, flags),
+            (self.v.steps, steps),
+        ] {
+            self.b.def_var(var, x);
+        }
+    }
+
+    /// The registers as the context holds them: variable, field offset,
+    /// and width (the flags are one byte).
+    fn state_fields(&self) -> [(Variable, usize, ir::Type); 8] {
+        [
+            (self.v.sp, offset_of!(Ctx, sp), T16),
+            (self.v.lcl, offset_of!(Ctx, lcl), T16),
+            (self.v.arg, offset_of!(Ctx, arg), T16),
+            (self.v.this, offset_of!(Ctx, this), T16),
+            (self.v.that, offset_of!(Ctx, that), T16),
+            (self.v.nargs, offset_of!(Ctx, nargs), T16),
+            (self.v.flags, offset_of!(Ctx, flags), types::I8),
+            (self.v.steps, offset_of!(Ctx, steps), T64),
+        ]
+    }
+
     /// Load the registers from the context into the variables.
     fn load_state(&mut self) {
         let mem = MemFlagsData::trusted();
-        let ctx = self.ctx;
-        let regs = [
-            (self.v.sp, offset_of!(Ctx, sp)),
-            (self.v.lcl, offset_of!(Ctx, lcl)),
-            (self.v.arg, offset_of!(Ctx, arg)),
-            (self.v.this, offset_of!(Ctx, this)),
-            (self.v.that, offset_of!(Ctx, that)),
-            (self.v.nargs, offset_of!(Ctx, nargs)),
-        ];
-        for (var, o) in regs {
-            let x = self.b.ins().load(T16, mem, ctx, field(o));
+        for (var, o, ty) in self.state_fields() {
+            let x = if ty == types::I8 {
+                self.b.ins().uload8(T32, mem, self.ctx, field(o))
+            } else {
+                self.b.ins().load(ty, mem, self.ctx, field(o))
+            };
             self.b.def_var(var, x);
         }
-        let flags = self
-            .b
-            .ins()
-            .uload8(T32, mem, ctx, field(offset_of!(Ctx, flags)));
-        self.b.def_var(self.v.flags, flags);
-        let steps = self
-            .b
-            .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, steps)));
-        self.b.def_var(self.v.steps, steps);
     }
 
     /// Store the variables into the context.
     fn store_state(&mut self) {
         let mem = MemFlagsData::trusted();
-        let ctx = self.ctx;
-        let regs = [
-            (self.v.sp, offset_of!(Ctx, sp)),
-            (self.v.lcl, offset_of!(Ctx, lcl)),
-            (self.v.arg, offset_of!(Ctx, arg)),
-            (self.v.this, offset_of!(Ctx, this)),
-            (self.v.that, offset_of!(Ctx, that)),
-            (self.v.nargs, offset_of!(Ctx, nargs)),
-        ];
-        for (var, o) in regs {
+        for (var, o, ty) in self.state_fields() {
             let x = self.b.use_var(var);
-            self.b.ins().store(mem, x, ctx, field(o));
+            if ty == types::I8 {
+                self.b.ins().istore8(mem, x, self.ctx, field(o));
+            } else {
+                self.b.ins().store(mem, x, self.ctx, field(o));
+            }
         }
-        let flags = self.b.use_var(self.v.flags);
-        self.b
-            .ins()
-            .istore8(mem, flags, ctx, field(offset_of!(Ctx, flags)));
-        let steps = self.b.use_var(self.v.steps);
-        self.b
-            .ins()
-            .store(mem, steps, ctx, field(offset_of!(Ctx, steps)));
     }
 
     /// The host address of RAM word `a` (a 16-bit value known to be a
@@ -366,9 +415,19 @@ impl Translator<'_, '_> {
     /// Continue if `ok`, else leave for the interpreter at `at.pc` with
     /// the state before that instruction (computed only on the way out).
     fn guard(&mut self, ok: Value, at: &Before) {
-        let cont = self.b.create_block();
+        self.guard_all(&[ok], at);
+    }
+
+    /// Continue if every one of `conds` holds (each its own branch to one
+    /// shared exit), else leave as [`Self::guard`] does.
+    fn guard_all(&mut self, conds: &[Value], at: &Before) {
         let stub = self.b.create_block();
-        self.b.ins().brif(ok, cont, NONE, stub, NONE);
+        for &ok in conds {
+            let cont = self.b.create_block();
+            self.b.ins().brif(ok, cont, NONE, stub, NONE);
+            self.b.switch_to_block(cont);
+        }
+        let cont = self.b.current_block().expect("a block");
         self.b.switch_to_block(stub);
         self.b.set_cold_block(stub);
         self.exit_before(at);
@@ -431,22 +490,24 @@ impl Translator<'_, '_> {
         // no stack rule applies: from 256 (no pop at SP = 256) up to the
         // profile's stack end.
         let last = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
-        let mut ok = self
+        let mut ok = vec![self
             .b
             .ins()
-            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at);
+            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at)];
         if blk.checks_stack {
-            // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1).
-            let low = self.c16(i64::from(STACK_BASE) - i64::from(blk.min_depth));
-            let c = self
-                .b
-                .ins()
-                .icmp(IntCC::UnsignedGreaterThanOrEqual, sp0, low);
-            ok = self.b.ins().band(ok, c);
-            let end = i64::from(self.env.timing.stack_end());
-            let high = self.c16(end - i64::from(blk.max_depth));
-            let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, sp0, high);
-            ok = self.b.ins().band(ok, c);
+            // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1):
+            // low <= sp0 <= high, one unsigned test of sp0 - low.
+            let low = i64::from(STACK_BASE) - i64::from(blk.min_depth);
+            let high = i64::from(self.env.timing.stack_end()) - i64::from(blk.max_depth);
+            let c = if high < low {
+                self.b.ins().iconst(types::I8, 0)
+            } else {
+                let d = self.b.ins().iadd_imm_s(sp0, -low);
+                self.b
+                    .ins()
+                    .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, high - low)
+            };
+            ok.push(c);
         }
         // The stack words the block holds in registers: those it touches
         // after its `function` line, whose zeroed locals go to RAM at once.
@@ -464,14 +525,11 @@ impl Translator<'_, '_> {
         if let Some((lo, _)) = self.stack_span {
             // The block's `local` and `argument` words lie below its stack
             // words, so the stack can stay in registers across them.
-            for (seg, var) in [(LOCAL, self.v.lcl), (ARGUMENT, self.v.arg)] {
-                if self.reach[seg].is_none() {
-                    continue;
-                }
-                if let Some(top) = reach(code)[seg] {
-                    let a = self.seg_addr(var, top);
-                    let c = self.b.ins().icmp(IntCC::UnsignedLessThan, a, lo);
-                    ok = self.b.ins().band(ok, c);
+            let used = reach(code);
+            for seg in [LOCAL, ARGUMENT] {
+                if let (Some(top), Some(_)) = (self.frame_tops[seg], used[seg]) {
+                    let c = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo);
+                    ok.push(c);
                 }
             }
         }
@@ -485,7 +543,7 @@ impl Translator<'_, '_> {
             base,
             pending: Vec::new(),
         };
-        self.guard(ok, &entry);
+        self.guard_all(&ok, &entry);
 
         let mut s = Stack {
             sp0,
@@ -577,7 +635,12 @@ impl Translator<'_, '_> {
         self.b.ins().iadd_imm_s(base, i64::from(i))
     }
 
+    /// `argument i` is one of the arguments (the entry test covers it
+    /// where the function's accesses are covered).
     fn arg_ok(&mut self, i: u16, before: &Before) {
+        if self.reach[ARGUMENT].is_some() {
+            return;
+        }
         let nargs = self.b.use_var(self.v.nargs);
         let i = self.c16(i64::from(i));
         let ok = self.b.ins().icmp(IntCC::UnsignedGreaterThan, nargs, i);
@@ -593,8 +656,9 @@ impl Translator<'_, '_> {
     }
 
     /// Whether LCL and ARG leave every `local` and `argument` access of the
-    /// function (up to `reach`) on a plain word, without wrapping (None if
-    /// no access is covered so).
+    /// function (up to `reach`) on a plain word, without wrapping, and the
+    /// argument count covers every `argument` index (None if no access is
+    /// covered so).
     fn frame_ok(&mut self) -> Option<Value> {
         let mut ok = None;
         for (var, top) in [
@@ -602,7 +666,15 @@ impl Translator<'_, '_> {
             (self.v.arg, self.reach[ARGUMENT]),
         ] {
             let Some(top) = top else { continue };
-            let c = self.span_ok(var, top);
+            let mut c = self.span_ok(var, top);
+            if var == self.v.arg {
+                let nargs = self.b.use_var(self.v.nargs);
+                let fit =
+                    self.b
+                        .ins()
+                        .icmp_imm_u(IntCC::UnsignedGreaterThan, nargs, i64::from(top));
+                c = self.b.ins().band(c, fit);
+            }
             ok = Some(match ok {
                 None => c,
                 Some(o) => self.b.ins().band(o, c),
@@ -931,32 +1003,29 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
-        // Inline allowed, native nesting bounded, room in the frame stack,
-        // and the new frame in plain RAM.
-        let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, self.inline, 0);
-        let c = self
-            .b
-            .ins()
-            .icmp_imm_s(IntCC::UnsignedLessThan, depth, i64::from(NATIVE_DEPTH));
-        let ok = self.b.ins().band(ok, c);
-        let c = self.b.ins().icmp(IntCC::UnsignedLessThan, len, cap);
-        let ok = self.b.ins().band(ok, c);
+        // Native nesting bounded, room in the frame stack (none if calls
+        // must not run compiled), and the new frame in plain RAM.
+        let mut ok =
+            vec![self
+                .b
+                .ins()
+                .icmp_imm_s(IntCC::UnsignedLessThan, depth, i64::from(NATIVE_DEPTH))];
+        ok.push(self.b.ins().icmp(IntCC::UnsignedLessThan, len, cap));
         let base = s.sp(self);
         let base64 = self.b.ins().uextend(T64, base);
         let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
         let end = i64::from(self.env.timing.stack_end());
-        let c = self
-            .b
-            .ins()
-            .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end);
-        let ok = self.b.ins().band(ok, c);
-        let c = self.b.ins().icmp_imm_s(
+        ok.push(
+            self.b
+                .ins()
+                .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end),
+        );
+        ok.push(self.b.ins().icmp_imm_s(
             IntCC::UnsignedGreaterThanOrEqual,
             base64,
             i64::from(STACK_BASE),
-        );
-        let ok = self.b.ins().band(ok, c);
-        self.guard(ok, before);
+        ));
+        self.guard_all(&ok, before);
 
         // The frame in RAM: RET, LCL, ARG, THIS, THAT, then zeroed locals.
         let saved = [
@@ -974,7 +1043,8 @@ impl Translator<'_, '_> {
         for k in 0..i32::from(n_vars) {
             self.b.ins().store(mem, zero, p, 10 + 2 * k);
         }
-        // The frame stack entry.
+        // The frame stack entry (`Frame`, two words: caller and ret_pc; ret,
+        // nargs, flags, and watched = false).
         let frames = self
             .b
             .ins()
@@ -984,50 +1054,22 @@ impl Translator<'_, '_> {
             .ins()
             .imul_imm_s(len, std::mem::size_of::<Frame>() as i64);
         let fp = self.b.ins().iadd(frames, off);
-        let caller = self.c32(i64::from(self.env.id));
-        self.b
-            .ins()
-            .store(mem, caller, fp, field(offset_of!(Frame, caller)));
-        let ret_pc = self.c32(i64::from(before.pc + 1));
-        self.b
-            .ins()
-            .store(mem, ret_pc, fp, field(offset_of!(Frame, ret_pc)));
-        let ret_word = self.c16(i64::from(ret));
-        self.b
-            .ins()
-            .store(mem, ret_word, fp, field(offset_of!(Frame, ret)));
+        let head = i64::from(self.env.id) | i64::from(before.pc + 1) << 32;
+        let head = self.b.ins().iconst(T64, head);
+        self.b.ins().store(mem, head, fp, 0);
         let nargs = self.b.use_var(self.v.nargs);
-        self.b
-            .ins()
-            .store(mem, nargs, fp, field(offset_of!(Frame, nargs)));
+        let nargs = self.b.ins().uextend(T64, nargs);
+        let nargs = self.b.ins().ishl_imm_u(nargs, 16);
         let flags = self.b.use_var(self.v.flags);
-        self.b
-            .ins()
-            .istore8(mem, flags, fp, field(offset_of!(Frame, flags)));
-        let no = self.b.ins().iconst(types::I8, 0);
-        self.b
-            .ins()
-            .store(mem, no, fp, field(offset_of!(Frame, watched)));
+        let flags = self.b.ins().uextend(T64, flags);
+        let flags = self.b.ins().ishl_imm_u(flags, 32);
+        let tail = self.b.ins().bor(nargs, flags);
+        let tail = self.b.ins().bor_imm_u(tail, i64::from(ret));
+        self.b.ins().store(mem, tail, fp, 8);
         let len1 = self.b.ins().iadd_imm_s(len, 1);
         self.b
             .ins()
             .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
-
-        // The callee's registers.
-        let n16 = self.c16(i64::from(n));
-        let arg = self.b.ins().isub(base, n16);
-        self.b.def_var(self.v.arg, arg);
-        let lcl = self.b.ins().iadd_imm_s(base, 5);
-        self.b.def_var(self.v.lcl, lcl);
-        let sp = self.b.ins().iadd_imm_s(lcl, i64::from(n_vars));
-        self.b.def_var(self.v.sp, sp);
-        self.b.def_var(self.v.nargs, n16);
-        let fl = self.c32(i64::from(entry_flags));
-        self.b.def_var(self.v.flags, fl);
-        let steps0 = before.steps0;
-        let steps = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
-        self.b.def_var(self.v.steps, steps);
-        self.store_state();
         let cur = self.c32(i64::from(callee));
         self.b
             .ins()
@@ -1037,10 +1079,23 @@ impl Translator<'_, '_> {
             .ins()
             .store(mem, deeper, ctx, field(offset_of!(Ctx, depth)));
 
+        // The callee's registers go as arguments (`native::Entry`).
+        let this = self.b.use_var(self.v.this);
+        let this = self.b.ins().uextend(T32, this);
+        let that = self.b.use_var(self.v.that);
+        let that = self.b.ins().uextend(T32, that);
+        let that = self.b.ins().ishl_imm_u(that, 16);
+        let ptrs = self.b.ins().bor(this, that);
+        let nargs_flags = self.c32(i64::from(n) | i64::from(entry_flags) << 16);
+        let base32 = self.b.ins().uextend(T32, base);
+        let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
         let func = (self.env.callee)(self.b.func, callee);
-        let first = self.c32(0);
-        let call = self.b.ins().call(func, &[ctx, first]);
-        let code = self.b.inst_results(call)[0];
+        let called = self.c32(CALLED);
+        let call = self
+            .b
+            .ins()
+            .call(func, &[ctx, called, base32, ptrs, nargs_flags, steps]);
+        let (code, steps) = (self.b.inst_results(call)[0], self.b.inst_results(call)[1]);
         self.b
             .ins()
             .store(mem, depth, ctx, field(offset_of!(Ctx, depth)));
@@ -1053,22 +1108,48 @@ impl Translator<'_, '_> {
         self.b.ins().brif(returned, back, NONE, out, NONE);
         self.b.switch_to_block(out);
         // The callee left compiled code: the state is in the context.
-        self.b.ins().return_(&[code]);
+        self.b.ins().return_(&[code, steps]);
+
+        // It returned here, all in compiled code: SP is its ARG + 1, the
+        // registers are the frame's words in RAM (which the callee may have
+        // written), nargs and flags are this function's own.
         self.b.switch_to_block(back);
-        self.load_state();
-        if let Some(ok) = self.frame_ok() {
-            // The return restored LCL and ARG from RAM, which the callee
-            // may have changed: the same test as on entry.
-            let (cont, bad) = (self.b.create_block(), self.b.create_block());
-            self.b.ins().brif(ok, cont, NONE, bad, NONE);
-            self.b.switch_to_block(bad);
-            self.b.set_cold_block(bad);
-            let pc = self.c32(i64::from(before.pc + 1));
-            self.b
-                .ins()
-                .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
-            self.b.switch_to_block(cont);
+        let me = self.c32(i64::from(self.env.id));
+        self.b
+            .ins()
+            .store(mem, me, ctx, field(offset_of!(Ctx, cur)));
+        self.b.def_var(self.v.steps, steps);
+        let sp = self.b.ins().iadd_imm_s(base, 1 - i64::from(n));
+        self.b.def_var(self.v.sp, sp);
+        let (lcl, arg) = (self.b.use_var(self.v.lcl), self.b.use_var(self.v.arg));
+        let mut restored = Vec::new();
+        for (var, k) in [
+            (self.v.lcl, 1),
+            (self.v.arg, 2),
+            (self.v.this, 3),
+            (self.v.that, 4),
+        ] {
+            let x = self.b.ins().load(T16, mem, p, 2 * k);
+            self.b.def_var(var, x);
+            restored.push(x);
         }
+        // LCL and ARG as before the call keep the entry test's word; if the
+        // callee changed them, the interpreter runs on from the next one.
+        let same_lcl = self.b.ins().icmp(IntCC::Equal, restored[0], lcl);
+        let same_arg = self.b.ins().icmp(IntCC::Equal, restored[1], arg);
+        let same = self.b.ins().band(same_lcl, same_arg);
+        let (cont, bad) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(same, cont, NONE, bad, NONE);
+        self.b.switch_to_block(bad);
+        self.b.set_cold_block(bad);
+        let pc = self.c32(i64::from(before.pc + 1));
+        self.b
+            .ins()
+            .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+        self.b.switch_to_block(cont);
+        // The same values: keep the ones the function entered with.
+        self.b.def_var(self.v.lcl, lcl);
+        self.b.def_var(self.v.arg, arg);
         self.jump_to(before.pc + 1);
     }
 
@@ -1082,9 +1163,14 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
-        let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, self.inline, 0);
-        let c = self.b.ins().icmp_imm_s(IntCC::NotEqual, len, 0);
-        let ok = self.b.ins().band(ok, c);
+        // A frame to return to (0 < len <= cap; cap is 0 if returns must
+        // not run compiled).
+        let cap = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
+        let below = self.b.ins().iadd_imm_s(len, -1);
+        let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, below, cap);
         self.guard(ok, before);
         let frames = self
             .b
@@ -1128,6 +1214,25 @@ impl Translator<'_, '_> {
         // the saved registers (which that store may have changed).
         let x = s.pop(self);
         self.store_word(arg, x);
+        self.b
+            .ins()
+            .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
+        let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
+        self.b.def_var(self.v.steps, steps);
+        // Back into the caller's compiled code if it is below this one (it
+        // restores its registers from its frame), else to the dispatcher,
+        // which enters the caller at RET's block.
+        let depth = self
+            .b
+            .ins()
+            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
+        let (nested, top) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(depth, nested, NONE, top, NONE);
+        self.b.switch_to_block(nested);
+        let returned = self.c32(i64::from(RETURNED));
+        self.b.ins().return_(&[returned, steps]);
+
+        self.b.switch_to_block(top);
         let sp = self.b.ins().iadd_imm_s(arg, 1);
         self.b.def_var(self.v.sp, sp);
         let regs = [
@@ -1140,9 +1245,6 @@ impl Translator<'_, '_> {
             let r = self.b.ins().load(T16, mem, fr, at);
             self.b.def_var(var, r);
         }
-        self.b
-            .ins()
-            .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
         let caller = self
             .b
             .ins()
@@ -1160,22 +1262,10 @@ impl Translator<'_, '_> {
             .ins()
             .uload8(T32, mem, fp, field(offset_of!(Frame, flags)));
         self.b.def_var(self.v.flags, flags);
-        let steps0 = before.steps0;
-        let steps = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
-        self.b.def_var(self.v.steps, steps);
-        // Back into the caller's compiled code if it is below this one,
-        // else to the dispatcher, which enters the caller at RET's block.
-        let depth = self
-            .b
-            .ins()
-            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
-        let nested = self.b.ins().icmp_imm_s(IntCC::NotEqual, depth, 0);
-        let returned = self.c32(i64::from(RETURNED));
         let cont = self.c32(i64::from(CONTINUE));
-        let code = self.b.ins().select(nested, returned, cont);
         self.b.ins().jump(
             self.leave,
-            &[BlockArg::Value(code), BlockArg::Value(ret_pc)],
+            &[BlockArg::Value(cont), BlockArg::Value(ret_pc)],
         );
     }
 }
