@@ -12,7 +12,7 @@
 //! nothing it uses is freed under it). Pipe adapters report their own
 //! failures the same way (`pipe`).
 
-use crate::implementation::{Answer, ImplError, Implementation, Numbers};
+use crate::implementation::{Answer, Bitmap, ImageAnswers, ImplError, Implementation, Numbers};
 use common::{Outcome, TraceRecord};
 use serde::{Deserialize, Serialize};
 use std::any::Any;
@@ -338,6 +338,30 @@ enum Evaluated {
     Panicked(Vec<Outcome<Answer>>, String),
 }
 
+impl Contained {
+    /// One of the inner implementation's whole-image paths, with a panic
+    /// contained as a failure. No watchdog: those paths bound their own
+    /// time (the Jack program by its instruction budget, a shader by its
+    /// dispatch time limit), and a whole image has no batch to time.
+    fn whole<T>(
+        &self,
+        run: impl FnOnce(&dyn Implementation) -> Option<Result<T, ImplError>>,
+        what: &str,
+    ) -> Option<Result<T, ImplError>> {
+        install_panic_hook();
+        match catch(|| run(self.inner.as_ref())) {
+            Ok(result) => result,
+            Err(message) => Some(Err(Failure::new(
+                &self.label(),
+                FailureKind::Panic,
+                format!("{what}: {message}"),
+                &[],
+            )
+            .into())),
+        }
+    }
+}
+
 impl Implementation for Contained {
     fn label(&self) -> String {
         self.inner.label()
@@ -389,6 +413,21 @@ impl Implementation for Contained {
             .naming_a_lone_input(batch)
             .into()),
         }
+    }
+
+    fn render_image(&self, progress: bool) -> Option<Result<ImageAnswers, ImplError>> {
+        self.whole(|inner| inner.render_image(progress), "the whole image")
+    }
+
+    fn program_screen(
+        &self,
+        expected_cost: Option<u64>,
+        progress: bool,
+    ) -> Option<Result<Bitmap, ImplError>> {
+        self.whole(
+            |inner| inner.program_screen(expected_cost, progress),
+            "the whole program's screen",
+        )
     }
 
     fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {

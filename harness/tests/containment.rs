@@ -9,7 +9,7 @@ use common::{Op, Outcome, F316};
 use harness::cast::Cast;
 use harness::commands::check::{no_divergence_between, Verdict};
 use harness::contain::{Contained, Failure, FailureKind, Watchdog};
-use harness::implementation::{Answer, ImplError, Implementation, Numbers};
+use harness::implementation::{Answer, Bitmap, ImplError, Implementation, Numbers};
 use harness::pipe::{Pipe, PipeConfig};
 use harness::runner::{diff_set, RunOptions};
 use std::time::Duration;
@@ -223,4 +223,58 @@ fn check_calls_a_contained_panic_or_hang_of_the_implementation_under_test_bad() 
         assert!(why.contains(&subject.label()), "{why}");
         assert_eq!(verdict.exit_code(), 1);
     }
+}
+
+/// An implementation with a whole-program path only: it draws a two-pixel
+/// screen, or panics drawing it.
+struct WholeProgram {
+    panics: bool,
+}
+
+impl Implementation for WholeProgram {
+    fn label(&self) -> String {
+        "whole-program".into()
+    }
+    fn numbers(&self) -> Numbers {
+        Numbers::Float316
+    }
+    fn supports(&self, _: Level) -> bool {
+        false
+    }
+    fn eval(&self, _: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+        Ok(Vec::new())
+    }
+    fn program_screen(&self, _: Option<u64>, _: bool) -> Option<Result<Bitmap, ImplError>> {
+        assert!(!self.panics, "the screen broke");
+        Some(Ok(Bitmap {
+            width: 2,
+            height: 1,
+            white: vec![true, false],
+        }))
+    }
+}
+
+/// Containment keeps an implementation's whole-image paths (the nightly's
+/// Jack image with its costs and the whole program's screen come through
+/// them), and contains their panics.
+#[test]
+fn the_whole_image_paths_pass_through_containment() {
+    let contained = |panics| {
+        Contained::new(
+            Box::new(WholeProgram { panics }),
+            Watchdog::fixed(Duration::from_secs(2)),
+        )
+    };
+    let screen = contained(false).program_screen(None, false);
+    let Some(Ok(bitmap)) = screen else {
+        panic!("the screen is passed on: {screen:?}")
+    };
+    assert_eq!(bitmap.white, [true, false]);
+    assert!(contained(false).render_image(false).is_none());
+    let Some(Err(e)) = contained(true).program_screen(None, false) else {
+        panic!("a panic is a failure")
+    };
+    let f = failure(&e);
+    assert_eq!(f.kind, FailureKind::Panic);
+    assert!(f.message.contains("the screen broke"), "{f}");
 }
