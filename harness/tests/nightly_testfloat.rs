@@ -100,3 +100,46 @@ fn both_levels_of_every_operation_are_compared_and_counted() {
         "{html}"
     );
 }
+
+/// `--shard K/N` runs shard K of every set, named so, and the shards of
+/// a set together hold each of its vectors once.
+#[test]
+fn a_sharded_night_runs_its_shard_of_each_set() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = |shard: &str| -> u64 {
+        let out = dir.path().join(shard.replace('/', "-"));
+        let o = Command::new(env!("CARGO_BIN_EXE_harness"))
+            .args([
+                "nightly", "--impls", "ref-f316", "--steps", "levels", "--shard", shard,
+            ])
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .expect("the binary runs");
+        assert!(o.status.success(), "{}", text(&o));
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
+                .unwrap();
+        let rows = report["comparisons"].as_array().unwrap();
+        assert!(!rows.is_empty());
+        rows.iter()
+            .filter(|r| r["scope"].as_str().unwrap().starts_with("sdf-nightly"))
+            .inspect(|r| {
+                let set = r["scope"].as_str().unwrap();
+                assert!(
+                    shard == "0/1" || set.ends_with(&format!("(shard {shard})")),
+                    "{set}"
+                );
+            })
+            .map(|r| r["cases"].as_u64().unwrap())
+            .max()
+            .unwrap()
+    };
+    let whole = cases("0/1");
+    let parts = [cases("0/3"), cases("1/3"), cases("2/3")];
+    assert!(
+        parts.iter().all(|&p| p > 0 && p < whole),
+        "{parts:?} of {whole}"
+    );
+    assert_eq!(parts.iter().sum::<u64>(), whole);
+}

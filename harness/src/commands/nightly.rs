@@ -16,6 +16,7 @@ use crate::nightly::{self, steps};
 use anyhow::{bail, Result};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use vectors::Shard;
 
 /// Arguments of `harness nightly`.
 #[derive(Debug, clap::Args)]
@@ -41,6 +42,10 @@ pub struct NightlyArgs {
     /// (`rtdemo`) or a file (repeatable; default every shipped scene).
     #[arg(long = "scene", value_name = "NAME")]
     pub scenes: Vec<String>,
+    /// Run only shard K/N of the committed and TestFloat sets (K counts
+    /// from 0; a vector's shard is a stable hash of its identity).
+    #[arg(long)]
+    pub shard: Option<Shard>,
 }
 
 /// Run the nightly job over `cast` and the seed scene's Shadertoy port
@@ -79,6 +84,7 @@ pub fn run(args: NightlyArgs, mut cast: Cast) -> Result<ExitCode> {
         steps: args.steps,
         implementations: args.implementations,
         progress: crate::progress::wanted(),
+        shard: args.shard.unwrap_or(Shard::WHOLE),
         scenes: if args.scenes.is_empty() {
             nightly::scenes::shipped()?
         } else {

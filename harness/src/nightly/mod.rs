@@ -45,6 +45,10 @@ pub struct Options {
     pub progress: bool,
     /// The described scenes of the scene step (files).
     pub scenes: Vec<PathBuf>,
+    /// The shard of the committed sets and TestFloat sets to run (K/N, K
+    /// from 0, by the vectors' identity hash); [`vectors::Shard::WHOLE`]
+    /// runs them whole.
+    pub shard: vectors::Shard,
 }
 
 /// An implementation of the cast, opened for the night.

@@ -21,6 +21,7 @@ use common::image_consts::{HEIGHT, WIDTH};
 use common::Op;
 use std::time::Instant;
 use vectors::gen::testfloat::{self, CaseLevel};
+use vectors::VectorSet;
 
 /// One step of the night.
 pub trait Step {
@@ -70,6 +71,19 @@ pub fn keys() -> Vec<&'static str> {
 
 /// Examples of divergences kept per comparison in the report.
 const EXAMPLES: usize = 5;
+
+/// The night's shard of `set`, its name saying which shard it is.
+fn sharded(night: &Night<'_>, set: VectorSet) -> VectorSet {
+    let shard = night.options.shard;
+    if shard == vectors::Shard::WHOLE {
+        return set;
+    }
+    let name = format!("{} (shard {shard})", set.name);
+    VectorSet {
+        name,
+        ..shard.of_set(&set)
+    }
+}
 
 fn run_options(night: &Night<'_>) -> RunOptions {
     RunOptions {
@@ -154,6 +168,7 @@ impl Step for Levels {
     fn run(&self, night: &mut Night<'_>) -> Result<()> {
         let set = vectors::load_named(self.set)
             .with_context(|| format!("the committed set {}", self.set))?;
+        let set = sharded(night, set);
         let cast = night.cast;
         let oracle = cast.oracle().name.as_str();
         let tracer = cast.tracer().name.as_str();
@@ -311,7 +326,7 @@ impl Step for TestFloat {
             .collect();
         for level in CaseLevel::ALL {
             for op in Op::ALL {
-                let set = testfloat::set(&[op], level, testfloat::DEFAULT_SEED);
+                let set = sharded(night, testfloat::set(&[op], level, testfloat::DEFAULT_SEED));
                 let impls = night.opened_of(&names);
                 let report = runner::diff_set(&impls, &set, run_options(night));
                 record_failures(night, &report);
