@@ -437,7 +437,7 @@ fn num(w: Option<&Wire>, field: &str, numbers: Numbers, line: &str) -> Result<Nu
         (None, _) => Err(err("missing".into())),
         (Some(Wire::Triple(t)), Numbers::Float316) => Ok(Num::F316(*t)),
         (Some(Wire::Number(x)), Numbers::F32) => Ok(Num::F32(*x as f32)),
-        (Some(Wire::Number(x)), _) => Ok(Num::F64(*x)),
+        (Some(Wire::Number(x)), Numbers::F64) => Ok(Num::F64(*x)),
         (Some(other), Numbers::Float316) => Err(err(format!(
             "{other}; a float316 adapter answers a triple [s,e,m]"
         ))),
