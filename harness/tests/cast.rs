@@ -5,8 +5,11 @@
 //! f32 one (`my-f32`); each is found by cast, diff, localize, check, bench
 //! and nightly, in the group its number type decides.
 
+mod binary;
+
+use binary::{harness_in, text};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 const PROJECT: &str = r#"
 [impl.my-port]
@@ -23,23 +26,6 @@ kind = "reference"
 numbers = "f32"
 "#;
 
-/// The harness run in `dir`, where the project file lies.
-fn harness(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_harness"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
-
 fn project() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("harness.toml"), PROJECT).unwrap();
@@ -49,7 +35,7 @@ fn project() -> tempfile::TempDir {
 #[test]
 fn cast_lists_the_declared_implementations_with_their_group() {
     let dir = project();
-    let o = harness(dir.path(), &["cast", "--json"]);
+    let o = harness_in(dir.path(), &["cast", "--json"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let list: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let find = |name: &str| {
@@ -71,7 +57,7 @@ fn cast_lists_the_declared_implementations_with_their_group() {
     // --cast names another file; a malformed one names file, line, field.
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, "[impl.x]\nkind = \"reference\"\nnumbers = 64\n").unwrap();
-    let o = harness(dir.path(), &["--cast", "bad.toml", "cast"]);
+    let o = harness_in(dir.path(), &["--cast", "bad.toml", "cast"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(
         text(&o).contains("bad.toml:3:11: impl.x.numbers: expected a string, found integer"),
@@ -79,7 +65,7 @@ fn cast_lists_the_declared_implementations_with_their_group() {
         text(&o)
     );
     // Under check, an unreadable project file is undecidable.
-    let o = harness(
+    let o = harness_in(
         dir.path(),
         &[
             "--cast",
@@ -97,9 +83,9 @@ fn cast_lists_the_declared_implementations_with_their_group() {
 fn diff_localize_and_check_use_a_declared_implementation() {
     let dir = project();
     let d = dir.path();
-    let o = harness(d, &["diff", "ref-f316", "my-port", "--level", "ops"]);
+    let o = harness_in(d, &["diff", "ref-f316", "my-port", "--level", "ops"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let o = harness(d, &["diff", "ref-f316", "my-bad", "--level", "ops"]);
+    let o = harness_in(d, &["diff", "ref-f316", "my-bad", "--level", "ops"]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     let out = text(&o);
     let command = out
@@ -111,10 +97,10 @@ fn diff_localize_and_check_use_a_declared_implementation() {
         "{command}"
     );
     let args: Vec<&str> = command.split_whitespace().collect();
-    let o = harness(d, &args);
+    let o = harness_in(d, &args);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
     assert!(text(&o).contains("origin: mul("), "{}", text(&o));
-    let o = harness(
+    let o = harness_in(
         d,
         &[
             "check",
@@ -126,7 +112,7 @@ fn diff_localize_and_check_use_a_declared_implementation() {
         ],
     );
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let o = harness(
+    let o = harness_in(
         d,
         &[
             "check",
@@ -144,7 +130,7 @@ fn diff_localize_and_check_use_a_declared_implementation() {
         text(&o)
     );
     // A variant a declared entry does not take is refused.
-    let o = harness(
+    let o = harness_in(
         d,
         &["diff", "ref-f316", "my-f32+newton-3", "--level", "ops"],
     );
@@ -159,7 +145,7 @@ fn diff_localize_and_check_use_a_declared_implementation() {
 #[test]
 fn bench_renders_a_declared_implementation() {
     let dir = project();
-    let o = harness(dir.path(), &["bench", "my-f32"]);
+    let o = harness_in(dir.path(), &["bench", "my-f32"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let row = String::from_utf8_lossy(&o.stdout)
         .lines()
@@ -175,7 +161,7 @@ fn bench_renders_a_declared_implementation() {
 /// and its report directory.
 fn nightly(dir: &Path, impls: &str) -> (Output, PathBuf) {
     let out = dir.join("reports/nightly");
-    let o = harness(
+    let o = harness_in(
         dir,
         &[
             "nightly",

@@ -1,23 +1,11 @@
 //! The command-line contract of diff, localize, selftest, bench and jack: exit codes,
 //! repro files that reproduce, errors that name the field.
 
+mod binary;
+
+use binary::{harness, text};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn harness(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_harness"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
+use std::process::Output;
 
 fn ops_small() -> String {
     vectors::sets_dir()

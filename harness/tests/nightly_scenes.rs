@@ -3,23 +3,11 @@
 //! its cost per pixel in the report; a bad scene file fails the night with
 //! its field named; an unknown scene name is refused before the run.
 
+mod binary;
+
+use binary::{harness, text};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn harness(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_harness"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
+use std::process::Output;
 
 fn night(out: &Path, scene: &str) -> Output {
     harness(&[

@@ -3,6 +3,9 @@
 //! with ref-f316; the counts per operation and level are in the report
 //! (JSON and HTML), and a fault only level 2 catches fails the night.
 
+mod binary;
+
+use binary::text;
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -37,14 +40,6 @@ fn night(dir: &Path, impls: &str) -> (Output, serde_json::Value, String) {
     let report = std::fs::read_to_string(out.join("report.json")).unwrap_or_default();
     let html = std::fs::read_to_string(out.join("index.html")).unwrap_or_default();
     (o, serde_json::from_str(&report).unwrap_or_default(), html)
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
 }
 
 /// The report's count of `op` at `level`.
