@@ -28,8 +28,9 @@ impl Shard {
         identity_hash(vector) % u64::from(self.count) == u64::from(self.index)
     }
 
-    /// The vectors of `set` in this shard, in their order; the name says
-    /// which shard it is.
+    /// The vectors of `set` in this shard, in their order, under the
+    /// whole set's name (merging shard reports matches sets by that name;
+    /// a caller that shows the shard names it itself, as the nightly does).
     pub fn of_set(self, set: &VectorSet) -> VectorSet {
         if self == Shard::WHOLE {
             return set.clone();
