@@ -92,6 +92,160 @@ proptest! {
     fn compiled_execution_equals_interpretation(case in engine_case()) {
         engines_agree(&case, Engine::Native)?;
     }
+
+    /// Code shaped as the Jack compiler shapes it, whose stack depth is
+    /// fixed at each instruction (compiled code then tests the stack once
+    /// per function and the budget once per loop): budgets and key changes
+    /// land inside loops, and some statements move SP, LCL or ARG.
+    #[test]
+    fn compiled_structured_code_equals_interpretation(case in structured_case()) {
+        engines_agree(&case, Engine::Native)?;
+    }
+}
+
+/// A statement of structured code (rendered by [`render`]).
+#[derive(Clone, Debug)]
+enum Stmt {
+    /// expression; pop target
+    Let(Vec<String>, String),
+    /// while (expression) { body }, or a loop counting local 2 up to n.
+    While(Vec<String>, Vec<Stmt>),
+    Count(u8, Vec<Stmt>),
+    /// if (expression) { then } else { else }
+    If(Vec<String>, Vec<Stmt>, Vec<Stmt>),
+    /// Plain commands that change the machine under the compiled code: a
+    /// value to SP, LCL or ARG (`pop constant`), or a return.
+    Raw(String),
+}
+
+/// An expression: commands that push exactly one word.
+fn expression() -> impl Strategy<Value = Vec<String>> {
+    let seg = prop::sample::select(vec![
+        "local", "argument", "this", "that", "temp", "static", "pointer",
+    ]);
+    let leaf = prop_oneof![
+        (0i16..40).prop_map(|v| vec![format!("push constant {v}")]),
+        (seg, 0u16..3).prop_map(|(s, i)| vec![format!(
+            "push {s} {}",
+            if s == "pointer" { i % 2 } else { i }
+        )]),
+    ];
+    leaf.prop_recursive(3, 12, 2, |inner| {
+        prop_oneof![
+            (
+                inner.clone(),
+                inner.clone(),
+                prop::sample::select(vec![
+                    "add",
+                    "sub",
+                    "and",
+                    "or",
+                    "eq",
+                    "gt",
+                    "lt",
+                    "call Math.multiply 2",
+                    "call Math.divide 2",
+                    "call Main.g 2",
+                ])
+            )
+                .prop_map(|(a, b, op)| [a, b, vec![op.to_string()]].concat()),
+            (
+                inner,
+                prop::sample::select(vec![
+                    "neg",
+                    "not",
+                    "call Main.r 1",
+                    "call Main.m 1",
+                    "call Math.abs 1"
+                ])
+            )
+                .prop_map(|(a, op)| [a, vec![op.to_string()]].concat()),
+        ]
+    })
+}
+
+fn statement() -> impl Strategy<Value = Stmt> {
+    let target = prop::sample::select(vec![
+        "local", "argument", "this", "that", "temp", "static", "pointer",
+    ]);
+    let leaf = prop_oneof![
+        6 => (expression(), target, 0u16..3).prop_map(|(e, t, i)| {
+            Stmt::Let(e, format!("pop {t} {}", if t == "pointer" { i % 2 } else { i }))
+        }),
+        1 => prop::sample::select(vec![
+            "push constant 300\npop constant 0", "push constant 2040\npop constant 0",
+            "push constant 400\npop constant 1", "push constant 250\npop constant 2",
+            "push constant 7\nreturn",
+        ]).prop_map(|r| Stmt::Raw(r.to_string())),
+    ];
+    leaf.prop_recursive(3, 24, 4, |inner| {
+        let body = prop::collection::vec(inner, 0..4);
+        prop_oneof![
+            (expression(), body.clone()).prop_map(|(e, b)| Stmt::While(e, b)),
+            (0u8..6, body.clone()).prop_map(|(n, b)| Stmt::Count(n, b)),
+            (expression(), body.clone(), body).prop_map(|(e, t, f)| Stmt::If(e, t, f)),
+        ]
+    })
+}
+
+/// The VM commands of `stmts`, with labels numbered from `labels`.
+fn render(stmts: &[Stmt], labels: &mut u32, out: &mut Vec<String>) {
+    for s in stmts {
+        let k = *labels;
+        *labels += 1;
+        match s {
+            Stmt::Let(e, pop) => {
+                out.extend(e.iter().cloned());
+                out.push(pop.clone());
+            }
+            Stmt::While(e, body) => {
+                out.push(format!("label W{k}"));
+                out.extend(e.iter().cloned());
+                out.push(format!("not\nif-goto E{k}"));
+                render(body, labels, out);
+                out.push(format!("goto W{k}\nlabel E{k}"));
+            }
+            Stmt::Count(n, body) => {
+                out.push(format!("push constant 0\npop local 2\nlabel W{k}\npush local 2\npush constant {n}\nlt\nnot\nif-goto E{k}"));
+                render(body, labels, out);
+                out.push(format!(
+                    "push local 2\npush constant 1\nadd\npop local 2\ngoto W{k}\nlabel E{k}"
+                ));
+            }
+            Stmt::If(e, then, other) => {
+                out.extend(e.iter().cloned());
+                out.push(format!("if-goto T{k}"));
+                render(other, labels, out);
+                out.push(format!("goto E{k}\nlabel T{k}"));
+                render(then, labels, out);
+                out.push(format!("label E{k}"));
+            }
+            Stmt::Raw(r) => out.push(r.clone()),
+        }
+    }
+}
+
+fn structured_case() -> impl Strategy<Value = EngineCase> {
+    (
+        prop::collection::vec(statement(), 1..8),
+        prop::array::uniform2(any::<i16>()),
+        any::<bool>(),
+        prop::collection::vec(0u64..400, 0..5),
+        prop::option::of(1u64..50),
+        any::<bool>(),
+    )
+        .prop_map(|(stmts, args, web, budgets, hold, watched)| {
+            let mut body = Vec::new();
+            render(&stmts, &mut 0, &mut body);
+            EngineCase {
+                src: random_program(body, Vec::new()),
+                args,
+                web,
+                budgets,
+                hold,
+                watched,
+            }
+        })
 }
 
 /// Enter Main.f of `program` with `args` without running anything.

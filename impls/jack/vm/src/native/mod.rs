@@ -4,9 +4,9 @@
 //! the interpreter (`exec.rs`), one at a time, until compiled code can take
 //! over again at the start of a block. The interpreter stays the oracle:
 //! compiled code changes the machine exactly as the interpreter would,
-//! counting steps per block and leaving before any block that would cross
-//! the stop (budget or key change), so every stop falls on the same
-//! instruction.
+//! counting steps per block and leaving before any stretch of blocks that
+//! could cross the stop (budget or key change), so every stop falls on the
+//! same instruction.
 //!
 //! Calls and returns between VM functions run in compiled code (a compiled
 //! function calls its callee's directly) unless a watcher or the function

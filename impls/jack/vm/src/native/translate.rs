@@ -7,10 +7,15 @@
 //! the step count in registers, and returns a code (see `native::RETURNED`,
 //! `native::CONTINUE`; a code >= 0 is the instruction the interpreter must
 //! run next) and the step count. One test on entering compiled code covers
-//! every `local` and `argument` access of the function (`frame_ok`). Every
-//! block first checks that its whole
-//! step count fits under the stop and that its stack accesses stay between
-//! 256 and the profile's stack end (`Timing::stack_end`); otherwise, and wherever an instruction meets a case that
+//! every `local` and `argument` access of the function (`frame_ok`). The
+//! step budget is tested where a loop's head, the function's first block,
+//! a call's continuation or the dispatcher's entry starts a stretch, for
+//! the most steps the stretch can take before the next test
+//! (`blocks::budgets`). Where the stack depth is fixed at each instruction
+//! (`blocks::static_depths`, Jack-compiled code), the stack range (256 to
+//! the profile's stack end, `Timing::stack_end`) is tested once on entering
+//! the function; elsewhere each block tests its own. If a test fails, and
+//! wherever an instruction meets a case that
 //! only the interpreter handles (a register or an address outside RAM
 //! through a computed address, a failed segment check, a division by zero,
 //! a built-in), it stores the exact state before that instruction and
@@ -22,7 +27,7 @@
 //! miss them. Every access is then one load or store at a fixed offset
 //! from its segment's host address.
 
-use super::blocks::{self, Block, Kind, MAX_INLINE_LOCALS};
+use super::blocks::{self, Block, Budget, Kind, MAX_INLINE_LOCALS};
 use super::{Ctx, Fault, CALLED, CONTINUE, NATIVE_DEPTH, RETURNED};
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
@@ -111,6 +116,17 @@ struct Translator<'a, 'b> {
     /// index, where `reach` covers them: LCL and ARG keep one value through
     /// compiled code (a call that returns with others leaves it).
     frame_tops: [Option<Value>; 2],
+    /// SP - LCL before each instruction (relative to `start`), where the
+    /// function's code fixes it ([`blocks::static_depths`]): then SP is
+    /// LCL + that depth wherever compiled code runs (the dispatcher tests
+    /// it on entering), every stack word lies at a fixed offset from
+    /// `lcl_host`, and the stack tests are made once on entering the
+    /// function. None: each block tests its stack.
+    depths: Option<Vec<Option<i32>>>,
+    /// The host address of RAM[LCL] (static depths only).
+    lcl_host: Option<Value>,
+    /// Where each block tests the step budget ([`blocks::budgets`]).
+    budgets: Vec<Budget>,
 }
 
 /// How a `this` or `that` access of a block tests its address.
@@ -160,6 +176,20 @@ fn ptr_tests(code: &[Op]) -> Vec<PtrTest> {
     tests
 }
 
+/// The stack words block code `code` holds in registers, `lo..hi`
+/// relative to SP at its start (None if none): those it touches after its
+/// `function` line, whose zeroed locals go to RAM at once; and the
+/// instructions after that line.
+fn held_span(code: &[Op]) -> (Option<(i32, i32)>, &[Op]) {
+    let (locals, rest) = match code {
+        [Op::Function { n_vars, .. }, rest @ ..] => (i32::from(*n_vars), rest),
+        _ => (0, code),
+    };
+    let (min_depth, max_depth) = blocks::depth_range(rest);
+    let span = (min_depth < max_depth).then_some((locals + min_depth, locals + max_depth));
+    (span, rest)
+}
+
 /// Index in `Translator::reach`.
 const LOCAL: usize = 0;
 const ARGUMENT: usize = 1;
@@ -203,8 +233,19 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let mem = MemFlagsData::trusted();
     let ram = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, ram)));
     let stop_at = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, stop_at)));
-    let reach =
-        reach(&env.code[start as usize..vm_blocks.last().map_or(start, |b| b.end) as usize]);
+    let end = vm_blocks.last().map_or(start, |b| b.end.max(b.start + 1));
+    let reach = reach(&env.code[start as usize..end as usize]);
+    let f = &env.program.functions[env.id as usize];
+    // A call lands on the `function` line (SP = LCL) or on the body.
+    let entry_depth = match env.code[start as usize] {
+        Op::Function { .. } => 0,
+        _ => i32::from(f.n_vars),
+    };
+    let depths = f
+        .headed
+        .then(|| blocks::static_depths(env.code, start, end, entry_depth))
+        .flatten();
+    let budgets = blocks::budgets(env.code, start, vm_blocks, block_at);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
     let leave = b.create_block();
     b.append_block_param(leave, T32);
@@ -226,6 +267,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         block_start: 0,
         stack_span: None,
         frame_tops: [None; 2],
+        depths,
+        lcl_host: None,
+        budgets,
     };
     // A compiled call passes the registers; the dispatcher, the context.
     let called = t.b.ins().icmp_imm_s(IntCC::Equal, which, CALLED);
@@ -248,8 +292,15 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     // with the pc the caller gave.
     let zero = t.c32(0);
     let which = t.b.ins().select(called, zero, which);
+    if t.depths.is_some() {
+        t.lcl_host = Some(t.seg_base(t.v.lcl));
+    }
     let default = t.b.create_block();
-    if let Some(ok) = t.frame_ok() {
+    let ok = match (t.frame_ok(), t.static_ok()) {
+        (Some(a), Some(b)) => Some(t.b.ins().band(a, b)),
+        (a, b) => a.or(b),
+    };
+    if let Some(ok) = ok {
         // LCL or ARG such that some access of the function would not be
         // a plain word: the interpreter runs from the block's start.
         let (run, bad) = (t.b.create_block(), t.b.create_block());
@@ -269,15 +320,19 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         t.b.ins().br_table(which, table);
         t.b.switch_to_block(run);
     }
-    let calls: Vec<_> =
-        t.cl.iter()
-            .map(|&blk| t.b.func.dfg.block_call(blk, NONE))
-            .collect();
-    let def = t.b.func.dfg.block_call(default, NONE);
-    let table = t.b.create_jump_table(JumpTableData::new(def, &calls));
     let dispatch = t.b.create_block();
     t.b.ins().brif(called, t.cl[0], NONE, dispatch, NONE);
+    let stubs: Vec<_> = vm_blocks
+        .iter()
+        .enumerate()
+        .map(|(i, blk)| {
+            let stub = t.entry_stub(i, blk);
+            t.b.func.dfg.block_call(stub, NONE)
+        })
+        .collect();
     t.b.switch_to_block(dispatch);
+    let def = t.b.func.dfg.block_call(default, NONE);
+    let table = t.b.create_jump_table(JumpTableData::new(def, &stubs));
     t.b.ins().br_table(which, table);
 
     t.b.switch_to_block(default);
@@ -421,6 +476,9 @@ impl Translator<'_, '_> {
     /// Continue if every one of `conds` holds (each its own branch to one
     /// shared exit), else leave as [`Self::guard`] does.
     fn guard_all(&mut self, conds: &[Value], at: &Before) {
+        if conds.is_empty() {
+            return;
+        }
         let stub = self.b.create_block();
         for &ok in conds {
             let cont = self.b.create_block();
@@ -472,29 +530,149 @@ impl Translator<'_, '_> {
         self.b.ins().jump(blk, NONE);
     }
 
+    /// SP - LCL at the start of block `blk`, where depths are static
+    /// (`Some(None)`: no path reaches it).
+    fn depth_at(&self, blk: &Block) -> Option<Option<i32>> {
+        let d = self.depths.as_ref()?;
+        Some(d[(blk.start - self.start) as usize])
+    }
+
+    /// Whether compiled code can run block `blk` at all (else entering it
+    /// leaves for the interpreter at once).
+    fn runs(&self, blk: &Block) -> bool {
+        blk.steps > 0 && self.depth_at(blk) != Some(None)
+    }
+
+    /// Whether `steps0` plus `covers` stays under the stop.
+    fn fits(&mut self, steps0: Value, covers: u64) -> Value {
+        let last = self.b.ins().iadd_imm_s(steps0, covers as i64);
+        self.b
+            .ins()
+            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at)
+    }
+
+    /// Where the dispatcher enters block `index`: it tests the budget the
+    /// block covers and, where depths are static, that SP is LCL + the
+    /// block's depth; else it leaves at the block's start.
+    fn entry_stub(&mut self, index: usize, blk: &Block) -> ir::Block {
+        if !self.runs(blk) {
+            return self.cl[index];
+        }
+        let stub = self.b.create_block();
+        self.b.switch_to_block(stub);
+        let steps0 = self.b.use_var(self.v.steps);
+        let sp0 = self.b.use_var(self.v.sp);
+        let mut ok = vec![self.fits(steps0, self.budgets[index].covers)];
+        if let Some(Some(d)) = self.depth_at(blk) {
+            let lcl = self.b.use_var(self.v.lcl);
+            let sp = self.b.ins().iadd_imm_s(lcl, i64::from(d));
+            ok.push(self.b.ins().icmp(IntCC::Equal, sp0, sp));
+        }
+        let at = Before {
+            pc: blk.start,
+            k: 0,
+            depth: 0,
+            steps0,
+            sp0,
+            base: self.ram,
+            pending: Vec::new(),
+        };
+        self.guard_all(&ok, &at);
+        self.b.ins().jump(self.cl[index], NONE);
+        stub
+    }
+
+    /// The tests that static depths move to the function's entry (None
+    /// where depths are not static): the stack words of every block and
+    /// every call's frame lie from 256 to the profile's stack end, and the
+    /// `argument` words lie below every block's stack words.
+    fn static_ok(&mut self) -> Option<Value> {
+        let depths = self.depths.as_ref()?;
+        let (mut low, mut high) = (i32::MAX, i32::MIN);
+        let mut args_below = i32::MAX;
+        for blk in self.env.blocks {
+            let Some(d) = depths[(blk.start - self.start) as usize] else {
+                continue;
+            };
+            if blk.steps == 0 {
+                continue;
+            }
+            low = low.min(d + blk.min_depth);
+            high = high.max(d + blk.max_depth);
+            let code = &self.env.code[blk.start as usize..blk.end as usize];
+            if let Some(&Op::Call { callee, .. }) = code.last() {
+                let at = depths[(blk.end - 1 - self.start) as usize].expect("reached");
+                let n_vars = if self.env.timing.function_step {
+                    0
+                } else {
+                    self.env.program.functions[usize::from(callee)].n_vars
+                };
+                low = low.min(at);
+                high = high.max(at + 5 + i32::from(n_vars));
+            }
+            if let (Some((lo, _)), rest) = held_span(code) {
+                if reach(rest)[ARGUMENT].is_some() {
+                    args_below = args_below.min(d + lo);
+                }
+            }
+        }
+        if low > high {
+            return None;
+        }
+        // 256 - low <= LCL <= stack end - high, in 32 bits (no wrapping).
+        let first = i64::from(STACK_BASE) - i64::from(low);
+        let last = i64::from(self.env.timing.stack_end()) - i64::from(high);
+        let mut ok = if last < first {
+            self.b.ins().iconst(types::I8, 0)
+        } else {
+            let lcl = self.b.use_var(self.v.lcl);
+            let lcl = self.b.ins().uextend(T32, lcl);
+            let d = self.b.ins().iadd_imm_s(lcl, -first);
+            self.b
+                .ins()
+                .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, last - first)
+        };
+        if let (Some(top), true) = (self.frame_tops[ARGUMENT], args_below < i32::MAX) {
+            let lo = self.seg_addr(self.v.lcl, args_below as u16);
+            let c = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo);
+            ok = self.b.ins().band(ok, c);
+        }
+        Some(ok)
+    }
+
     fn block(&mut self, index: usize, blk: &Block) {
         self.b.switch_to_block(self.cl[index]);
         self.flags_known = 0;
         self.ptr_tests = ptr_tests(&self.env.code[blk.start as usize..blk.end as usize]);
         self.block_start = blk.start;
         let steps0 = self.b.use_var(self.v.steps);
-        let sp0 = self.b.use_var(self.v.sp);
-        if blk.steps == 0 {
+        if !self.runs(blk) {
             let pc = self.c32(i64::from(blk.start));
             self.b
                 .ins()
                 .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
             return;
         }
-        // The whole block fits under the stop, and its stack stays where
-        // no stack rule applies: from 256 (no pop at SP = 256) up to the
-        // profile's stack end.
-        let last = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
-        let mut ok = vec![self
-            .b
-            .ins()
-            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at)];
-        if blk.checks_stack {
+        let depth = self.depth_at(blk).flatten();
+        let sp0 = match depth {
+            Some(d) => {
+                let sp = self.seg_addr(self.v.lcl, d as u16);
+                self.b.def_var(self.v.sp, sp);
+                sp
+            }
+            None => self.b.use_var(self.v.sp),
+        };
+        // The block's steps, and those of the blocks after it up to the
+        // next test, fit under the stop (a loop's head and a function's
+        // entry test; the dispatcher tests where it enters).
+        let budget = self.budgets[index];
+        let mut ok = Vec::new();
+        if budget.tested {
+            ok.push(self.fits(steps0, budget.covers));
+        }
+        if blk.checks_stack && depth.is_none() {
+            // Its stack stays where no stack rule applies: from 256 (no
+            // pop at SP = 256) up to the profile's stack end.
             // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1):
             // low <= sp0 <= high, one unsigned test of sp0 - low.
             let low = i64::from(STACK_BASE) - i64::from(blk.min_depth);
@@ -509,31 +687,39 @@ impl Translator<'_, '_> {
             };
             ok.push(c);
         }
-        // The stack words the block holds in registers: those it touches
-        // after its `function` line, whose zeroed locals go to RAM at once.
-        let code = &self.env.code[blk.start as usize..blk.end as usize];
-        let (locals, code) = match code {
-            [Op::Function { n_vars, .. }, rest @ ..] => (i32::from(*n_vars), rest),
-            _ => (0, code),
-        };
-        let (min_depth, max_depth) = blocks::depth_range(code);
-        self.stack_span = (min_depth < max_depth).then(|| {
-            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(locals + min_depth));
-            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(locals + max_depth));
+        let (span, code) = held_span(&self.env.code[blk.start as usize..blk.end as usize]);
+        self.stack_span = span.map(|(lo, hi)| {
+            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(lo));
+            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(hi));
             (lo, hi)
         });
         if let Some((lo, _)) = self.stack_span {
             // The block's `local` and `argument` words lie below its stack
-            // words, so the stack can stay in registers across them.
+            // words, so the stack can stay in registers across them (with
+            // static depths: known for `local`, tested on entry for
+            // `argument`).
             let used = reach(code);
             for seg in [LOCAL, ARGUMENT] {
                 if let (Some(top), Some(_)) = (self.frame_tops[seg], used[seg]) {
-                    let c = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo);
+                    let c = match (depth, seg) {
+                        (Some(_), ARGUMENT) => continue,
+                        (Some(d), _) => {
+                            let low = d + span.expect("a span").0;
+                            if i32::from(self.reach[LOCAL].expect("a top")) < low {
+                                continue;
+                            }
+                            self.b.ins().iconst(types::I8, 0)
+                        }
+                        (None, _) => self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo),
+                    };
                     ok.push(c);
                 }
             }
         }
-        let base = self.word(sp0);
+        let base = match (depth, self.lcl_host) {
+            (Some(d), Some(p)) => self.b.ins().iadd_imm_s(p, 2 * i64::from(d)),
+            _ => self.word(sp0),
+        };
         let entry = Before {
             pc: blk.start,
             k: 0,
@@ -1012,19 +1198,22 @@ impl Translator<'_, '_> {
                 .icmp_imm_s(IntCC::UnsignedLessThan, depth, i64::from(NATIVE_DEPTH))];
         ok.push(self.b.ins().icmp(IntCC::UnsignedLessThan, len, cap));
         let base = s.sp(self);
-        let base64 = self.b.ins().uextend(T64, base);
-        let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
-        let end = i64::from(self.env.timing.stack_end());
-        ok.push(
-            self.b
-                .ins()
-                .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end),
-        );
-        ok.push(self.b.ins().icmp_imm_s(
-            IntCC::UnsignedGreaterThanOrEqual,
-            base64,
-            i64::from(STACK_BASE),
-        ));
+        if self.depths.is_none() {
+            // (With static depths the entry test covered the frame.)
+            let base64 = self.b.ins().uextend(T64, base);
+            let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
+            let end = i64::from(self.env.timing.stack_end());
+            ok.push(
+                self.b
+                    .ins()
+                    .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end),
+            );
+            ok.push(self.b.ins().icmp_imm_s(
+                IntCC::UnsignedGreaterThanOrEqual,
+                base64,
+                i64::from(STACK_BASE),
+            ));
+        }
         self.guard_all(&ok, before);
 
         // The frame in RAM: RET, LCL, ARG, THIS, THAT, then zeroed locals.
@@ -1035,7 +1224,7 @@ impl Translator<'_, '_> {
             self.b.use_var(self.v.this),
             self.b.use_var(self.v.that),
         ];
-        let p = self.word(base);
+        let p = self.b.ins().iadd_imm_s(s.base, 2 * i64::from(s.depth));
         for (k, x) in saved.into_iter().enumerate() {
             self.b.ins().store(mem, x, p, 2 * k as i32);
         }
