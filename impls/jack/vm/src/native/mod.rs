@@ -96,6 +96,14 @@ pub(crate) struct Ctx {
     /// returns must not run compiled (a watcher or the function profile is
     /// on), which fails compiled code's room test for both.
     pub frames_cap: u64,
+    /// Compiled calls run while `frames_len` is below this: the capacity,
+    /// and at most [`NATIVE_DEPTH`] frames above `frames_base` (0 where
+    /// `frames_cap` is).
+    pub frames_limit: u64,
+    /// `frames_len` on entering compiled code: a frame above it was pushed
+    /// by a compiled call, whose caller's compiled code a return goes
+    /// back to.
+    pub frames_base: u64,
     pub steps: u64,
     pub stop_at: u64,
     pub sp: u16,
@@ -107,8 +115,6 @@ pub(crate) struct Ctx {
     pub flags: u8,
     pub cur: u32,
     pub pc: u32,
-    /// Compiled functions currently nested on the host stack.
-    pub depth: u32,
 }
 
 /// A compiled function: (context, block index or [`CALLED`], and for a
@@ -368,8 +374,12 @@ impl Machine {
             flags: self.flags,
             cur: self.cur,
             pc: self.pc,
-            depth: 0,
+            frames_limit: 0,
+            frames_base: self.frames.len() as u64,
         };
+        ctx.frames_limit = ctx
+            .frames_cap
+            .min(ctx.frames_base + u64::from(NATIVE_DEPTH));
         ctx.ram = w.as_mut_ptr();
         // SAFETY: the entry was compiled for this program and function; it
         // reads and writes RAM words 5..RAM_SIZE only (all it checks), and

@@ -28,7 +28,7 @@
 //! from its segment's host address.
 
 use super::blocks::{self, Block, Budget, Kind, MAX_INLINE_LOCALS};
-use super::{Ctx, Fault, CALLED, CONTINUE, NATIVE_DEPTH, RETURNED};
+use super::{Ctx, Fault, CALLED, CONTINUE, RETURNED};
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
 use crate::timing::{Timing, STACK_BASE};
@@ -127,6 +127,9 @@ struct Translator<'a, 'b> {
     lcl_host: Option<Value>,
     /// Where each block tests the step budget ([`blocks::budgets`]).
     budgets: Vec<Budget>,
+    /// The entry test shows what a `return` needs of LCL and ARG: the
+    /// saved frame LCL-5 ..= LCL-1 and ARG are plain words.
+    frame_shown: bool,
 }
 
 /// How a `this` or `that` access of a block tests its address.
@@ -248,8 +251,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let budgets = blocks::budgets(env.code, start, vm_blocks, block_at);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
     let leave = b.create_block();
-    b.append_block_param(leave, T32);
-    b.append_block_param(leave, T32);
+    for _ in 0..3 {
+        b.append_block_param(leave, T32);
+    }
     let mut t = Translator {
         b,
         env,
@@ -270,6 +274,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         depths,
         lcl_host: None,
         budgets,
+        frame_shown: false,
     };
     // A compiled call passes the registers; the dispatcher, the context.
     let called = t.b.ins().icmp_imm_s(IntCC::Equal, which, CALLED);
@@ -311,7 +316,12 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
             .iter()
             .map(|blk| {
                 let pc = t.c32(i64::from(blk.start));
-                let args = [BlockArg::Value(pc), BlockArg::Value(pc)];
+                let me = t.c32(i64::from(t.env.id));
+                let args = [
+                    BlockArg::Value(pc),
+                    BlockArg::Value(pc),
+                    BlockArg::Value(me),
+                ];
                 t.b.func.dfg.block_call(leave, &args)
             })
             .collect();
@@ -337,18 +347,20 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
 
     t.b.switch_to_block(default);
     let pc = t.b.ins().load(T32, mem, ctx, field(offset_of!(Ctx, pc)));
-    t.b.ins()
-        .jump(leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+    t.leave_with(pc, pc);
 
     for (i, blk) in vm_blocks.iter().enumerate() {
         t.block(i, blk);
     }
 
     t.b.switch_to_block(leave);
-    let code = t.b.block_params(leave)[0];
-    let pc = t.b.block_params(leave)[1];
+    let [code, pc, cur] = t.b.block_params(leave) else {
+        unreachable!("leave has three parameters")
+    };
+    let (code, pc, cur) = (*code, *pc, *cur);
     t.store_state();
     t.b.ins().store(mem, pc, ctx, field(offset_of!(Ctx, pc)));
+    t.b.ins().store(mem, cur, ctx, field(offset_of!(Ctx, cur)));
     let steps = t.b.use_var(t.v.steps);
     t.b.ins().return_(&[code, steps]);
     t.b.seal_all_blocks();
@@ -507,9 +519,18 @@ impl Translator<'_, '_> {
         let sp = self.b.ins().iadd_imm_s(at.sp0, i64::from(at.depth));
         self.b.def_var(self.v.sp, sp);
         let pc = self.c32(i64::from(at.pc));
-        self.b
-            .ins()
-            .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+        self.leave_with(pc, pc);
+    }
+
+    /// Leave compiled code with `code` and `pc`, in this function.
+    fn leave_with(&mut self, code: Value, pc: Value) {
+        let me = self.c32(i64::from(self.env.id));
+        let args = [
+            BlockArg::Value(code),
+            BlockArg::Value(pc),
+            BlockArg::Value(me),
+        ];
+        self.b.ins().jump(self.leave, &args);
     }
 
     fn flag_set(&mut self, bit: u8) -> Value {
@@ -637,6 +658,14 @@ impl Translator<'_, '_> {
             let c = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo);
             ok = self.b.ins().band(ok, c);
         }
+        // 10 <= LCL <= RAM_SIZE follows where first >= 10 (the stack end is
+        // at most RAM_SIZE and high >= 0); ARG plain is tested here.
+        if first >= 10 && high >= 0 {
+            let arg = self.b.use_var(self.v.arg);
+            let c = self.is_plain(arg);
+            ok = self.b.ins().band(ok, c);
+            self.frame_shown = true;
+        }
         Some(ok)
     }
 
@@ -648,9 +677,7 @@ impl Translator<'_, '_> {
         let steps0 = self.b.use_var(self.v.steps);
         if !self.runs(blk) {
             let pc = self.c32(i64::from(blk.start));
-            self.b
-                .ins()
-                .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+            self.leave_with(pc, pc);
             return;
         }
         let depth = self.depth_at(blk).flatten();
@@ -1177,26 +1204,17 @@ impl Translator<'_, '_> {
             self.exit_before(before);
             return;
         }
-        let depth = self
-            .b
-            .ins()
-            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
         let len = self
             .b
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
-        let cap = self
+        let limit = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
-        // Native nesting bounded, room in the frame stack (none if calls
-        // must not run compiled), and the new frame in plain RAM.
-        let mut ok =
-            vec![self
-                .b
-                .ins()
-                .icmp_imm_s(IntCC::UnsignedLessThan, depth, i64::from(NATIVE_DEPTH))];
-        ok.push(self.b.ins().icmp(IntCC::UnsignedLessThan, len, cap));
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_limit)));
+        // Room in the frame stack and native nesting bounded (no room if
+        // calls must not run compiled), and the new frame in plain RAM.
+        let mut ok = vec![self.b.ins().icmp(IntCC::UnsignedLessThan, len, limit)];
         let base = s.sp(self);
         if self.depths.is_none() {
             // (With static depths the entry test covered the frame.)
@@ -1259,14 +1277,6 @@ impl Translator<'_, '_> {
         self.b
             .ins()
             .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
-        let cur = self.c32(i64::from(callee));
-        self.b
-            .ins()
-            .store(mem, cur, ctx, field(offset_of!(Ctx, cur)));
-        let deeper = self.b.ins().iadd_imm_s(depth, 1);
-        self.b
-            .ins()
-            .store(mem, deeper, ctx, field(offset_of!(Ctx, depth)));
 
         // The callee's registers go as arguments (`native::Entry`).
         let this = self.b.use_var(self.v.this);
@@ -1285,9 +1295,6 @@ impl Translator<'_, '_> {
             .ins()
             .call(func, &[ctx, called, base32, ptrs, nargs_flags, steps]);
         let (code, steps) = (self.b.inst_results(call)[0], self.b.inst_results(call)[1]);
-        self.b
-            .ins()
-            .store(mem, depth, ctx, field(offset_of!(Ctx, depth)));
         let back = self.b.create_block();
         let out = self.b.create_block();
         let returned = self
@@ -1303,10 +1310,6 @@ impl Translator<'_, '_> {
         // registers are the frame's words in RAM (which the callee may have
         // written), nargs and flags are this function's own.
         self.b.switch_to_block(back);
-        let me = self.c32(i64::from(self.env.id));
-        self.b
-            .ins()
-            .store(mem, me, ctx, field(offset_of!(Ctx, cur)));
         self.b.def_var(self.v.steps, steps);
         let sp = self.b.ins().iadd_imm_s(base, 1 - i64::from(n));
         self.b.def_var(self.v.sp, sp);
@@ -1332,9 +1335,7 @@ impl Translator<'_, '_> {
         self.b.switch_to_block(bad);
         self.b.set_cold_block(bad);
         let pc = self.c32(i64::from(before.pc + 1));
-        self.b
-            .ins()
-            .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+        self.leave_with(pc, pc);
         self.b.switch_to_block(cont);
         // The same values: keep the ones the function entered with.
         self.b.def_var(self.v.lcl, lcl);
@@ -1379,16 +1380,21 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .icmp_imm_s(IntCC::NotEqual, ret_pc, i64::from(HOST as i32));
-        // FRAME = LCL: FRAME-5 ..= FRAME-1 are plain words, and so is ARG.
+        // FRAME = LCL: FRAME-5 ..= FRAME-1 are plain words, and so is ARG
+        // (shown on entry where depths are static).
         let frame = self.b.use_var(self.v.lcl);
-        let ten = self.c16(-10);
-        let t = self.b.ins().iadd(frame, ten);
-        let lim = self.c16(RAM_SIZE as i64 - 10);
-        let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, t, lim);
-        let ok = self.b.ins().band(ok, c);
         let arg = self.b.use_var(self.v.arg);
-        let c = self.is_plain(arg);
-        let ok = self.b.ins().band(ok, c);
+        let ok = if self.frame_shown {
+            ok
+        } else {
+            let ten = self.c16(-10);
+            let t = self.b.ins().iadd(frame, ten);
+            let lim = self.c16(RAM_SIZE as i64 - 10);
+            let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, t, lim);
+            let ok = self.b.ins().band(ok, c);
+            let c = self.is_plain(arg);
+            self.b.ins().band(ok, c)
+        };
         self.guard(ok, before);
         let fr = self.word(frame);
         let ret_word = self.b.ins().load(T16, mem, fr, -10);
@@ -1411,12 +1417,16 @@ impl Translator<'_, '_> {
         // Back into the caller's compiled code if it is below this one (it
         // restores its registers from its frame), else to the dispatcher,
         // which enters the caller at RET's block.
-        let depth = self
+        let base = self
             .b
             .ins()
-            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_base)));
+        let nested_frame = self
+            .b
+            .ins()
+            .icmp(IntCC::UnsignedGreaterThanOrEqual, len1, base);
         let (nested, top) = (self.b.create_block(), self.b.create_block());
-        self.b.ins().brif(depth, nested, NONE, top, NONE);
+        self.b.ins().brif(nested_frame, nested, NONE, top, NONE);
         self.b.switch_to_block(nested);
         let returned = self.c32(i64::from(RETURNED));
         self.b.ins().return_(&[returned, steps]);
@@ -1438,9 +1448,6 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .load(T32, mem, fp, field(offset_of!(Frame, caller)));
-        self.b
-            .ins()
-            .store(mem, caller, ctx, field(offset_of!(Ctx, cur)));
         let nargs = self
             .b
             .ins()
@@ -1454,7 +1461,11 @@ impl Translator<'_, '_> {
         let cont = self.c32(i64::from(CONTINUE));
         self.b.ins().jump(
             self.leave,
-            &[BlockArg::Value(cont), BlockArg::Value(ret_pc)],
+            &[
+                BlockArg::Value(cont),
+                BlockArg::Value(ret_pc),
+                BlockArg::Value(caller),
+            ],
         );
     }
 }
