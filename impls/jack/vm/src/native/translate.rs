@@ -1353,15 +1353,10 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
-        // A frame to return to (0 < len <= cap; cap is 0 if returns must
-        // not run compiled).
-        let cap = self
+        let base = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
-        let below = self.b.ins().iadd_imm_s(len, -1);
-        let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, below, cap);
-        self.guard(ok, before);
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_base)));
         let frames = self
             .b
             .ins()
@@ -1372,6 +1367,20 @@ impl Translator<'_, '_> {
             .ins()
             .imul_imm_s(len1, std::mem::size_of::<Frame>() as i64);
         let fp = self.b.ins().iadd(frames, off);
+        // A frame that a compiled call pushed returns to compiled code (so
+        // not to the host, and returns may run compiled); another needs a
+        // frame to return to (0 < len <= cap; cap is 0 if returns must not
+        // run compiled) that does not return to the host.
+        let nested = self.b.ins().icmp(IntCC::UnsignedGreaterThan, len, base);
+        let (other, checked) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(nested, checked, NONE, other, NONE);
+        self.b.switch_to_block(other);
+        let cap = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
+        let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, len1, cap);
+        self.guard(ok, before);
         let ret_pc = self
             .b
             .ins()
@@ -1380,6 +1389,10 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .icmp_imm_s(IntCC::NotEqual, ret_pc, i64::from(HOST as i32));
+        self.guard(ok, before);
+        self.b.ins().jump(checked, NONE);
+        self.b.switch_to_block(checked);
+        let ok = self.b.ins().iconst(types::I8, 1);
         // FRAME = LCL: FRAME-5 ..= FRAME-1 are plain words, and so is ARG
         // (shown on entry where depths are static).
         let frame = self.b.use_var(self.v.lcl);
@@ -1417,21 +1430,17 @@ impl Translator<'_, '_> {
         // Back into the caller's compiled code if it is below this one (it
         // restores its registers from its frame), else to the dispatcher,
         // which enters the caller at RET's block.
-        let base = self
-            .b
-            .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_base)));
-        let nested_frame = self
-            .b
-            .ins()
-            .icmp(IntCC::UnsignedGreaterThanOrEqual, len1, base);
-        let (nested, top) = (self.b.create_block(), self.b.create_block());
-        self.b.ins().brif(nested_frame, nested, NONE, top, NONE);
-        self.b.switch_to_block(nested);
+        let (back, top) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(nested, back, NONE, top, NONE);
+        self.b.switch_to_block(back);
         let returned = self.c32(i64::from(RETURNED));
         self.b.ins().return_(&[returned, steps]);
 
         self.b.switch_to_block(top);
+        let ret_pc = self
+            .b
+            .ins()
+            .load(T32, mem, fp, field(offset_of!(Frame, ret_pc)));
         let sp = self.b.ins().iadd_imm_s(arg, 1);
         self.b.def_var(self.v.sp, sp);
         let regs = [
