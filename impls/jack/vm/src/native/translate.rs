@@ -44,6 +44,10 @@ const T16: ir::Type = types::I16;
 const T32: ir::Type = types::I32;
 const T64: ir::Type = types::I64;
 
+/// Calls with more arguments are left to the interpreter (so that a
+/// compiled call's ARG is a plain word, see `Translator::called_ok`).
+const MAX_COMPILED_ARGS: u16 = 250;
+
 /// No block arguments.
 const NONE: &[BlockArg] = &[];
 
@@ -130,6 +134,10 @@ struct Translator<'a, 'b> {
     /// The entry test shows what a `return` needs of LCL and ARG: the
     /// saved frame LCL-5 ..= LCL-1 and ARG are plain words.
     frame_shown: bool,
+    /// The lowest and highest stack word of the function relative to LCL,
+    /// and the lowest held by a block that uses `argument` (from
+    /// `static_ok`).
+    range: Option<(i32, i32, i32)>,
 }
 
 /// How a `this` or `that` access of a block tests its address.
@@ -275,7 +283,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         lcl_host: None,
         budgets,
         frame_shown: false,
+        range: None,
     };
+    t.range = t.static_range();
     // A compiled call passes the registers; the dispatcher, the context.
     let called = t.b.ins().icmp_imm_s(IntCC::Equal, which, CALLED);
     let (from_call, from_ctx, join) = (t.b.create_block(), t.b.create_block(), t.b.create_block());
@@ -301,11 +311,26 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         t.lcl_host = Some(t.seg_base(t.v.lcl));
     }
     let default = t.b.create_block();
-    let ok = match (t.frame_ok(), t.static_ok()) {
-        (Some(a), Some(b)) => Some(t.b.ins().band(a, b)),
-        (a, b) => a.or(b),
-    };
-    if let Some(ok) = ok {
+    // A compiled call's frame shows most of the entry test: with static
+    // depths the call path makes only what it does not (`called_ok`).
+    let (from_call, from_ctx) = (t.b.create_block(), t.b.create_block());
+    t.b.ins().brif(called, from_call, NONE, from_ctx, NONE);
+    t.b.switch_to_block(from_call);
+    match t.called_ok().or_else(|| t.entry_ok()) {
+        Some(ok) => {
+            let bad = t.b.create_block();
+            t.b.ins().brif(ok, t.cl[0], NONE, bad, NONE);
+            t.b.switch_to_block(bad);
+            t.b.set_cold_block(bad);
+            let pc = t.c32(i64::from(start));
+            t.leave_with(pc, pc);
+        }
+        None => {
+            t.b.ins().jump(t.cl[0], NONE);
+        }
+    }
+    t.b.switch_to_block(from_ctx);
+    if let Some(ok) = t.entry_ok() {
         // LCL or ARG such that some access of the function would not be
         // a plain word: the interpreter runs from the block's start.
         let (run, bad) = (t.b.create_block(), t.b.create_block());
@@ -331,7 +356,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         t.b.switch_to_block(run);
     }
     let dispatch = t.b.create_block();
-    t.b.ins().brif(called, t.cl[0], NONE, dispatch, NONE);
+    t.b.ins().jump(dispatch, NONE);
     let stubs: Vec<_> = vm_blocks
         .iter()
         .enumerate()
@@ -603,11 +628,9 @@ impl Translator<'_, '_> {
         stub
     }
 
-    /// The tests that static depths move to the function's entry (None
-    /// where depths are not static): the stack words of every block and
-    /// every call's frame lie from 256 to the profile's stack end, and the
-    /// `argument` words lie below every block's stack words.
-    fn static_ok(&mut self) -> Option<Value> {
+    /// The stack range of a function with static depths (see
+    /// `Translator::range`).
+    fn static_range(&self) -> Option<(i32, i32, i32)> {
         let depths = self.depths.as_ref()?;
         let (mut low, mut high) = (i32::MAX, i32::MIN);
         let mut args_below = i32::MAX;
@@ -637,9 +660,15 @@ impl Translator<'_, '_> {
                 }
             }
         }
-        if low > high {
-            return None;
-        }
+        (low <= high).then_some((low, high, args_below))
+    }
+
+    /// The tests that static depths move to the function's entry (None
+    /// where depths are not static): the stack words of every block and
+    /// every call's frame lie from 256 to the profile's stack end, and the
+    /// `argument` words lie below every block's stack words.
+    fn static_ok(&mut self) -> Option<Value> {
+        let (low, high, args_below) = self.range?;
         // 256 - low <= LCL <= stack end - high, in 32 bits (no wrapping).
         let first = i64::from(STACK_BASE) - i64::from(low);
         let last = i64::from(self.env.timing.stack_end()) - i64::from(high);
@@ -665,6 +694,44 @@ impl Translator<'_, '_> {
             let c = self.is_plain(arg);
             ok = self.b.ins().band(ok, c);
             self.frame_shown = true;
+        }
+        Some(ok)
+    }
+
+    /// The whole entry test (None: nothing to test).
+    fn entry_ok(&mut self) -> Option<Value> {
+        match (self.frame_ok(), self.static_ok()) {
+            (Some(a), Some(b)) => Some(self.b.ins().band(a, b)),
+            (a, b) => a.or(b),
+        }
+    }
+
+    /// The entry test on a compiled call's path, where depths are static
+    /// and the call's frame shows the rest (None: make the whole test).
+    /// The call made LCL = base + 5 and ARG = base - nargs for a base
+    /// from 256 to the stack end less the frame, with nargs at most
+    /// [`MAX_COMPILED_ARGS`]: so LCL >= 261, ARG is plain, the arguments
+    /// lie below base, and what remains is the top of the stack and the
+    /// argument count.
+    fn called_ok(&mut self) -> Option<Value> {
+        let (low, high, args_below) = self.range?;
+        let locals_fit = self.reach[LOCAL].is_none_or(|top| i32::from(top) < high);
+        if low < -5 || high < 0 || !locals_fit || args_below <= -6 {
+            return None;
+        }
+        let lcl = self.b.use_var(self.v.lcl);
+        let last = i64::from(self.env.timing.stack_end()) - i64::from(high);
+        let mut ok = self
+            .b
+            .ins()
+            .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, lcl, last);
+        if let Some(top) = self.reach[ARGUMENT] {
+            let nargs = self.b.use_var(self.v.nargs);
+            let fit = self
+                .b
+                .ins()
+                .icmp_imm_u(IntCC::UnsignedGreaterThan, nargs, i64::from(top));
+            ok = self.b.ins().band(ok, fit);
         }
         Some(ok)
     }
@@ -1200,7 +1267,7 @@ impl Translator<'_, '_> {
             f.n_vars
         };
         let entry_flags = f.entry_flags(n);
-        if n_vars > MAX_INLINE_LOCALS {
+        if n_vars > MAX_INLINE_LOCALS || n > MAX_COMPILED_ARGS {
             self.exit_before(before);
             return;
         }
