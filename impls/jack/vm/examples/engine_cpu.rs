@@ -3,9 +3,11 @@
 //! loaded machine does not distort as it does criterion's wall-clock
 //! figures: `cargo run --release -p hack-vm --example engine_cpu [ROUNDS]`
 //! runs ROUNDS (default 16) rounds of the bench's 32 pixels on each engine
-//! from a snapshot after `Main.init`, in one process. With `main ENGINE`
-//! (`native` or `interp`) it runs instead the whole `Main.main` (SPACE
-//! scripted, as the whole-program test does) on that engine alone.
+//! from a snapshot after `Main.init`, in one process (Auto on a program of
+//! its own, not yet compiled, so that its row includes its interpreted
+//! start and the compiling). With `main ENGINE` (`auto`, `native` or
+//! `interp`) it runs instead the whole `Main.main` (SPACE scripted, as the
+//! whole-program test does) on that engine alone.
 
 #[path = "../tests/support/raymarcher.rs"]
 mod support;
@@ -45,7 +47,7 @@ fn whole_main(engine: Engine) {
 fn main() {
     if std::env::args().nth(1).as_deref() == Some("main") {
         let engine = std::env::args().nth(2).unwrap_or_else(|| "native".into());
-        whole_main(engine.parse().expect("ENGINE is native or interp"));
+        whole_main(engine.parse().expect("ENGINE is auto, native or interp"));
         return;
     }
     let rounds: u16 = match std::env::args().nth(1) {
@@ -57,10 +59,14 @@ fn main() {
         Ok(t) => println!("compiled to native code in {:.3} s", t.as_secs_f64()),
         Err(e) => println!("no native code: {e}"),
     }
-    for engine in [Engine::Interp, Engine::Native] {
+    for engine in [Engine::Interp, Engine::Native, Engine::Auto] {
+        let program = match engine {
+            Engine::Auto => support::raymarcher(),
+            _ => program.clone(),
+        };
         let init = support::initialised(&program, engine);
         let started = cpu_seconds();
-        let mut steps = 0;
+        let (mut steps, mut last) = (0, engine);
         for _ in 0..rounds {
             for i in 0..32 {
                 let mut m = init.clone();
@@ -69,11 +75,12 @@ fn main() {
                     .expect("Image.pixel exists");
                 assert!(matches!(exit, Exit::Returned(_)), "{exit}");
                 steps += m.steps() - init.steps();
+                last = m.engine();
             }
         }
         let cpu = cpu_seconds() - started;
         println!(
-            "{engine:?}: {steps} VM instructions in {cpu:.3} CPU s, {:.0} M/s",
+            "{engine:?} (last pixel on {last:?}): {steps} VM instructions in {cpu:.3} CPU s, {:.0} M/s",
             steps as f64 / cpu / 1e6
         );
     }

@@ -90,7 +90,15 @@ proptest! {
 
     #[test]
     fn compiled_execution_equals_interpretation(case in engine_case()) {
-        engines_agree(&case, Engine::Native)?;
+        engines_agree(&case, Engine::Native, None)?;
+    }
+
+    /// Auto with a threshold that lands among the budgets and key changes:
+    /// the run switches from the interpreter to compiled code mid-way and
+    /// still agrees with the interpreter alone.
+    #[test]
+    fn tiered_execution_equals_interpretation(case in engine_case(), threshold in 0u64..400) {
+        engines_agree(&case, Engine::Auto, Some(threshold))?;
     }
 
     /// Code shaped as the Jack compiler shapes it, whose stack depth is
@@ -99,7 +107,7 @@ proptest! {
     /// land inside loops, and some statements move SP, LCL or ARG.
     #[test]
     fn compiled_structured_code_equals_interpretation(case in structured_case()) {
-        engines_agree(&case, Engine::Native)?;
+        engines_agree(&case, Engine::Native, None)?;
     }
 }
 
@@ -326,9 +334,14 @@ impl Watcher for Log {
     }
 }
 
-/// Run `case` on the interpreter and on `engine`: the same end, step count,
-/// RAM and watched calls after every budget.
-fn engines_agree(case: &EngineCase, engine: Engine) -> Result<(), TestCaseError> {
+/// Run `case` on the interpreter and on `engine` (with Auto's threshold
+/// `threshold`): the same end, step count, RAM and watched calls after
+/// every budget.
+fn engines_agree(
+    case: &EngineCase,
+    engine: Engine,
+    threshold: Option<u64>,
+) -> Result<(), TestCaseError> {
     let program =
         Program::from_sources(&[("Main.vm", case.src.as_str())]).expect("generated programs load");
     let profile = if case.web {
@@ -344,11 +357,14 @@ fn engines_agree(case: &EngineCase, engine: Engine) -> Result<(), TestCaseError>
         profile,
         keys: keys.clone(),
         engine,
+        auto_threshold: threshold,
         ..Config::default()
     };
     let mut a = enter(&program, config(Engine::Interp), &case.args);
     let mut b = enter(&program, config(engine), &case.args);
-    prop_assert_eq!(b.engine(), Engine::Native);
+    if engine != Engine::Auto {
+        prop_assert_eq!(b.engine(), Engine::Native);
+    }
     let watch = vec![true; program.functions().len()];
     let (mut log_a, mut log_b) = (Log::default(), Log::default());
     let run = |m: &mut Machine, log: &mut Log, budget| {
@@ -365,18 +381,31 @@ fn engines_agree(case: &EngineCase, engine: Engine) -> Result<(), TestCaseError>
         prop_assert_eq!(&end_a, &end_b, "{}", case.src);
         prop_assert!(a.ram() == b.ram(), "RAM differs\n{}", case.src);
         prop_assert_eq!(&log_a.0, &log_b.0, "{}", case.src);
+        if let Some(t) = threshold {
+            // Auto switches where the threshold falls inside a run, or at
+            // the start of the next run where it falls on the run's end.
+            if b.steps() < t {
+                prop_assert_eq!(b.engine(), Engine::Interp);
+            } else if b.steps() > t {
+                prop_assert_eq!(b.engine(), Engine::Native);
+            }
+        }
     }
     Ok(())
 }
 
 #[test]
 fn a_broken_translation_is_caught() {
+    // Most seeds find a wrong `sub` within 256 cases, not all: the runner
+    // stops at the first failure, so a large bound costs nothing when the
+    // test passes and makes a miss vanishingly rare.
     let mut runner = proptest::test_runner::TestRunner::new(ProptestConfig {
+        cases: 4096,
         failure_persistence: None,
         ..ProptestConfig::default()
     });
     let found = runner.run(&engine_case(), |case| {
-        engines_agree(&case, Engine::NativeBrokenSub)
+        engines_agree(&case, Engine::NativeBrokenSub, None)
     });
     assert!(found.is_err(), "a wrong `sub` went unnoticed");
 }

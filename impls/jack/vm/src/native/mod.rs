@@ -32,6 +32,12 @@ use std::time::{Duration, Instant};
 // The hidden variant is a test switch, not a reserved future variant.
 #[allow(clippy::manual_non_exhaustive)]
 pub enum Engine {
+    /// The interpreter first, then compiled code once the program's
+    /// machines have run [`AUTO_THRESHOLD`] steps on the interpreter
+    /// between them (see [`crate::Machine::engine`]): short runs never pay
+    /// for compiling, long ones run compiled. The interpreter alone where
+    /// Cranelift cannot target the host.
+    Auto,
     /// The interpreter (`exec.rs`) alone.
     Interp,
     /// VM functions compiled to native code with Cranelift, with the
@@ -45,25 +51,36 @@ pub enum Engine {
 }
 
 impl Default for Engine {
-    /// `HACK_VM_ENGINE=native|interp` if set (how the test suites run on
-    /// both engines), else `Interp`, the oracle (docs/performance.md
-    /// compares the two).
+    /// `HACK_VM_ENGINE=auto|native|interp` if set (how the test suites run
+    /// on each engine), else `Auto`.
     fn default() -> Engine {
         match std::env::var("HACK_VM_ENGINE").as_deref() {
             Ok("native") => Engine::Native,
-            _ => Engine::Interp,
+            Ok("interp") => Engine::Interp,
+            _ => Engine::Auto,
         }
     }
 }
+
+/// The interpreted steps after which [`Engine::Auto`] compiles: 100 M, about
+/// what the interpreter runs (0.66-0.75 G VM instructions per CPU second on
+/// the raymarcher) in the time compiling the seed program takes (0.13-0.18 s,
+/// docs/performance.md). A run that stops below it never compiles; one that
+/// goes on has spent at most about as long interpreting as compiling would
+/// have cost, so Auto is never much more than twice as slow as the better of
+/// the two engines, and on long runs (the whole `Main.main`, 21 G steps) the
+/// compile time is under 2% of the run.
+pub const AUTO_THRESHOLD: u64 = 100_000_000;
 
 impl std::str::FromStr for Engine {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Engine, String> {
         match s {
+            "auto" => Ok(Engine::Auto),
             "interp" => Ok(Engine::Interp),
             "native" => Ok(Engine::Native),
-            _ => Err(format!("unknown engine {s:?} (interp or native)")),
+            _ => Err(format!("unknown engine {s:?} (auto, interp or native)")),
         }
     }
 }
