@@ -167,6 +167,25 @@ fn jack(subcommand: &str, dir: &Path, args: &[&str]) -> Output {
 }
 
 #[test]
+fn jack_run_gives_the_same_run_on_every_engine_and_names_them() {
+    let src = half_program(-9);
+    let runs: Vec<String> = ["auto", "interp", "native"]
+        .iter()
+        .map(|e| {
+            let o = jack("run", src.path(), &["--engine", e]);
+            assert!(o.status.success(), "{e}: {}", text(&o));
+            text(&o)
+        })
+        .collect();
+    assert!(runs[0].contains("end: halted"), "{}", runs[0]);
+    assert_eq!(runs[0], runs[1]);
+    assert_eq!(runs[0], runs[2]);
+    let o = jack("run", src.path(), &["--engine", "jit"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("auto, interp or native"), "{}", text(&o));
+}
+
+#[test]
 fn jack_compile_then_run_prints_the_count_the_end_and_the_screen() {
     let src = half_program(-9);
     let out = tempfile::tempdir().unwrap();

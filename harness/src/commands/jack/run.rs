@@ -41,11 +41,13 @@ pub struct RunArgs {
     /// Set RAM[A] to V before the run; repeatable.
     #[arg(long = "set", value_name = "A=V", value_parser = parse_set)]
     pub set: Vec<(i32, i16)>,
-    /// The emulator's engine: `interp` (the interpreter) or `native` (VM
+    /// The emulator's engine: `auto` (the interpreter, then compiled code
+    /// once the run is long), `interp` (the interpreter) or `native` (VM
     /// functions compiled with Cranelift; the interpreter where the host is
-    /// not supported). Both give the same run.
-    #[arg(long, default_value = "interp")]
-    pub engine: Engine,
+    /// not supported). All give the same run. Default: `HACK_VM_ENGINE`,
+    /// else `auto`.
+    #[arg(long)]
+    pub engine: Option<Engine>,
 }
 
 /// The last RAM address.
@@ -123,7 +125,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         profile,
         keys: keys.clone(),
         profile_functions: args.profile_functions,
-        engine: args.engine,
+        engine: args.engine.unwrap_or_default(),
+        ..Config::default()
     };
     if let Some(path) = &args.screen {
         for p in screen_paths(path, args.compare_profiles) {

@@ -89,13 +89,7 @@ fn jack_raymarcher(c: &mut Criterion) {
     }
     let mut g = c.benchmark_group("hack-vm");
     for engine in [Engine::Interp, Engine::Native] {
-        let config = Config {
-            engine,
-            ..Config::default()
-        };
-        let mut init = Machine::new(program.clone(), config);
-        let exit = init.call("Main.init", &[], None).expect("Main.init exists");
-        assert_eq!(exit, Exit::Returned(0));
+        let init = support::initialised(&program, engine);
         let steps = pixels(&init);
         g.throughput(Throughput::Elements(steps));
         g.bench_function(

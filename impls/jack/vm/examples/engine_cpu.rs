@@ -3,12 +3,16 @@
 //! loaded machine does not distort as it does criterion's wall-clock
 //! figures: `cargo run --release -p hack-vm --example engine_cpu [ROUNDS]`
 //! runs ROUNDS (default 16) rounds of the bench's 32 pixels on each engine
-//! from a snapshot after `Main.init`, in one process.
+//! from a snapshot after `Main.init`, in one process (Auto on a program of
+//! its own, not yet compiled, so that its row includes its interpreted
+//! start and the compiling). With `main ENGINE` (`auto`, `native` or
+//! `interp`) it runs instead the whole `Main.main` (SPACE scripted, as the
+//! whole-program test does) on that engine alone.
 
 #[path = "../tests/support/raymarcher.rs"]
 mod support;
 
-use hack_vm::{Config, Engine, Exit, Machine, Profile};
+use hack_vm::{Config, Engine, Exit, KeyScript, Machine, Profile};
 
 /// Seconds this thread has run on a CPU.
 fn cpu_seconds() -> f64 {
@@ -22,7 +26,30 @@ fn cpu_seconds() -> f64 {
     ns / 1e9
 }
 
+/// The whole `Main.main` on `engine`: its end, instruction count and CPU time.
+fn whole_main(engine: Engine) {
+    let config = Config {
+        keys: KeyScript::parse("SPACE", 1_000_000).expect("a valid key script"),
+        engine,
+        ..Config::default()
+    };
+    let mut m = Machine::new(support::raymarcher(), config);
+    let started = cpu_seconds();
+    let exit = m.run(None);
+    let cpu = cpu_seconds() - started;
+    println!(
+        "{engine:?}: Main.main ran {} VM instructions to {exit} in {cpu:.2} CPU s, {:.0} M/s",
+        m.steps(),
+        m.steps() as f64 / cpu / 1e6
+    );
+}
+
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("main") {
+        let engine = std::env::args().nth(2).unwrap_or_else(|| "native".into());
+        whole_main(engine.parse().expect("ENGINE is auto, native or interp"));
+        return;
+    }
     let rounds: u16 = match std::env::args().nth(1) {
         Some(a) => a.parse().expect("ROUNDS is a number"),
         None => 16,
@@ -32,16 +59,14 @@ fn main() {
         Ok(t) => println!("compiled to native code in {:.3} s", t.as_secs_f64()),
         Err(e) => println!("no native code: {e}"),
     }
-    for engine in [Engine::Interp, Engine::Native] {
-        let config = Config {
-            engine,
-            ..Config::default()
+    for engine in [Engine::Interp, Engine::Native, Engine::Auto] {
+        let program = match engine {
+            Engine::Auto => support::raymarcher(),
+            _ => program.clone(),
         };
-        let mut init = Machine::new(program.clone(), config);
-        let exit = init.call("Main.init", &[], None).expect("Main.init exists");
-        assert_eq!(exit, Exit::Returned(0));
+        let init = support::initialised(&program, engine);
         let started = cpu_seconds();
-        let mut steps = 0;
+        let (mut steps, mut last) = (0, engine);
         for _ in 0..rounds {
             for i in 0..32 {
                 let mut m = init.clone();
@@ -50,11 +75,12 @@ fn main() {
                     .expect("Image.pixel exists");
                 assert!(matches!(exit, Exit::Returned(_)), "{exit}");
                 steps += m.steps() - init.steps();
+                last = m.engine();
             }
         }
         let cpu = cpu_seconds() - started;
         println!(
-            "{engine:?}: {steps} VM instructions in {cpu:.3} CPU s, {:.0} M/s",
+            "{engine:?} (last pixel on {last:?}): {steps} VM instructions in {cpu:.3} CPU s, {:.0} M/s",
             steps as f64 / cpu / 1e6
         );
     }

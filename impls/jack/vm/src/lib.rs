@@ -27,6 +27,7 @@ mod native;
 mod parse;
 mod program;
 mod script;
+mod tier;
 mod timing;
 mod trace_diff;
 
@@ -35,7 +36,7 @@ pub use exit::{CallStack, Exit};
 pub use jack_os::{Builtin, Completion, KeyScript, Profile, Ram, Stop, RAM_SIZE};
 pub use load::IMPLICIT;
 pub use machine::{Config, Machine, Register, UnknownFunction, Watcher, MAX_DEPTH};
-pub use native::Engine;
+pub use native::{Engine, AUTO_THRESHOLD};
 pub use program::{FnId, Function, Program};
 pub use script::{run_script, Mismatch, ScriptError, ScriptReport};
 pub use timing::Timing;

@@ -455,6 +455,7 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
         command_lines,
         statics,
         native: Default::default(),
+        interpreted: Default::default(),
     })
 }
 

@@ -4,8 +4,9 @@
 
 use crate::exec::Flow;
 use crate::exit::{CallStack, Exit};
-use crate::native::{Engine, Fault, Native};
+use crate::native::{Engine, Fault, Native, AUTO_THRESHOLD};
 use crate::program::{FnId, Program};
+use crate::tier::Tier;
 use crate::timing::{self, Timing};
 use jack_os::{Builtin, Completion, KeyScript, Os, Profile, Ram, KBD};
 use std::sync::Arc;
@@ -64,9 +65,13 @@ pub struct Config {
     pub keys: KeyScript,
     /// Count instructions per function (see [`Machine::function_profile`]).
     pub profile_functions: bool,
-    /// Interpreter or compiled code (default: `HACK_VM_ENGINE`, else the
-    /// interpreter).
+    /// Interpreter, compiled code, or the first then the second (default:
+    /// `HACK_VM_ENGINE`, else [`Engine::Auto`]).
     pub engine: Engine,
+    /// [`Engine::Auto`]'s threshold in place of [`crate::AUTO_THRESHOLD`]
+    /// (tests set a small one to switch engines inside short runs).
+    #[doc(hidden)]
+    pub auto_threshold: Option<u64>,
 }
 
 /// Observer of calls to chosen functions (see [`Machine::run_watched`]).
@@ -105,6 +110,8 @@ pub struct Machine {
     pub(crate) startup_pending: bool,
     /// The program's compiled code, when the compiling engine runs.
     pub(crate) native: Option<Arc<Native>>,
+    /// An [`Engine::Auto`] machine still on the interpreter.
+    pub(crate) tier: Option<Tier>,
 }
 
 impl Machine {
@@ -124,7 +131,7 @@ impl Machine {
             .profile_functions
             .then(|| vec![0; program.functions.len()]);
         let native = match config.engine {
-            Engine::Interp => None,
+            Engine::Interp | Engine::Auto => None,
             Engine::Native => program.native(config.profile).ok(),
             Engine::NativeBrokenSub => {
                 Native::compile(&program, config.profile, Some(Fault::SubSwapped))
@@ -151,13 +158,16 @@ impl Machine {
             next_key_sync: 0,
             startup_pending: false,
             native,
+            tier: (config.engine == Engine::Auto)
+                .then(|| Tier::new(config.auto_threshold.unwrap_or(AUTO_THRESHOLD), 0)),
         };
         machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
         machine
     }
 
-    /// The engine that runs this machine: [`Engine::Interp`] if that was
-    /// asked for or the program could not be compiled for this host.
+    /// The engine that runs this machine now: [`Engine::Interp`] if that
+    /// was asked for, the program could not be compiled for this host, or
+    /// an [`Engine::Auto`] machine has not switched (yet).
     pub fn engine(&self) -> Engine {
         match &self.native {
             None => Engine::Interp,
@@ -470,10 +480,15 @@ impl Machine {
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
         let code = &program.code[timing::index(self.os.profile())];
-        let native = self.native.clone();
+        let mut native = self.native.clone();
         let exit = loop {
+            let mut switch = u64::MAX;
+            if native.is_none() {
+                switch = self.tier_limit();
+                native = self.native.clone();
+            }
             let key_change = self.next_key_sync;
-            let limit = budget_end.min(key_change);
+            let limit = budget_end.min(key_change).min(switch);
             let soft = limit.saturating_sub(crate::fuse::MAX_FUSED_STEPS);
             let flow = if let Some(native) = &native {
                 self.exec_native::<W>(&program, code, native, limit, &mut watch)
@@ -503,6 +518,7 @@ impl Machine {
             }
         };
         self.charge_profile();
+        self.tier_credit();
         if !matches!(exit, Exit::Budget { .. } | Exit::Returned(_)) {
             self.ended = Some(exit.clone());
         }

@@ -5,6 +5,7 @@
 use crate::native::Native;
 use jack_os::{Builtin, Profile};
 use std::collections::HashMap;
+use std::sync::atomic::AtomicU64;
 use std::sync::{Arc, OnceLock};
 use std::time::Duration;
 
@@ -287,7 +288,9 @@ pub(crate) struct Code {
     pub fused: Vec<Op>,
 }
 
-/// A loaded, checked and decoded VM program. Immutable; share it with `Arc`.
+/// A loaded, checked and decoded VM program. Immutable (but for its
+/// compiled code, made on first use, and the step count that decides when);
+/// share it with `Arc`.
 #[derive(Debug)]
 pub struct Program {
     pub(crate) functions: Vec<Function>,
@@ -308,6 +311,9 @@ pub struct Program {
     pub(crate) statics: usize,
     /// Compiled code under each OS profile (desktop, web), made on first use.
     pub(crate) native: [OnceLock<Result<Arc<Native>, String>>; 2],
+    /// Steps that [`crate::Engine::Auto`] machines of each profile have run
+    /// on the interpreter, all machines together (see `crate::tier`).
+    pub(crate) interpreted: [AtomicU64; 2],
 }
 
 impl Program {
@@ -350,9 +356,16 @@ impl Program {
         self.native(profile).map(|n| n.compile_time())
     }
 
+    /// The compiled code for `profile`, compiling it on first use.
     pub(crate) fn native(&self, profile: Profile) -> Result<Arc<Native>, String> {
         let slot = &self.native[crate::timing::index(profile)];
         slot.get_or_init(|| Native::compile(self, profile, None).map(Arc::new))
             .clone()
+    }
+
+    /// The compiled code for `profile` if it has been made (`Err`: it
+    /// cannot be), without compiling.
+    pub(crate) fn native_made(&self, profile: Profile) -> Option<&Result<Arc<Native>, String>> {
+        self.native[crate::timing::index(profile)].get()
     }
 }

@@ -90,8 +90,176 @@ proptest! {
 
     #[test]
     fn compiled_execution_equals_interpretation(case in engine_case()) {
-        engines_agree(&case, Engine::Native)?;
+        engines_agree(&case, Engine::Native, None)?;
     }
+
+    /// Auto with a threshold that lands among the budgets and key changes:
+    /// the run switches from the interpreter to compiled code mid-way and
+    /// still agrees with the interpreter alone.
+    #[test]
+    fn tiered_execution_equals_interpretation(case in engine_case(), threshold in threshold()) {
+        engines_agree(&case, Engine::Auto, Some(threshold))?;
+    }
+
+    /// The same on code shaped as the Jack compiler shapes it.
+    #[test]
+    fn tiered_structured_code_equals_interpretation(case in structured_case(), threshold in threshold()) {
+        engines_agree(&case, Engine::Auto, Some(threshold))?;
+    }
+
+    /// Code shaped as the Jack compiler shapes it, whose stack depth is
+    /// fixed at each instruction (compiled code then tests the stack once
+    /// per function and the budget once per loop): budgets and key changes
+    /// land inside loops, and some statements move SP, LCL or ARG.
+    #[test]
+    fn compiled_structured_code_equals_interpretation(case in structured_case()) {
+        engines_agree(&case, Engine::Native, None)?;
+    }
+}
+
+/// A statement of structured code (rendered by [`render`]).
+#[derive(Clone, Debug)]
+enum Stmt {
+    /// expression; pop target
+    Let(Vec<String>, String),
+    /// while (expression) { body }, or a loop counting local 2 up to n.
+    While(Vec<String>, Vec<Stmt>),
+    Count(u8, Vec<Stmt>),
+    /// if (expression) { then } else { else }
+    If(Vec<String>, Vec<Stmt>, Vec<Stmt>),
+    /// Plain commands that change the machine under the compiled code: a
+    /// value to SP, LCL or ARG (`pop constant`), or a return.
+    Raw(String),
+}
+
+/// An expression: commands that push exactly one word.
+fn expression() -> impl Strategy<Value = Vec<String>> {
+    let seg = prop::sample::select(vec![
+        "local", "argument", "this", "that", "temp", "static", "pointer",
+    ]);
+    let leaf = prop_oneof![
+        (0i16..40).prop_map(|v| vec![format!("push constant {v}")]),
+        (seg, 0u16..3).prop_map(|(s, i)| vec![format!(
+            "push {s} {}",
+            if s == "pointer" { i % 2 } else { i }
+        )]),
+    ];
+    leaf.prop_recursive(3, 12, 2, |inner| {
+        prop_oneof![
+            (
+                inner.clone(),
+                inner.clone(),
+                prop::sample::select(vec![
+                    "add",
+                    "sub",
+                    "and",
+                    "or",
+                    "eq",
+                    "gt",
+                    "lt",
+                    "call Math.multiply 2",
+                    "call Math.divide 2",
+                    "call Main.g 2",
+                ])
+            )
+                .prop_map(|(a, b, op)| [a, b, vec![op.to_string()]].concat()),
+            (
+                inner,
+                prop::sample::select(vec![
+                    "neg",
+                    "not",
+                    "call Main.r 1",
+                    "call Main.m 1",
+                    "call Math.abs 1"
+                ])
+            )
+                .prop_map(|(a, op)| [a, vec![op.to_string()]].concat()),
+        ]
+    })
+}
+
+fn statement() -> impl Strategy<Value = Stmt> {
+    let target = prop::sample::select(vec![
+        "local", "argument", "this", "that", "temp", "static", "pointer",
+    ]);
+    let leaf = prop_oneof![
+        6 => (expression(), target, 0u16..3).prop_map(|(e, t, i)| {
+            Stmt::Let(e, format!("pop {t} {}", if t == "pointer" { i % 2 } else { i }))
+        }),
+        1 => prop::sample::select(vec![
+            "push constant 300\npop constant 0", "push constant 2040\npop constant 0",
+            "push constant 400\npop constant 1", "push constant 250\npop constant 2",
+            "push constant 7\nreturn",
+        ]).prop_map(|r| Stmt::Raw(r.to_string())),
+    ];
+    leaf.prop_recursive(3, 24, 4, |inner| {
+        let body = prop::collection::vec(inner, 0..4);
+        prop_oneof![
+            (expression(), body.clone()).prop_map(|(e, b)| Stmt::While(e, b)),
+            (0u8..6, body.clone()).prop_map(|(n, b)| Stmt::Count(n, b)),
+            (expression(), body.clone(), body).prop_map(|(e, t, f)| Stmt::If(e, t, f)),
+        ]
+    })
+}
+
+/// The VM commands of `stmts`, with labels numbered from `labels`.
+fn render(stmts: &[Stmt], labels: &mut u32, out: &mut Vec<String>) {
+    for s in stmts {
+        let k = *labels;
+        *labels += 1;
+        match s {
+            Stmt::Let(e, pop) => {
+                out.extend(e.iter().cloned());
+                out.push(pop.clone());
+            }
+            Stmt::While(e, body) => {
+                out.push(format!("label W{k}"));
+                out.extend(e.iter().cloned());
+                out.push(format!("not\nif-goto E{k}"));
+                render(body, labels, out);
+                out.push(format!("goto W{k}\nlabel E{k}"));
+            }
+            Stmt::Count(n, body) => {
+                out.push(format!("push constant 0\npop local 2\nlabel W{k}\npush local 2\npush constant {n}\nlt\nnot\nif-goto E{k}"));
+                render(body, labels, out);
+                out.push(format!(
+                    "push local 2\npush constant 1\nadd\npop local 2\ngoto W{k}\nlabel E{k}"
+                ));
+            }
+            Stmt::If(e, then, other) => {
+                out.extend(e.iter().cloned());
+                out.push(format!("if-goto T{k}"));
+                render(other, labels, out);
+                out.push(format!("goto E{k}\nlabel T{k}"));
+                render(then, labels, out);
+                out.push(format!("label E{k}"));
+            }
+            Stmt::Raw(r) => out.push(r.clone()),
+        }
+    }
+}
+
+fn structured_case() -> impl Strategy<Value = EngineCase> {
+    (
+        prop::collection::vec(statement(), 1..8),
+        prop::array::uniform2(any::<i16>()),
+        any::<bool>(),
+        prop::collection::vec(0u64..400, 0..5),
+        prop::option::of(1u64..50),
+        any::<bool>(),
+    )
+        .prop_map(|(stmts, args, web, budgets, hold, watched)| {
+            let mut body = Vec::new();
+            render(&stmts, &mut 0, &mut body);
+            EngineCase {
+                src: random_program(body, Vec::new()),
+                args,
+                web,
+                budgets,
+                hold,
+                watched,
+            }
+        })
 }
 
 /// Enter Main.f of `program` with `args` without running anything.
@@ -159,6 +327,12 @@ fn engine_case() -> impl Strategy<Value = EngineCase> {
         )
 }
 
+/// An Auto threshold that lands inside the runs: most random programs end
+/// within 20 steps, looping ones run to the last budget.
+fn threshold() -> impl Strategy<Value = u64> {
+    prop_oneof![3 => 0u64..20, 1 => 0u64..400, 1 => 400u64..3400]
+}
+
 /// Records every call and return it is told about.
 #[derive(Default)]
 struct Log(Vec<(bool, u32, Vec<i16>)>);
@@ -172,9 +346,14 @@ impl Watcher for Log {
     }
 }
 
-/// Run `case` on the interpreter and on `engine`: the same end, step count,
-/// RAM and watched calls after every budget.
-fn engines_agree(case: &EngineCase, engine: Engine) -> Result<(), TestCaseError> {
+/// Run `case` on the interpreter and on `engine` (with Auto's threshold
+/// `threshold`): the same end, step count, RAM and watched calls after
+/// every budget.
+fn engines_agree(
+    case: &EngineCase,
+    engine: Engine,
+    threshold: Option<u64>,
+) -> Result<(), TestCaseError> {
     let program =
         Program::from_sources(&[("Main.vm", case.src.as_str())]).expect("generated programs load");
     let profile = if case.web {
@@ -190,11 +369,14 @@ fn engines_agree(case: &EngineCase, engine: Engine) -> Result<(), TestCaseError>
         profile,
         keys: keys.clone(),
         engine,
+        auto_threshold: threshold,
         ..Config::default()
     };
     let mut a = enter(&program, config(Engine::Interp), &case.args);
     let mut b = enter(&program, config(engine), &case.args);
-    prop_assert_eq!(b.engine(), Engine::Native);
+    if engine != Engine::Auto {
+        prop_assert_eq!(b.engine(), Engine::Native);
+    }
     let watch = vec![true; program.functions().len()];
     let (mut log_a, mut log_b) = (Log::default(), Log::default());
     let run = |m: &mut Machine, log: &mut Log, budget| {
@@ -211,18 +393,31 @@ fn engines_agree(case: &EngineCase, engine: Engine) -> Result<(), TestCaseError>
         prop_assert_eq!(&end_a, &end_b, "{}", case.src);
         prop_assert!(a.ram() == b.ram(), "RAM differs\n{}", case.src);
         prop_assert_eq!(&log_a.0, &log_b.0, "{}", case.src);
+        if let Some(t) = threshold {
+            // Auto switches where the threshold falls inside a run, or at
+            // the start of the next run where it falls on the run's end.
+            if b.steps() < t {
+                prop_assert_eq!(b.engine(), Engine::Interp);
+            } else if b.steps() > t {
+                prop_assert_eq!(b.engine(), Engine::Native);
+            }
+        }
     }
     Ok(())
 }
 
 #[test]
 fn a_broken_translation_is_caught() {
+    // Most seeds find a wrong `sub` within 256 cases, not all: the runner
+    // stops at the first failure, so a large bound costs nothing when the
+    // test passes and makes a miss vanishingly rare.
     let mut runner = proptest::test_runner::TestRunner::new(ProptestConfig {
+        cases: 4096,
         failure_persistence: None,
         ..ProptestConfig::default()
     });
     let found = runner.run(&engine_case(), |case| {
-        engines_agree(&case, Engine::NativeBrokenSub)
+        engines_agree(&case, Engine::NativeBrokenSub, None)
     });
     assert!(found.is_err(), "a wrong `sub` went unnoticed");
 }

@@ -5,7 +5,7 @@
 #[path = "support/raymarcher.rs"]
 mod support;
 
-use hack_vm::{Config, Exit, Machine};
+use hack_vm::{Engine, Exit};
 use support::raymarcher;
 
 /// The committed render of the seed scene (255 white, 0 black).
@@ -19,12 +19,7 @@ fn seed_image() -> image::GrayImage {
 
 #[test]
 fn raymarcher_pixels_run_and_fusion_changes_nothing() {
-    let mut m = Machine::new(raymarcher(), Config::default());
-    assert_eq!(
-        m.call("Main.init", &[], Some(10_000_000)).unwrap(),
-        Exit::Returned(0)
-    );
-    let snapshot = m.clone();
+    let snapshot = support::initialised(&raymarcher(), Engine::default());
     for (x, y) in [(256, 128), (10, 10)] {
         let mut a = snapshot.clone();
         let e = a.call("Image.pixel", &[x, y], Some(50_000_000)).unwrap();

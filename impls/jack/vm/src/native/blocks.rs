@@ -173,3 +173,128 @@ pub(crate) fn blocks(
     }
     (blocks, index)
 }
+
+/// SP - LCL before each instruction of `code[start..end]` (relative to
+/// `start`), where the function's code fixes it: every path from the
+/// function's start (SP - LCL = `entry`) reaches an instruction with one
+/// value, as Jack-compiled code does. `None` where two paths disagree
+/// (hand-written code); an instruction no path reaches has no depth.
+pub(crate) fn static_depths(
+    code: &[Op],
+    start: u32,
+    end: u32,
+    entry: i32,
+) -> Option<Vec<Option<i32>>> {
+    let mut depth = vec![None; (end - start) as usize];
+    let mut work = vec![(start, entry)];
+    while let Some((pc, d)) = work.pop() {
+        let Some(slot) = depth.get_mut((pc - start) as usize) else {
+            // Past the function's code (never: it ends in Halt and jumps).
+            return None;
+        };
+        match *slot {
+            Some(known) if known == d => continue,
+            Some(_) => return None,
+            None => *slot = Some(d),
+        }
+        let op = code[pc as usize];
+        let after = d + match op {
+            Op::Call { nargs, .. } => 1 - i32::from(nargs),
+            Op::CallBuiltin { nargs, .. } => 1 - i32::from(nargs),
+            Op::EntryAccess { push, .. } => {
+                if push {
+                    1
+                } else {
+                    -1
+                }
+            }
+            _ => {
+                let (pops, pushes) = stack_effect(op);
+                pushes - pops
+            }
+        };
+        match op {
+            Op::Goto(t) => work.push((t, after)),
+            Op::IfGoto(t) => work.extend([(t, after), (pc + 1, after)]),
+            Op::Return | Op::Halt | Op::Fail(_) => {}
+            _ if pc + 1 < end => work.push((pc + 1, after)),
+            _ => {}
+        }
+    }
+    Some(depth)
+}
+
+/// Where each block tests the step budget, and how many steps it covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Budget {
+    /// The block tests the budget on every entry: the function's first
+    /// block, a loop's head (the target of a backward jump), a call's
+    /// continuation. Other blocks are reached only forward from a block
+    /// whose test covered them (or from the dispatcher, which tests).
+    pub tested: bool,
+    /// The most steps from the block's start to the next block that tests
+    /// (or to where compiled code leaves), over every path.
+    pub covers: u64,
+}
+
+/// The budget tests of `blocks` (from [`blocks`], with `index` the block
+/// at each instruction relative to `start`). Every cycle of the flow
+/// graph holds a backward jump, so paths between tested blocks are
+/// finite and `covers` bounds them.
+pub(crate) fn budgets(
+    code: &[Op],
+    start: u32,
+    blocks: &[Block],
+    index: &[Option<u32>],
+) -> Vec<Budget> {
+    let at = |pc: u32| index[(pc - start) as usize].expect("jumps land on blocks") as usize;
+    let mut tested = vec![false; blocks.len()];
+    if let Some(t) = tested.first_mut() {
+        *t = true;
+    }
+    // Flow edges of compiled code between blocks (a call's continuation
+    // is entered after the callee, so it tests).
+    let succ = |b: &Block| -> Vec<usize> {
+        if b.end == b.start {
+            return Vec::new();
+        }
+        match code[b.end as usize - 1] {
+            Op::Goto(t) => vec![at(t)],
+            Op::IfGoto(t) => vec![at(t), at(b.end)],
+            Op::Return | Op::Call { .. } => Vec::new(),
+            _ if ((b.end - start) as usize) < index.len() => vec![at(b.end)],
+            _ => Vec::new(),
+        }
+    };
+    for (i, b) in blocks.iter().enumerate() {
+        if b.end == b.start {
+            continue;
+        }
+        match code[b.end as usize - 1] {
+            Op::Call { .. } if ((b.end - start) as usize) < index.len() => {
+                tested[at(b.end)] = true;
+            }
+            _ => {}
+        }
+        for s in succ(b) {
+            if s <= i {
+                tested[s] = true;
+            }
+        }
+    }
+    let mut covers = vec![0u64; blocks.len()];
+    for i in (0..blocks.len()).rev() {
+        let b = &blocks[i];
+        let next = succ(b)
+            .into_iter()
+            .map(|s| if tested[s] { 0 } else { covers[s] })
+            .max()
+            .unwrap_or(0);
+        covers[i] = b.steps + next;
+    }
+    tested
+        .into_iter()
+        .zip(covers)
+        .map(|(tested, covers)| Budget { tested, covers })
+        .collect()
+}

@@ -4,9 +4,9 @@
 //! the interpreter (`exec.rs`), one at a time, until compiled code can take
 //! over again at the start of a block. The interpreter stays the oracle:
 //! compiled code changes the machine exactly as the interpreter would,
-//! counting steps per block and leaving before any block that would cross
-//! the stop (budget or key change), so every stop falls on the same
-//! instruction.
+//! counting steps per block and leaving before any stretch of blocks that
+//! could cross the stop (budget or key change), so every stop falls on the
+//! same instruction.
 //!
 //! Calls and returns between VM functions run in compiled code (a compiled
 //! function calls its callee's directly) unless a watcher or the function
@@ -32,6 +32,12 @@ use std::time::{Duration, Instant};
 // The hidden variant is a test switch, not a reserved future variant.
 #[allow(clippy::manual_non_exhaustive)]
 pub enum Engine {
+    /// The interpreter first, then compiled code once the program's
+    /// machines have run [`AUTO_THRESHOLD`] steps on the interpreter
+    /// between them (see [`crate::Machine::engine`]): short runs never pay
+    /// for compiling, long ones run compiled. The interpreter alone where
+    /// Cranelift cannot target the host.
+    Auto,
     /// The interpreter (`exec.rs`) alone.
     Interp,
     /// VM functions compiled to native code with Cranelift, with the
@@ -45,25 +51,36 @@ pub enum Engine {
 }
 
 impl Default for Engine {
-    /// `HACK_VM_ENGINE=native|interp` if set (how the test suites run on
-    /// both engines), else `Interp`, the oracle (docs/performance.md
-    /// compares the two).
+    /// `HACK_VM_ENGINE=auto|native|interp` if set (how the test suites run
+    /// on each engine), else `Auto`.
     fn default() -> Engine {
         match std::env::var("HACK_VM_ENGINE").as_deref() {
             Ok("native") => Engine::Native,
-            _ => Engine::Interp,
+            Ok("interp") => Engine::Interp,
+            _ => Engine::Auto,
         }
     }
 }
+
+/// The interpreted steps after which [`Engine::Auto`] compiles: 100 M, about
+/// what the interpreter runs (0.66-0.75 G VM instructions per CPU second on
+/// the raymarcher) in the time compiling the seed program takes (0.13-0.18 s,
+/// docs/performance.md). A run that stops below it never compiles; one that
+/// goes on has spent at most about as long interpreting as compiling would
+/// have cost, so Auto is never much more than twice as slow as the better of
+/// the two engines, and on long runs (the whole `Main.main`, 21 G steps) the
+/// compile time is under 2% of the run.
+pub const AUTO_THRESHOLD: u64 = 100_000_000;
 
 impl std::str::FromStr for Engine {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Engine, String> {
         match s {
+            "auto" => Ok(Engine::Auto),
             "interp" => Ok(Engine::Interp),
             "native" => Ok(Engine::Native),
-            _ => Err(format!("unknown engine {s:?} (interp or native)")),
+            _ => Err(format!("unknown engine {s:?} (auto, interp or native)")),
         }
     }
 }
@@ -96,6 +113,14 @@ pub(crate) struct Ctx {
     /// returns must not run compiled (a watcher or the function profile is
     /// on), which fails compiled code's room test for both.
     pub frames_cap: u64,
+    /// Compiled calls run while `frames_len` is below this: the capacity,
+    /// and at most [`NATIVE_DEPTH`] frames above `frames_base` (0 where
+    /// `frames_cap` is).
+    pub frames_limit: u64,
+    /// `frames_len` on entering compiled code: a frame above it was pushed
+    /// by a compiled call, whose caller's compiled code a return goes
+    /// back to.
+    pub frames_base: u64,
     pub steps: u64,
     pub stop_at: u64,
     pub sp: u16,
@@ -107,8 +132,6 @@ pub(crate) struct Ctx {
     pub flags: u8,
     pub cur: u32,
     pub pc: u32,
-    /// Compiled functions currently nested on the host stack.
-    pub depth: u32,
 }
 
 /// A compiled function: (context, block index or [`CALLED`], and for a
@@ -368,8 +391,12 @@ impl Machine {
             flags: self.flags,
             cur: self.cur,
             pc: self.pc,
-            depth: 0,
+            frames_limit: 0,
+            frames_base: self.frames.len() as u64,
         };
+        ctx.frames_limit = ctx
+            .frames_cap
+            .min(ctx.frames_base + u64::from(NATIVE_DEPTH));
         ctx.ram = w.as_mut_ptr();
         // SAFETY: the entry was compiled for this program and function; it
         // reads and writes RAM words 5..RAM_SIZE only (all it checks), and

@@ -7,10 +7,15 @@
 //! the step count in registers, and returns a code (see `native::RETURNED`,
 //! `native::CONTINUE`; a code >= 0 is the instruction the interpreter must
 //! run next) and the step count. One test on entering compiled code covers
-//! every `local` and `argument` access of the function (`frame_ok`). Every
-//! block first checks that its whole
-//! step count fits under the stop and that its stack accesses stay between
-//! 256 and the profile's stack end (`Timing::stack_end`); otherwise, and wherever an instruction meets a case that
+//! every `local` and `argument` access of the function (`frame_ok`). The
+//! step budget is tested where a loop's head, the function's first block,
+//! a call's continuation or the dispatcher's entry starts a stretch, for
+//! the most steps the stretch can take before the next test
+//! (`blocks::budgets`). Where the stack depth is fixed at each instruction
+//! (`blocks::static_depths`, Jack-compiled code), the stack range (256 to
+//! the profile's stack end, `Timing::stack_end`) is tested once on entering
+//! the function; elsewhere each block tests its own. If a test fails, and
+//! wherever an instruction meets a case that
 //! only the interpreter handles (a register or an address outside RAM
 //! through a computed address, a failed segment check, a division by zero,
 //! a built-in), it stores the exact state before that instruction and
@@ -22,8 +27,8 @@
 //! miss them. Every access is then one load or store at a fixed offset
 //! from its segment's host address.
 
-use super::blocks::{self, Block, Kind, MAX_INLINE_LOCALS};
-use super::{Ctx, Fault, CALLED, CONTINUE, NATIVE_DEPTH, RETURNED};
+use super::blocks::{self, Block, Budget, Kind, MAX_INLINE_LOCALS};
+use super::{Ctx, Fault, CALLED, CONTINUE, RETURNED};
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
 use crate::timing::{Timing, STACK_BASE};
@@ -38,6 +43,10 @@ use std::mem::offset_of;
 const T16: ir::Type = types::I16;
 const T32: ir::Type = types::I32;
 const T64: ir::Type = types::I64;
+
+/// Calls with more arguments are left to the interpreter (so that a
+/// compiled call's ARG is a plain word, see `Translator::called_ok`).
+const MAX_COMPILED_ARGS: u16 = 250;
 
 /// No block arguments.
 const NONE: &[BlockArg] = &[];
@@ -111,6 +120,24 @@ struct Translator<'a, 'b> {
     /// index, where `reach` covers them: LCL and ARG keep one value through
     /// compiled code (a call that returns with others leaves it).
     frame_tops: [Option<Value>; 2],
+    /// SP - LCL before each instruction (relative to `start`), where the
+    /// function's code fixes it ([`blocks::static_depths`]): then SP is
+    /// LCL + that depth wherever compiled code runs (the dispatcher tests
+    /// it on entering), every stack word lies at a fixed offset from
+    /// `lcl_host`, and the stack tests are made once on entering the
+    /// function. None: each block tests its stack.
+    depths: Option<Vec<Option<i32>>>,
+    /// The host address of RAM[LCL] (static depths only).
+    lcl_host: Option<Value>,
+    /// Where each block tests the step budget ([`blocks::budgets`]).
+    budgets: Vec<Budget>,
+    /// The entry test shows what a `return` needs of LCL and ARG: the
+    /// saved frame LCL-5 ..= LCL-1 and ARG are plain words.
+    frame_shown: bool,
+    /// The lowest and highest stack word of the function relative to LCL,
+    /// and the lowest held by a block that uses `argument` (from
+    /// `static_ok`).
+    range: Option<(i32, i32, i32)>,
 }
 
 /// How a `this` or `that` access of a block tests its address.
@@ -160,6 +187,20 @@ fn ptr_tests(code: &[Op]) -> Vec<PtrTest> {
     tests
 }
 
+/// The stack words block code `code` holds in registers, `lo..hi`
+/// relative to SP at its start (None if none): those it touches after its
+/// `function` line, whose zeroed locals go to RAM at once; and the
+/// instructions after that line.
+fn held_span(code: &[Op]) -> (Option<(i32, i32)>, &[Op]) {
+    let (locals, rest) = match code {
+        [Op::Function { n_vars, .. }, rest @ ..] => (i32::from(*n_vars), rest),
+        _ => (0, code),
+    };
+    let (min_depth, max_depth) = blocks::depth_range(rest);
+    let span = (min_depth < max_depth).then_some((locals + min_depth, locals + max_depth));
+    (span, rest)
+}
+
 /// Index in `Translator::reach`.
 const LOCAL: usize = 0;
 const ARGUMENT: usize = 1;
@@ -203,12 +244,24 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let mem = MemFlagsData::trusted();
     let ram = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, ram)));
     let stop_at = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, stop_at)));
-    let reach =
-        reach(&env.code[start as usize..vm_blocks.last().map_or(start, |b| b.end) as usize]);
+    let end = vm_blocks.last().map_or(start, |b| b.end.max(b.start + 1));
+    let reach = reach(&env.code[start as usize..end as usize]);
+    let f = &env.program.functions[env.id as usize];
+    // A call lands on the `function` line (SP = LCL) or on the body.
+    let entry_depth = match env.code[start as usize] {
+        Op::Function { .. } => 0,
+        _ => i32::from(f.n_vars),
+    };
+    let depths = f
+        .headed
+        .then(|| blocks::static_depths(env.code, start, end, entry_depth))
+        .flatten();
+    let budgets = blocks::budgets(env.code, start, vm_blocks, block_at);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
     let leave = b.create_block();
-    b.append_block_param(leave, T32);
-    b.append_block_param(leave, T32);
+    for _ in 0..3 {
+        b.append_block_param(leave, T32);
+    }
     let mut t = Translator {
         b,
         env,
@@ -226,7 +279,13 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         block_start: 0,
         stack_span: None,
         frame_tops: [None; 2],
+        depths,
+        lcl_host: None,
+        budgets,
+        frame_shown: false,
+        range: None,
     };
+    t.range = t.static_range();
     // A compiled call passes the registers; the dispatcher, the context.
     let called = t.b.ins().icmp_imm_s(IntCC::Equal, which, CALLED);
     let (from_call, from_ctx, join) = (t.b.create_block(), t.b.create_block(), t.b.create_block());
@@ -248,8 +307,30 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     // with the pc the caller gave.
     let zero = t.c32(0);
     let which = t.b.ins().select(called, zero, which);
+    if t.depths.is_some() {
+        t.lcl_host = Some(t.seg_base(t.v.lcl));
+    }
     let default = t.b.create_block();
-    if let Some(ok) = t.frame_ok() {
+    // A compiled call's frame shows most of the entry test: with static
+    // depths the call path makes only what it does not (`called_ok`).
+    let (from_call, from_ctx) = (t.b.create_block(), t.b.create_block());
+    t.b.ins().brif(called, from_call, NONE, from_ctx, NONE);
+    t.b.switch_to_block(from_call);
+    match t.called_ok().or_else(|| t.entry_ok()) {
+        Some(ok) => {
+            let bad = t.b.create_block();
+            t.b.ins().brif(ok, t.cl[0], NONE, bad, NONE);
+            t.b.switch_to_block(bad);
+            t.b.set_cold_block(bad);
+            let pc = t.c32(i64::from(start));
+            t.leave_with(pc, pc);
+        }
+        None => {
+            t.b.ins().jump(t.cl[0], NONE);
+        }
+    }
+    t.b.switch_to_block(from_ctx);
+    if let Some(ok) = t.entry_ok() {
         // LCL or ARG such that some access of the function would not be
         // a plain word: the interpreter runs from the block's start.
         let (run, bad) = (t.b.create_block(), t.b.create_block());
@@ -260,7 +341,12 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
             .iter()
             .map(|blk| {
                 let pc = t.c32(i64::from(blk.start));
-                let args = [BlockArg::Value(pc), BlockArg::Value(pc)];
+                let me = t.c32(i64::from(t.env.id));
+                let args = [
+                    BlockArg::Value(pc),
+                    BlockArg::Value(pc),
+                    BlockArg::Value(me),
+                ];
                 t.b.func.dfg.block_call(leave, &args)
             })
             .collect();
@@ -269,31 +355,37 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         t.b.ins().br_table(which, table);
         t.b.switch_to_block(run);
     }
-    let calls: Vec<_> =
-        t.cl.iter()
-            .map(|&blk| t.b.func.dfg.block_call(blk, NONE))
-            .collect();
-    let def = t.b.func.dfg.block_call(default, NONE);
-    let table = t.b.create_jump_table(JumpTableData::new(def, &calls));
     let dispatch = t.b.create_block();
-    t.b.ins().brif(called, t.cl[0], NONE, dispatch, NONE);
+    t.b.ins().jump(dispatch, NONE);
+    let stubs: Vec<_> = vm_blocks
+        .iter()
+        .enumerate()
+        .map(|(i, blk)| {
+            let stub = t.entry_stub(i, blk);
+            t.b.func.dfg.block_call(stub, NONE)
+        })
+        .collect();
     t.b.switch_to_block(dispatch);
+    let def = t.b.func.dfg.block_call(default, NONE);
+    let table = t.b.create_jump_table(JumpTableData::new(def, &stubs));
     t.b.ins().br_table(which, table);
 
     t.b.switch_to_block(default);
     let pc = t.b.ins().load(T32, mem, ctx, field(offset_of!(Ctx, pc)));
-    t.b.ins()
-        .jump(leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+    t.leave_with(pc, pc);
 
     for (i, blk) in vm_blocks.iter().enumerate() {
         t.block(i, blk);
     }
 
     t.b.switch_to_block(leave);
-    let code = t.b.block_params(leave)[0];
-    let pc = t.b.block_params(leave)[1];
+    let [code, pc, cur] = t.b.block_params(leave) else {
+        unreachable!("leave has three parameters")
+    };
+    let (code, pc, cur) = (*code, *pc, *cur);
     t.store_state();
     t.b.ins().store(mem, pc, ctx, field(offset_of!(Ctx, pc)));
+    t.b.ins().store(mem, cur, ctx, field(offset_of!(Ctx, cur)));
     let steps = t.b.use_var(t.v.steps);
     t.b.ins().return_(&[code, steps]);
     t.b.seal_all_blocks();
@@ -421,6 +513,9 @@ impl Translator<'_, '_> {
     /// Continue if every one of `conds` holds (each its own branch to one
     /// shared exit), else leave as [`Self::guard`] does.
     fn guard_all(&mut self, conds: &[Value], at: &Before) {
+        if conds.is_empty() {
+            return;
+        }
         let stub = self.b.create_block();
         for &ok in conds {
             let cont = self.b.create_block();
@@ -449,9 +544,18 @@ impl Translator<'_, '_> {
         let sp = self.b.ins().iadd_imm_s(at.sp0, i64::from(at.depth));
         self.b.def_var(self.v.sp, sp);
         let pc = self.c32(i64::from(at.pc));
-        self.b
-            .ins()
-            .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+        self.leave_with(pc, pc);
+    }
+
+    /// Leave compiled code with `code` and `pc`, in this function.
+    fn leave_with(&mut self, code: Value, pc: Value) {
+        let me = self.c32(i64::from(self.env.id));
+        let args = [
+            BlockArg::Value(code),
+            BlockArg::Value(pc),
+            BlockArg::Value(me),
+        ];
+        self.b.ins().jump(self.leave, &args);
     }
 
     fn flag_set(&mut self, bit: u8) -> Value {
@@ -472,29 +576,197 @@ impl Translator<'_, '_> {
         self.b.ins().jump(blk, NONE);
     }
 
+    /// SP - LCL at the start of block `blk`, where depths are static
+    /// (`Some(None)`: no path reaches it).
+    fn depth_at(&self, blk: &Block) -> Option<Option<i32>> {
+        let d = self.depths.as_ref()?;
+        Some(d[(blk.start - self.start) as usize])
+    }
+
+    /// Whether compiled code can run block `blk` at all (else entering it
+    /// leaves for the interpreter at once).
+    fn runs(&self, blk: &Block) -> bool {
+        blk.steps > 0 && self.depth_at(blk) != Some(None)
+    }
+
+    /// Whether `steps0` plus `covers` stays under the stop.
+    fn fits(&mut self, steps0: Value, covers: u64) -> Value {
+        let last = self.b.ins().iadd_imm_s(steps0, covers as i64);
+        self.b
+            .ins()
+            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at)
+    }
+
+    /// Where the dispatcher enters block `index`: it tests the budget the
+    /// block covers and, where depths are static, that SP is LCL + the
+    /// block's depth; else it leaves at the block's start.
+    fn entry_stub(&mut self, index: usize, blk: &Block) -> ir::Block {
+        if !self.runs(blk) {
+            return self.cl[index];
+        }
+        let stub = self.b.create_block();
+        self.b.switch_to_block(stub);
+        let steps0 = self.b.use_var(self.v.steps);
+        let sp0 = self.b.use_var(self.v.sp);
+        let mut ok = vec![self.fits(steps0, self.budgets[index].covers)];
+        if let Some(Some(d)) = self.depth_at(blk) {
+            let lcl = self.b.use_var(self.v.lcl);
+            let sp = self.b.ins().iadd_imm_s(lcl, i64::from(d));
+            ok.push(self.b.ins().icmp(IntCC::Equal, sp0, sp));
+        }
+        let at = Before {
+            pc: blk.start,
+            k: 0,
+            depth: 0,
+            steps0,
+            sp0,
+            base: self.ram,
+            pending: Vec::new(),
+        };
+        self.guard_all(&ok, &at);
+        self.b.ins().jump(self.cl[index], NONE);
+        stub
+    }
+
+    /// The stack range of a function with static depths (see
+    /// `Translator::range`).
+    fn static_range(&self) -> Option<(i32, i32, i32)> {
+        let depths = self.depths.as_ref()?;
+        let (mut low, mut high) = (i32::MAX, i32::MIN);
+        let mut args_below = i32::MAX;
+        for blk in self.env.blocks {
+            let Some(d) = depths[(blk.start - self.start) as usize] else {
+                continue;
+            };
+            if blk.steps == 0 {
+                continue;
+            }
+            low = low.min(d + blk.min_depth);
+            high = high.max(d + blk.max_depth);
+            let code = &self.env.code[blk.start as usize..blk.end as usize];
+            if let Some(&Op::Call { callee, .. }) = code.last() {
+                let at = depths[(blk.end - 1 - self.start) as usize].expect("reached");
+                let n_vars = if self.env.timing.function_step {
+                    0
+                } else {
+                    self.env.program.functions[usize::from(callee)].n_vars
+                };
+                low = low.min(at);
+                high = high.max(at + 5 + i32::from(n_vars));
+            }
+            if let (Some((lo, _)), rest) = held_span(code) {
+                if reach(rest)[ARGUMENT].is_some() {
+                    args_below = args_below.min(d + lo);
+                }
+            }
+        }
+        (low <= high).then_some((low, high, args_below))
+    }
+
+    /// The tests that static depths move to the function's entry (None
+    /// where depths are not static): the stack words of every block and
+    /// every call's frame lie from 256 to the profile's stack end, and the
+    /// `argument` words lie below every block's stack words.
+    fn static_ok(&mut self) -> Option<Value> {
+        let (low, high, args_below) = self.range?;
+        // 256 - low <= LCL <= stack end - high, in 32 bits (no wrapping).
+        let first = i64::from(STACK_BASE) - i64::from(low);
+        let last = i64::from(self.env.timing.stack_end()) - i64::from(high);
+        let mut ok = if last < first {
+            self.b.ins().iconst(types::I8, 0)
+        } else {
+            let lcl = self.b.use_var(self.v.lcl);
+            let lcl = self.b.ins().uextend(T32, lcl);
+            let d = self.b.ins().iadd_imm_s(lcl, -first);
+            self.b
+                .ins()
+                .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, last - first)
+        };
+        if let (Some(top), true) = (self.frame_tops[ARGUMENT], args_below < i32::MAX) {
+            let lo = self.seg_addr(self.v.lcl, args_below as u16);
+            let c = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo);
+            ok = self.b.ins().band(ok, c);
+        }
+        // 10 <= LCL <= RAM_SIZE follows where first >= 10 (the stack end is
+        // at most RAM_SIZE and high >= 0); ARG plain is tested here.
+        if first >= 10 && high >= 0 {
+            let arg = self.b.use_var(self.v.arg);
+            let c = self.is_plain(arg);
+            ok = self.b.ins().band(ok, c);
+            self.frame_shown = true;
+        }
+        Some(ok)
+    }
+
+    /// The whole entry test (None: nothing to test).
+    fn entry_ok(&mut self) -> Option<Value> {
+        match (self.frame_ok(), self.static_ok()) {
+            (Some(a), Some(b)) => Some(self.b.ins().band(a, b)),
+            (a, b) => a.or(b),
+        }
+    }
+
+    /// The entry test on a compiled call's path, where depths are static
+    /// and the call's frame shows the rest (None: make the whole test).
+    /// The call made LCL = base + 5 and ARG = base - nargs for a base
+    /// from 256 to the stack end less the frame, with nargs at most
+    /// [`MAX_COMPILED_ARGS`]: so LCL >= 261, ARG is plain, the arguments
+    /// lie below base, and what remains is the top of the stack and the
+    /// argument count.
+    fn called_ok(&mut self) -> Option<Value> {
+        let (low, high, args_below) = self.range?;
+        let locals_fit = self.reach[LOCAL].is_none_or(|top| i32::from(top) < high);
+        if low < -5 || high < 0 || !locals_fit || args_below <= -6 {
+            return None;
+        }
+        let lcl = self.b.use_var(self.v.lcl);
+        let last = i64::from(self.env.timing.stack_end()) - i64::from(high);
+        let mut ok = self
+            .b
+            .ins()
+            .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, lcl, last);
+        if let Some(top) = self.reach[ARGUMENT] {
+            let nargs = self.b.use_var(self.v.nargs);
+            let fit = self
+                .b
+                .ins()
+                .icmp_imm_u(IntCC::UnsignedGreaterThan, nargs, i64::from(top));
+            ok = self.b.ins().band(ok, fit);
+        }
+        Some(ok)
+    }
+
     fn block(&mut self, index: usize, blk: &Block) {
         self.b.switch_to_block(self.cl[index]);
         self.flags_known = 0;
         self.ptr_tests = ptr_tests(&self.env.code[blk.start as usize..blk.end as usize]);
         self.block_start = blk.start;
         let steps0 = self.b.use_var(self.v.steps);
-        let sp0 = self.b.use_var(self.v.sp);
-        if blk.steps == 0 {
+        if !self.runs(blk) {
             let pc = self.c32(i64::from(blk.start));
-            self.b
-                .ins()
-                .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+            self.leave_with(pc, pc);
             return;
         }
-        // The whole block fits under the stop, and its stack stays where
-        // no stack rule applies: from 256 (no pop at SP = 256) up to the
-        // profile's stack end.
-        let last = self.b.ins().iadd_imm_s(steps0, blk.steps as i64);
-        let mut ok = vec![self
-            .b
-            .ins()
-            .icmp(IntCC::UnsignedLessThanOrEqual, last, self.stop_at)];
-        if blk.checks_stack {
+        let depth = self.depth_at(blk).flatten();
+        let sp0 = match depth {
+            Some(d) => {
+                let sp = self.seg_addr(self.v.lcl, d as u16);
+                self.b.def_var(self.v.sp, sp);
+                sp
+            }
+            None => self.b.use_var(self.v.sp),
+        };
+        // The block's steps, and those of the blocks after it up to the
+        // next test, fit under the stop (a loop's head and a function's
+        // entry test; the dispatcher tests where it enters).
+        let budget = self.budgets[index];
+        let mut ok = Vec::new();
+        if budget.tested {
+            ok.push(self.fits(steps0, budget.covers));
+        }
+        if blk.checks_stack && depth.is_none() {
+            // Its stack stays where no stack rule applies: from 256 (no
+            // pop at SP = 256) up to the profile's stack end.
             // Stack words sp0+min_depth ..= sp0+max_depth-1 (or sp0-1):
             // low <= sp0 <= high, one unsigned test of sp0 - low.
             let low = i64::from(STACK_BASE) - i64::from(blk.min_depth);
@@ -509,31 +781,39 @@ impl Translator<'_, '_> {
             };
             ok.push(c);
         }
-        // The stack words the block holds in registers: those it touches
-        // after its `function` line, whose zeroed locals go to RAM at once.
-        let code = &self.env.code[blk.start as usize..blk.end as usize];
-        let (locals, code) = match code {
-            [Op::Function { n_vars, .. }, rest @ ..] => (i32::from(*n_vars), rest),
-            _ => (0, code),
-        };
-        let (min_depth, max_depth) = blocks::depth_range(code);
-        self.stack_span = (min_depth < max_depth).then(|| {
-            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(locals + min_depth));
-            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(locals + max_depth));
+        let (span, code) = held_span(&self.env.code[blk.start as usize..blk.end as usize]);
+        self.stack_span = span.map(|(lo, hi)| {
+            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(lo));
+            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(hi));
             (lo, hi)
         });
         if let Some((lo, _)) = self.stack_span {
             // The block's `local` and `argument` words lie below its stack
-            // words, so the stack can stay in registers across them.
+            // words, so the stack can stay in registers across them (with
+            // static depths: known for `local`, tested on entry for
+            // `argument`).
             let used = reach(code);
             for seg in [LOCAL, ARGUMENT] {
                 if let (Some(top), Some(_)) = (self.frame_tops[seg], used[seg]) {
-                    let c = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo);
+                    let c = match (depth, seg) {
+                        (Some(_), ARGUMENT) => continue,
+                        (Some(d), _) => {
+                            let low = d + span.expect("a span").0;
+                            if i32::from(self.reach[LOCAL].expect("a top")) < low {
+                                continue;
+                            }
+                            self.b.ins().iconst(types::I8, 0)
+                        }
+                        (None, _) => self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo),
+                    };
                     ok.push(c);
                 }
             }
         }
-        let base = self.word(sp0);
+        let base = match (depth, self.lcl_host) {
+            (Some(d), Some(p)) => self.b.ins().iadd_imm_s(p, 2 * i64::from(d)),
+            _ => self.word(sp0),
+        };
         let entry = Before {
             pc: blk.start,
             k: 0,
@@ -987,44 +1267,38 @@ impl Translator<'_, '_> {
             f.n_vars
         };
         let entry_flags = f.entry_flags(n);
-        if n_vars > MAX_INLINE_LOCALS {
+        if n_vars > MAX_INLINE_LOCALS || n > MAX_COMPILED_ARGS {
             self.exit_before(before);
             return;
         }
-        let depth = self
-            .b
-            .ins()
-            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
         let len = self
             .b
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
-        let cap = self
+        let limit = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
-        // Native nesting bounded, room in the frame stack (none if calls
-        // must not run compiled), and the new frame in plain RAM.
-        let mut ok =
-            vec![self
-                .b
-                .ins()
-                .icmp_imm_s(IntCC::UnsignedLessThan, depth, i64::from(NATIVE_DEPTH))];
-        ok.push(self.b.ins().icmp(IntCC::UnsignedLessThan, len, cap));
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_limit)));
+        // Room in the frame stack and native nesting bounded (no room if
+        // calls must not run compiled), and the new frame in plain RAM.
+        let mut ok = vec![self.b.ins().icmp(IntCC::UnsignedLessThan, len, limit)];
         let base = s.sp(self);
-        let base64 = self.b.ins().uextend(T64, base);
-        let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
-        let end = i64::from(self.env.timing.stack_end());
-        ok.push(
-            self.b
-                .ins()
-                .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end),
-        );
-        ok.push(self.b.ins().icmp_imm_s(
-            IntCC::UnsignedGreaterThanOrEqual,
-            base64,
-            i64::from(STACK_BASE),
-        ));
+        if self.depths.is_none() {
+            // (With static depths the entry test covered the frame.)
+            let base64 = self.b.ins().uextend(T64, base);
+            let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
+            let end = i64::from(self.env.timing.stack_end());
+            ok.push(
+                self.b
+                    .ins()
+                    .icmp_imm_s(IntCC::UnsignedLessThanOrEqual, top, end),
+            );
+            ok.push(self.b.ins().icmp_imm_s(
+                IntCC::UnsignedGreaterThanOrEqual,
+                base64,
+                i64::from(STACK_BASE),
+            ));
+        }
         self.guard_all(&ok, before);
 
         // The frame in RAM: RET, LCL, ARG, THIS, THAT, then zeroed locals.
@@ -1035,7 +1309,7 @@ impl Translator<'_, '_> {
             self.b.use_var(self.v.this),
             self.b.use_var(self.v.that),
         ];
-        let p = self.word(base);
+        let p = self.b.ins().iadd_imm_s(s.base, 2 * i64::from(s.depth));
         for (k, x) in saved.into_iter().enumerate() {
             self.b.ins().store(mem, x, p, 2 * k as i32);
         }
@@ -1070,14 +1344,6 @@ impl Translator<'_, '_> {
         self.b
             .ins()
             .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
-        let cur = self.c32(i64::from(callee));
-        self.b
-            .ins()
-            .store(mem, cur, ctx, field(offset_of!(Ctx, cur)));
-        let deeper = self.b.ins().iadd_imm_s(depth, 1);
-        self.b
-            .ins()
-            .store(mem, deeper, ctx, field(offset_of!(Ctx, depth)));
 
         // The callee's registers go as arguments (`native::Entry`).
         let this = self.b.use_var(self.v.this);
@@ -1096,9 +1362,6 @@ impl Translator<'_, '_> {
             .ins()
             .call(func, &[ctx, called, base32, ptrs, nargs_flags, steps]);
         let (code, steps) = (self.b.inst_results(call)[0], self.b.inst_results(call)[1]);
-        self.b
-            .ins()
-            .store(mem, depth, ctx, field(offset_of!(Ctx, depth)));
         let back = self.b.create_block();
         let out = self.b.create_block();
         let returned = self
@@ -1114,10 +1377,6 @@ impl Translator<'_, '_> {
         // registers are the frame's words in RAM (which the callee may have
         // written), nargs and flags are this function's own.
         self.b.switch_to_block(back);
-        let me = self.c32(i64::from(self.env.id));
-        self.b
-            .ins()
-            .store(mem, me, ctx, field(offset_of!(Ctx, cur)));
         self.b.def_var(self.v.steps, steps);
         let sp = self.b.ins().iadd_imm_s(base, 1 - i64::from(n));
         self.b.def_var(self.v.sp, sp);
@@ -1143,9 +1402,7 @@ impl Translator<'_, '_> {
         self.b.switch_to_block(bad);
         self.b.set_cold_block(bad);
         let pc = self.c32(i64::from(before.pc + 1));
-        self.b
-            .ins()
-            .jump(self.leave, &[BlockArg::Value(pc), BlockArg::Value(pc)]);
+        self.leave_with(pc, pc);
         self.b.switch_to_block(cont);
         // The same values: keep the ones the function entered with.
         self.b.def_var(self.v.lcl, lcl);
@@ -1163,15 +1420,10 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
-        // A frame to return to (0 < len <= cap; cap is 0 if returns must
-        // not run compiled).
-        let cap = self
+        let base = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
-        let below = self.b.ins().iadd_imm_s(len, -1);
-        let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, below, cap);
-        self.guard(ok, before);
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_base)));
         let frames = self
             .b
             .ins()
@@ -1182,6 +1434,20 @@ impl Translator<'_, '_> {
             .ins()
             .imul_imm_s(len1, std::mem::size_of::<Frame>() as i64);
         let fp = self.b.ins().iadd(frames, off);
+        // A frame that a compiled call pushed returns to compiled code (so
+        // not to the host, and returns may run compiled); another needs a
+        // frame to return to (0 < len <= cap; cap is 0 if returns must not
+        // run compiled) that does not return to the host.
+        let nested = self.b.ins().icmp(IntCC::UnsignedGreaterThan, len, base);
+        let (other, checked) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(nested, checked, NONE, other, NONE);
+        self.b.switch_to_block(other);
+        let cap = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
+        let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, len1, cap);
+        self.guard(ok, before);
         let ret_pc = self
             .b
             .ins()
@@ -1190,16 +1456,25 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .icmp_imm_s(IntCC::NotEqual, ret_pc, i64::from(HOST as i32));
-        // FRAME = LCL: FRAME-5 ..= FRAME-1 are plain words, and so is ARG.
+        self.guard(ok, before);
+        self.b.ins().jump(checked, NONE);
+        self.b.switch_to_block(checked);
+        let ok = self.b.ins().iconst(types::I8, 1);
+        // FRAME = LCL: FRAME-5 ..= FRAME-1 are plain words, and so is ARG
+        // (shown on entry where depths are static).
         let frame = self.b.use_var(self.v.lcl);
-        let ten = self.c16(-10);
-        let t = self.b.ins().iadd(frame, ten);
-        let lim = self.c16(RAM_SIZE as i64 - 10);
-        let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, t, lim);
-        let ok = self.b.ins().band(ok, c);
         let arg = self.b.use_var(self.v.arg);
-        let c = self.is_plain(arg);
-        let ok = self.b.ins().band(ok, c);
+        let ok = if self.frame_shown {
+            ok
+        } else {
+            let ten = self.c16(-10);
+            let t = self.b.ins().iadd(frame, ten);
+            let lim = self.c16(RAM_SIZE as i64 - 10);
+            let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, t, lim);
+            let ok = self.b.ins().band(ok, c);
+            let c = self.is_plain(arg);
+            self.b.ins().band(ok, c)
+        };
         self.guard(ok, before);
         let fr = self.word(frame);
         let ret_word = self.b.ins().load(T16, mem, fr, -10);
@@ -1222,17 +1497,17 @@ impl Translator<'_, '_> {
         // Back into the caller's compiled code if it is below this one (it
         // restores its registers from its frame), else to the dispatcher,
         // which enters the caller at RET's block.
-        let depth = self
-            .b
-            .ins()
-            .load(T32, mem, ctx, field(offset_of!(Ctx, depth)));
-        let (nested, top) = (self.b.create_block(), self.b.create_block());
-        self.b.ins().brif(depth, nested, NONE, top, NONE);
-        self.b.switch_to_block(nested);
+        let (back, top) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(nested, back, NONE, top, NONE);
+        self.b.switch_to_block(back);
         let returned = self.c32(i64::from(RETURNED));
         self.b.ins().return_(&[returned, steps]);
 
         self.b.switch_to_block(top);
+        let ret_pc = self
+            .b
+            .ins()
+            .load(T32, mem, fp, field(offset_of!(Frame, ret_pc)));
         let sp = self.b.ins().iadd_imm_s(arg, 1);
         self.b.def_var(self.v.sp, sp);
         let regs = [
@@ -1249,9 +1524,6 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .load(T32, mem, fp, field(offset_of!(Frame, caller)));
-        self.b
-            .ins()
-            .store(mem, caller, ctx, field(offset_of!(Ctx, cur)));
         let nargs = self
             .b
             .ins()
@@ -1265,7 +1537,11 @@ impl Translator<'_, '_> {
         let cont = self.c32(i64::from(CONTINUE));
         self.b.ins().jump(
             self.leave,
-            &[BlockArg::Value(cont), BlockArg::Value(ret_pc)],
+            &[
+                BlockArg::Value(cont),
+                BlockArg::Value(ret_pc),
+                BlockArg::Value(caller),
+            ],
         );
     }
 }

@@ -2,7 +2,7 @@
 //! tests and benches of this crate (included with `#[path]`; hack-vm cannot
 //! depend on the `jack` crate, which embeds the same sources).
 
-use hack_vm::Program;
+use hack_vm::{Config, Engine, Exit, Machine, Program};
 use jack_compiler::VmClass;
 use std::path::Path;
 use std::sync::Arc;
@@ -14,4 +14,17 @@ pub fn raymarcher() -> Arc<Program> {
         .expect("the raymarcher compiles");
     let files: Vec<(String, String)> = classes.into_iter().map(VmClass::into_file).collect();
     Program::from_sources(&files).expect("the raymarcher loads")
+}
+
+/// A machine of `program` on `engine` that has run `Main.init` (the
+/// snapshot the pixels are asked from).
+pub fn initialised(program: &Arc<Program>, engine: Engine) -> Machine {
+    let config = Config {
+        engine,
+        ..Config::default()
+    };
+    let mut m = Machine::new(program.clone(), config);
+    let exit = m.call("Main.init", &[], None).expect("Main.init exists");
+    assert_eq!(exit, Exit::Returned(0));
+    m
 }
