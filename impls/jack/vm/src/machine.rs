@@ -112,6 +112,10 @@ pub struct Machine {
     pub(crate) native: Option<Arc<Native>>,
     /// An [`Engine::Auto`] machine still on the interpreter.
     pub(crate) tier: Option<Tier>,
+    /// An [`Engine::Auto`] machine, which interprets watched runs: while a
+    /// watcher is on, compiled code leaves for the interpreter at every
+    /// call and return, which is slower than interpreting throughout.
+    pub(crate) auto: bool,
 }
 
 impl Machine {
@@ -160,6 +164,7 @@ impl Machine {
             native,
             tier: (config.engine == Engine::Auto)
                 .then(|| Tier::new(config.auto_threshold.unwrap_or(AUTO_THRESHOLD), 0)),
+            auto: config.engine == Engine::Auto,
         };
         machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
         machine
@@ -167,7 +172,8 @@ impl Machine {
 
     /// The engine that runs this machine now: [`Engine::Interp`] if that
     /// was asked for, the program could not be compiled for this host, or
-    /// an [`Engine::Auto`] machine has not switched (yet).
+    /// an [`Engine::Auto`] machine has not switched (yet). (A switched
+    /// Auto machine still interprets its watched runs.)
     pub fn engine(&self) -> Engine {
         match &self.native {
             None => Engine::Interp,
@@ -480,10 +486,11 @@ impl Machine {
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
         let code = &program.code[timing::index(self.os.profile())];
-        let mut native = self.native.clone();
+        let interpret = W && self.auto;
+        let mut native = if interpret { None } else { self.native.clone() };
         let exit = loop {
             let mut switch = u64::MAX;
-            if native.is_none() {
+            if native.is_none() && !interpret {
                 switch = self.tier_limit();
                 native = self.native.clone();
             }
