@@ -752,4 +752,170 @@ mod tests {
         let tiny = f64::from(f32::MIN_POSITIVE);
         assert_eq!(ulps_f32(2.5 * tiny, 0.0), 2.5);
     }
+
+    #[test]
+    fn the_worst_number_is_the_first_of_the_largest_relative_error() {
+        let error = |s: &[f64], o: &[f64]| {
+            let nums = |v: &[f64]| v.iter().map(|&x| Num::F64(x)).collect::<Vec<_>>();
+            point_error(&nums(s), &nums(o), Numbers::F64).unwrap()
+        };
+        // 2 against 1 is the larger error, wherever it stands.
+        assert_eq!(error(&[1.0, 2.0], &[1.0, 1.0]).rel, 1.0);
+        assert_eq!(error(&[2.0, 1.0], &[1.0, 1.0]).rel, 1.0);
+        // Equal relative errors: the first number's is kept.
+        assert_eq!(error(&[2.0, 4.0], &[1.0, 2.0]).abs, 1.0);
+    }
+
+    #[test]
+    fn every_flipped_pixel_is_found_with_its_position_and_both_bits() {
+        let bitmap = |white: [bool; 6]| Bitmap {
+            width: 3,
+            height: 2,
+            white: white.to_vec(),
+        };
+        let a = bitmap([false, true, false, false, true, true]);
+        let b = bitmap([false, false, false, true, true, true]);
+        let mut stats = ErrorStats::default();
+        let found = image_differences(&a, &b, DiffKind::Flip, true, Some(&mut stats));
+        let seen: Vec<_> = found
+            .iter()
+            .map(|f| (f.index, f.input.clone(), f.a.clone(), f.b.clone()))
+            .collect();
+        let pixel = |x, y| {
+            Vector::Pixel(PixelVector {
+                category: "image".into(),
+                x,
+                y,
+            })
+        };
+        let dot = |white| Outcome::Value(Answer::Dot { white });
+        assert_eq!(
+            seen,
+            [
+                (1, pixel(1, 0), dot(true), dot(false)),
+                (3, pixel(0, 1), dot(false), dot(true)),
+            ]
+        );
+        assert!(found
+            .iter()
+            .all(|f| f.kind == DiffKind::Flip && f.tolerated));
+        assert_eq!((stats.pixels, stats.flips), (6, 2));
+    }
+
+    #[test]
+    fn the_exact_policy_compares_images_pixel_by_pixel() {
+        let image = |white: Vec<bool>| {
+            Outcome::Value(Answer::Image {
+                bitmap: Bitmap {
+                    width: 2,
+                    height: 1,
+                    white,
+                },
+            })
+        };
+        let input = Vector::Pixel(PixelVector {
+            category: "image".into(),
+            x: 0,
+            y: 0,
+        });
+        let found = exact(
+            7,
+            &input,
+            &image(vec![true, true]),
+            &image(vec![true, false]),
+        );
+        let seen: Vec<_> = found
+            .iter()
+            .map(|f| (f.index, f.kind, f.tolerated))
+            .collect();
+        assert_eq!(seen, [(1, DiffKind::Value, false)]);
+    }
+
+    #[test]
+    fn the_error_policy_counts_flips_and_reports_a_shade_error_only_without_a_flip() {
+        let input = Vector::Pixel(PixelVector {
+            category: "c".into(),
+            x: 0,
+            y: 0,
+        });
+        let t = Thresholds {
+            max_abs: 0.01,
+            max_rel: 0.01,
+            max_flip_fraction: 0.0,
+        };
+        let mut stats = ErrorStats::default();
+        let mut run = |a: Outcome<Answer>, b: Outcome<Answer>| {
+            error(0, &input, &a, &b, Numbers::F64, &t, &mut stats)
+                .into_iter()
+                .map(|f| (f.kind, f.error.is_some(), f.tolerated))
+                .collect::<Vec<_>>()
+        };
+        let pixel = |shade, white| {
+            Outcome::Value(Answer::Pixel {
+                shade: Num::F64(shade),
+                white,
+            })
+        };
+        // Within the thresholds, or over only one of them: no difference.
+        assert_eq!(run(pixel(0.5, true), pixel(0.5001, true)), []);
+        assert_eq!(run(pixel(100.5, true), pixel(100.0, true)), []);
+        assert_eq!(run(pixel(0.002, true), pixel(0.001, true)), []);
+        // A flip with a large shade error: the flip alone, tolerated.
+        let flip = (DiffKind::Flip, false, true);
+        assert_eq!(run(pixel(0.9, true), pixel(0.1, false)), [flip]);
+        // A large shade error without a flip: a tolerated value difference.
+        let shade = (DiffKind::Value, true, true);
+        assert_eq!(run(pixel(0.9, true), pixel(0.1, true)), [shade]);
+        // gt's answers: another bool is a value difference, not tolerated.
+        let bool = |value| Outcome::Value(Answer::Bool { value });
+        assert_eq!(
+            run(bool(true), bool(false)),
+            [(DiffKind::Value, false, false)]
+        );
+        assert_eq!(run(bool(false), bool(false)), []);
+        assert_eq!((stats.pixels, stats.flips, stats.values), (5, 1, 5));
+    }
+
+    #[test]
+    fn a_value_differs_only_beyond_both_thresholds() {
+        let input = Vector::Pixel(PixelVector {
+            category: "c".into(),
+            x: 0,
+            y: 0,
+        });
+        let value = |v| Outcome::Value(Answer::Num { value: Num::F64(v) });
+        // 1.25 against 1 is an absolute and a relative error of 0.25.
+        let differs = |max_abs, max_rel| {
+            let t = Thresholds {
+                max_abs,
+                max_rel,
+                max_flip_fraction: 0.0,
+            };
+            let mut stats = ErrorStats::default();
+            let found = error(
+                0,
+                &input,
+                &value(1.25),
+                &value(1.0),
+                Numbers::F64,
+                &t,
+                &mut stats,
+            );
+            !found.is_empty()
+        };
+        assert!(differs(0.125, 0.125));
+        assert!(!differs(0.25, 0.125));
+        assert!(!differs(0.125, 0.25));
+    }
+
+    #[test]
+    fn a_nan_is_no_error_only_against_a_nan() {
+        let error = |s: f64, o: f64| point_error(&[Num::F64(s)], &[Num::F64(o)], Numbers::F64);
+        let both = error(f64::NAN, f64::NAN).unwrap();
+        assert_eq!((both.abs, both.rel), (0.0, 0.0));
+        for (s, o) in [(f64::NAN, 1.0), (2.0, f64::NAN)] {
+            let one = error(s, o).unwrap();
+            assert_eq!(one.abs, f64::INFINITY, "{s} against {o}");
+        }
+    }
 }

@@ -108,6 +108,97 @@ fn each_arithmetic_variant_changes_an_operation() {
     }
 }
 
+/// One operation under the spec's arithmetic, or under a variant.
+fn op_under(variant: Option<Variant>, o: Op, args: &[F316]) -> Outcome<OpValue> {
+    let s = variant.map_or(Settings::default(), |v| v.apply(Settings::default()));
+    op(o, args, s.arith).unwrap()
+}
+
+/// A positive Float316 number as an operation's outcome.
+fn positive(e: i16, m: i16) -> Outcome<OpValue> {
+    Outcome::Value(OpValue::Num(F316::new(0, e, m)))
+}
+
+/// `add-drop-far` drops the smaller operand only 14 or more exponents
+/// below: at a gap of 13 it adds as the spec does (a normalised mantissa
+/// still contributes its top bit), at 14 an unnormalised one that would
+/// still count (16384 >> 14 = 1) is dropped.
+#[test]
+fn add_drop_far_drops_only_operands_14_exponents_below() {
+    let fault = Some(Variant::AddDropFar);
+    let gap_13 = F316::new(0, 114, 8192);
+    for v in [None, fault] {
+        assert_eq!(
+            op_under(v, Op::Add, &[F316::ONE, gap_13]),
+            positive(127, 8193)
+        );
+    }
+    let gap_14 = F316::new(0, 113, 16384);
+    assert_eq!(
+        op_under(None, Op::Add, &[F316::ONE, gap_14]),
+        positive(127, 8193)
+    );
+    assert_eq!(
+        op_under(fault, Op::Add, &[F316::ONE, gap_14]),
+        positive(127, 8192)
+    );
+}
+
+/// `add-carry-bit` takes add's carry from bit 14 of the sum: as the spec's
+/// `m > 16383` for sums of normalised mantissas, with and without a carry,
+/// and apart from it where a sum of unnormalised ones wraps (30000 + 30000
+/// is the word -5536, whose bit 14 is set).
+#[test]
+fn add_carry_bit_tests_bit_14_of_the_sum() {
+    let fault = Some(Variant::AddCarryBit);
+    for v in [None, fault] {
+        assert_eq!(
+            op_under(v, Op::Add, &[F316::ONE, F316::ONE]),
+            positive(128, 8192)
+        );
+        let gap_13 = F316::new(0, 114, 8192);
+        assert_eq!(
+            op_under(v, Op::Add, &[F316::ONE, gap_13]),
+            positive(127, 8193)
+        );
+    }
+    let wide = F316::new(0, 127, 30000);
+    assert_eq!(op_under(None, Op::Add, &[wide, wide]), positive(127, -5536));
+    assert_eq!(
+        op_under(fault, Op::Add, &[wide, wide]),
+        positive(128, -2768)
+    );
+}
+
+/// `div-normalise-once` doubles a quotient below 8192 once instead of
+/// normalising it: the same as the spec for normalised operands (their
+/// quotient is at least 4096) and for a quotient of exactly 8192, not for
+/// an unnormalised divisor (1 / (0,127,32000) has the quotient 2097).
+#[test]
+fn div_normalise_once_doubles_only_quotients_below_8192() {
+    let fault = Some(Variant::DivNormaliseOnce);
+    for v in [None, fault] {
+        assert_eq!(
+            op_under(v, Op::Div, &[F316::ONE, F316::ONE]),
+            positive(127, 8192)
+        );
+        let one_and_a_half = F316::new(0, 127, 12288);
+        assert_eq!(
+            op_under(v, Op::Div, &[F316::ONE, one_and_a_half]),
+            positive(126, 10922)
+        );
+    }
+    let wide = F316::new(0, 127, 32000);
+    assert_eq!(
+        op_under(None, Op::Div, &[F316::ONE, wide]),
+        positive(125, 8388)
+    );
+    assert_eq!(
+        op_under(fault, Op::Div, &[F316::ONE, wide]),
+        positive(126, 4194)
+    );
+}
+
 /// Newton steps change the number of traced operations.
 #[test]
 fn newton_steps_shape_the_trace() {

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Mutation testing of the numeric core: every mutant cargo-mutants makes of
+# impls/reference/src/float316.rs and harness/src/compare.rs, each judged by
+# its own package's tests (reference: all of them; harness: its library
+# tests, as the integration tests rebuild the whole harness per mutant).
+#   scripts/mutants.sh [float316|compare] [K/N]    (default: both files, whole)
+# K/N runs every N-th mutant from the K-th (K counts from 0), so N machines
+# share a file. Installs cargo-mutants from crates.io when missing. Results go
+# to mutants.out/FILE[-K-N]/mutants.out/{caught,missed,timeout,unviable}.txt;
+# a missed mutant must be killed by a new test or listed, with its reason, in
+# docs/mutants.md. The tree is mutated in place (no copy of the 20 GB target):
+# leave it alone while this runs; cargo-mutants restores each file.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+which=${1:-all}
+shard=${2:-}
+if ! command -v cargo-mutants >/dev/null; then
+    cargo install --locked cargo-mutants@27.1.0
+fi
+# Neither setting changes what a test decides: without debug info a mutant
+# builds in a third less time, and a failing proptest is not shrunk.
+export CARGO_PROFILE_DEV_DEBUG=0 PROPTEST_MAX_SHRINK_ITERS=0
+
+run() {
+    local name=$1
+    shift
+    local out=mutants.out/$name
+    local shard_args=()
+    if [ -n "$shard" ]; then
+        out=$out-${shard/\//-}
+        shard_args=(--shard "$shard")
+    fi
+    cargo mutants --in-place --output "$out" "${shard_args[@]}" "$@"
+}
+
+status=0
+if [ "$which" = all ] || [ "$which" = float316 ]; then
+    run float316 -p reference --file impls/reference/src/float316.rs \
+        --timeout 60 --build-timeout 300 || status=$?
+fi
+if [ "$which" = all ] || [ "$which" = compare ]; then
+    run compare -p harness --file harness/src/compare.rs \
+        --timeout 90 --build-timeout 1500 --cargo-test-arg=--lib || status=$?
+fi
+exit "$status"
