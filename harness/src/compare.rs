@@ -636,6 +636,7 @@ mod tests {
             .iter()
             .map(|g| (g.category.clone(), g.kind, g.count))
             .collect();
+        assert!(c.groups.iter().all(|g| g.op == Some(Op::Sqrt)));
         assert_eq!(
             g,
             [
@@ -667,6 +668,48 @@ mod tests {
         assert!(c.diverged);
         assert_eq!(c.divergences.len(), 1);
         assert_eq!(c.divergences[0].kind, DiffKind::Value);
+    }
+
+    #[test]
+    fn the_mean_error_is_over_the_values_compared() {
+        let set = ops_set(4);
+        let f = |x: f64| Outcome::Value(Answer::Num { value: Num::F64(x) });
+        let g = |x: f32| Outcome::Value(Answer::Num { value: Num::F32(x) });
+        let oracle = vec![f(1.0), f(2.5), f(3.0), f(4.0)];
+        let subject = vec![g(1.0), g(2.0), g(3.0), g(4.0)];
+        let c = compare(&set, &sides(&subject, &oracle, Numbers::F32, Numbers::F64));
+        assert_eq!(c.stats.unwrap().mean_abs, 0.125);
+        // No value compared: no mean to take.
+        let traps = vec![Outcome::SysError(1); 4];
+        let c = compare(&set, &sides(&traps, &traps, Numbers::F32, Numbers::F64));
+        assert_eq!(c.stats.unwrap().mean_abs, 0.0);
+    }
+
+    #[test]
+    fn flips_diverge_only_beyond_the_policy_fraction() {
+        // (A shade f32 cannot hold, so that the oracle passes for f64.)
+        let pixel = |white| {
+            Outcome::Value(Answer::Pixel {
+                shade: Num::F64(0.1),
+                white,
+            })
+        };
+        // f32 against f64 allows 1% of the pixels to flip.
+        let findings = |n: usize, flips: usize| {
+            let oracle = vec![pixel(true); n];
+            let subject: Vec<_> = (0..n).map(|i| pixel(i >= flips)).collect();
+            compare(
+                &ops_set(n),
+                &sides(&subject, &oracle, Numbers::F32, Numbers::F64),
+            )
+            .findings
+        };
+        assert_eq!(
+            findings(4, 1),
+            ["1 of 4 dithered pixels flip (25.000%), over the policy's 1.000%"]
+        );
+        assert!(findings(100, 1).is_empty());
+        assert!(findings(4, 0).is_empty());
     }
 
     #[test]
