@@ -582,6 +582,18 @@ mod tests {
         })
     }
 
+    fn f64_answer(x: f64) -> Outcome<Answer> {
+        Outcome::Value(Answer::Num { value: Num::F64(x) })
+    }
+
+    fn pixel_vector(category: &str, x: u16, y: u16) -> Vector {
+        Vector::Pixel(PixelVector {
+            category: category.into(),
+            x,
+            y,
+        })
+    }
+
     fn sides<'a>(
         a: &'a [Outcome<Answer>],
         b: &'a [Outcome<Answer>],
@@ -653,7 +665,7 @@ mod tests {
     #[test]
     fn error_policy_reports_figures_and_thresholds() {
         let set = ops_set(2);
-        let f = |x: f64| Outcome::Value(Answer::Num { value: Num::F64(x) });
+        let f = f64_answer;
         let g = |x: f32| Outcome::Value(Answer::Num { value: Num::F32(x) });
         let oracle = vec![f(1.0 + 1e-9), f(2.0)];
         let close = vec![g(1.0), g(2.0)];
@@ -673,7 +685,7 @@ mod tests {
     #[test]
     fn the_mean_error_is_over_the_values_compared() {
         let set = ops_set(4);
-        let f = |x: f64| Outcome::Value(Answer::Num { value: Num::F64(x) });
+        let f = f64_answer;
         let g = |x: f32| Outcome::Value(Answer::Num { value: Num::F32(x) });
         let oracle = vec![f(1.0), f(2.5), f(3.0), f(4.0)];
         let subject = vec![g(1.0), g(2.0), g(3.0), g(4.0)];
@@ -716,10 +728,7 @@ mod tests {
     fn an_f32_oracle_posing_as_f64_is_found() {
         let set = ops_set(20);
         let thirds: Vec<f64> = (0..20).map(|i| (i as f64 + 1.0) / 3.0).collect();
-        let f64s: Vec<_> = thirds
-            .iter()
-            .map(|&x| Outcome::Value(Answer::Num { value: Num::F64(x) }))
-            .collect();
+        let f64s: Vec<_> = thirds.iter().map(|&x| f64_answer(x)).collect();
         let f32s: Vec<_> = thirds
             .iter()
             .map(|&x| {
@@ -824,13 +833,7 @@ mod tests {
             .iter()
             .map(|f| (f.index, f.input.clone(), f.a.clone(), f.b.clone()))
             .collect();
-        let pixel = |x, y| {
-            Vector::Pixel(PixelVector {
-                category: "image".into(),
-                x,
-                y,
-            })
-        };
+        let pixel = |x, y| pixel_vector("image", x, y);
         let dot = |white| Outcome::Value(Answer::Dot { white });
         assert_eq!(
             seen,
@@ -856,11 +859,7 @@ mod tests {
                 },
             })
         };
-        let input = Vector::Pixel(PixelVector {
-            category: "image".into(),
-            x: 0,
-            y: 0,
-        });
+        let input = pixel_vector("image", 0, 0);
         let found = exact(
             7,
             &input,
@@ -876,11 +875,7 @@ mod tests {
 
     #[test]
     fn the_error_policy_counts_flips_and_reports_a_shade_error_only_without_a_flip() {
-        let input = Vector::Pixel(PixelVector {
-            category: "c".into(),
-            x: 0,
-            y: 0,
-        });
+        let input = pixel_vector("c", 0, 0);
         let t = Thresholds {
             max_abs: 0.01,
             max_rel: 0.01,
@@ -921,12 +916,8 @@ mod tests {
 
     #[test]
     fn a_value_differs_only_beyond_both_thresholds() {
-        let input = Vector::Pixel(PixelVector {
-            category: "c".into(),
-            x: 0,
-            y: 0,
-        });
-        let value = |v| Outcome::Value(Answer::Num { value: Num::F64(v) });
+        let input = pixel_vector("c", 0, 0);
+        let value = f64_answer;
         // 1.25 against 1 is an absolute and a relative error of 0.25.
         let differs = |max_abs, max_rel| {
             let t = Thresholds {
