@@ -163,7 +163,7 @@ impl Machine {
             startup_pending: false,
             native,
             tier: (config.engine == Engine::Auto)
-                .then(|| Tier::new(config.auto_threshold.unwrap_or(AUTO_THRESHOLD), 0)),
+                .then(|| Tier::new(config.auto_threshold.unwrap_or(AUTO_THRESHOLD))),
             auto: config.engine == Engine::Auto,
         };
         machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;

@@ -21,11 +21,11 @@ pub(crate) struct Tier {
 }
 
 impl Tier {
-    /// A tier for a machine at `steps` that switches after `threshold`.
-    pub(crate) fn new(threshold: u64, steps: u64) -> Tier {
+    /// A tier for a new machine that switches after `threshold`.
+    pub(crate) fn new(threshold: u64) -> Tier {
         Tier {
             threshold,
-            credited: steps,
+            credited: 0,
         }
     }
 }
