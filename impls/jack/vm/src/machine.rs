@@ -112,10 +112,6 @@ pub struct Machine {
     pub(crate) native: Option<Arc<Native>>,
     /// An [`Engine::Auto`] machine still on the interpreter.
     pub(crate) tier: Option<Tier>,
-    /// An [`Engine::Auto`] machine, which interprets watched runs: while a
-    /// watcher is on, compiled code leaves for the interpreter at every
-    /// call and return, which is slower than interpreting throughout.
-    pub(crate) auto: bool,
 }
 
 impl Machine {
@@ -164,7 +160,6 @@ impl Machine {
             native,
             tier: (config.engine == Engine::Auto)
                 .then(|| Tier::new(config.auto_threshold.unwrap_or(AUTO_THRESHOLD))),
-            auto: config.engine == Engine::Auto,
         };
         machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
         machine
@@ -172,8 +167,7 @@ impl Machine {
 
     /// The engine that runs this machine now: [`Engine::Interp`] if that
     /// was asked for, the program could not be compiled for this host, or
-    /// an [`Engine::Auto`] machine has not switched (yet). (A switched
-    /// Auto machine still interprets its watched runs.)
+    /// an [`Engine::Auto`] machine has not switched (yet).
     pub fn engine(&self) -> Engine {
         match &self.native {
             None => Engine::Interp,
@@ -486,11 +480,10 @@ impl Machine {
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
         let code = &program.code[timing::index(self.os.profile())];
-        let interpret = W && self.auto;
-        let mut native = if interpret { None } else { self.native.clone() };
+        let mut native = self.native.clone();
         let exit = loop {
             let mut switch = u64::MAX;
-            if native.is_none() && !interpret {
+            if native.is_none() {
                 switch = self.tier_limit();
                 native = self.native.clone();
             }

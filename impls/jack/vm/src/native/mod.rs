@@ -9,8 +9,10 @@
 //! same instruction.
 //!
 //! Calls and returns between VM functions run in compiled code (a compiled
-//! function calls its callee's directly) unless a watcher or the function
-//! profile is on; then the interpreter runs them, with its callbacks.
+//! function calls its callee's directly), except a call to a watched
+//! function and the return from a watched call, which the interpreter runs
+//! with the watcher's callbacks, and every call and return while the
+//! function profile is on.
 
 mod blocks;
 mod translate;
@@ -110,8 +112,8 @@ pub(crate) struct Ctx {
     pub frames: *mut Frame,
     pub frames_len: u64,
     /// The frame stack's capacity, at most [`MAX_DEPTH`]; 0 where calls and
-    /// returns must not run compiled (a watcher or the function profile is
-    /// on), which fails compiled code's room test for both.
+    /// returns must not run compiled (the function profile is on), which
+    /// fails compiled code's room test for both.
     pub frames_cap: u64,
     /// Compiled calls run while `frames_len` is below this: the capacity,
     /// and at most [`NATIVE_DEPTH`] frames above `frames_base` (0 where
@@ -121,6 +123,11 @@ pub(crate) struct Ctx {
     /// by a compiled call, whose caller's compiled code a return goes
     /// back to.
     pub frames_base: u64,
+    /// One byte per function, nonzero where the watcher wants its calls:
+    /// a compiled call to it leaves for the interpreter (a frame the
+    /// interpreter pushed for a watched call is marked `Frame::watched`,
+    /// and compiled code does not return through it).
+    pub watch: *const u8,
     pub steps: u64,
     pub stop_at: u64,
     pub sp: u16,
@@ -157,6 +164,8 @@ pub(crate) struct Native {
     module: Option<JITModule>,
     entries: Vec<Entry>,
     block_at: Vec<(FnId, u32)>,
+    /// A watch set naming no function (one byte per function).
+    unwatched: Vec<bool>,
     compile_time: Duration,
 }
 
@@ -301,6 +310,7 @@ impl Native {
             module: Some(module),
             entries,
             block_at,
+            unwatched: vec![false; program.functions.len()],
             compile_time: started.elapsed(),
         })
     }
@@ -346,6 +356,20 @@ impl Machine {
         stop_at: u64,
         watch: &mut Option<(&[bool], &mut dyn Watcher)>,
     ) -> Flow {
+        // The watch set as compiled code reads it: a byte per function
+        // (a shorter set leaves the rest unwatched).
+        let padded: Vec<bool>;
+        let set: Option<&[bool]> = watch.as_ref().map(|(set, _)| *set).filter(|_| W);
+        let watched: &[bool] = match set {
+            Some(set) if set.len() >= native.unwatched.len() => set,
+            Some(set) => {
+                padded = (0..native.unwatched.len())
+                    .map(|i| set.get(i).copied().unwrap_or(false))
+                    .collect();
+                &padded
+            }
+            _ => &native.unwatched,
+        };
         loop {
             if self.steps >= stop_at {
                 return Flow::Limit;
@@ -354,7 +378,7 @@ impl Machine {
             let (owner, block) = native.block_at[self.pc as usize];
             if block != NO_BLOCK
                 && owner == self.cur
-                && self.enter_native::<W>(native, block, stop_at) == CONTINUE
+                && self.enter_native(native, block, stop_at, watched) == CONTINUE
             {
                 continue;
             }
@@ -367,15 +391,17 @@ impl Machine {
         }
     }
 
-    /// Run compiled code from block `block` of the current function.
-    fn enter_native<const W: bool>(&mut self, native: &Native, block: u32, stop_at: u64) -> i32 {
+    /// Run compiled code from block `block` of the current function, with
+    /// `watched` (a flag per function) the functions whose calls it leaves
+    /// to the interpreter.
+    fn enter_native(&mut self, native: &Native, block: u32, stop_at: u64, watched: &[bool]) -> i32 {
         let w = self.ram.words_mut();
         let reg = |i: usize| w[i] as u16;
         let mut ctx = Ctx {
             ram: std::ptr::null_mut(),
             frames: self.frames.as_mut_ptr(),
             frames_len: self.frames.len() as u64,
-            frames_cap: if !W && self.profile.is_none() {
+            frames_cap: if self.profile.is_none() {
                 self.frames.capacity().min(MAX_DEPTH) as u64
             } else {
                 0
@@ -393,6 +419,7 @@ impl Machine {
             pc: self.pc,
             frames_limit: 0,
             frames_base: self.frames.len() as u64,
+            watch: watched.as_ptr().cast(),
         };
         ctx.frames_limit = ctx
             .frames_cap

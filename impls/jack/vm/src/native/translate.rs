@@ -1280,8 +1280,22 @@ impl Translator<'_, '_> {
             .ins()
             .load(T64, mem, ctx, field(offset_of!(Ctx, frames_limit)));
         // Room in the frame stack and native nesting bounded (no room if
-        // calls must not run compiled), and the new frame in plain RAM.
-        let mut ok = vec![self.b.ins().icmp(IntCC::UnsignedLessThan, len, limit)];
+        // calls must not run compiled), the callee not watched, and the new
+        // frame in plain RAM.
+        let watch = self
+            .b
+            .ins()
+            .load(T64, mem, ctx, field(offset_of!(Ctx, watch)));
+        let watched = self.b.ins().uload8(
+            T32,
+            mem,
+            watch,
+            i32::try_from(callee).expect("function ids fit"),
+        );
+        let mut ok = vec![
+            self.b.ins().icmp(IntCC::UnsignedLessThan, len, limit),
+            self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0),
+        ];
         let base = s.sp(self);
         if self.depths.is_none() {
             // (With static depths the entry test covered the frame.)
@@ -1435,9 +1449,11 @@ impl Translator<'_, '_> {
             .imul_imm_s(len1, std::mem::size_of::<Frame>() as i64);
         let fp = self.b.ins().iadd(frames, off);
         // A frame that a compiled call pushed returns to compiled code (so
-        // not to the host, and returns may run compiled); another needs a
-        // frame to return to (0 < len <= cap; cap is 0 if returns must not
-        // run compiled) that does not return to the host.
+        // not to the host, not watched, and returns may run compiled);
+        // another needs a frame to return to (0 < len <= cap; cap is 0 if
+        // returns must not run compiled) that does not return to the host
+        // and whose call was not watched (the interpreter tells the
+        // watcher).
         let nested = self.b.ins().icmp(IntCC::UnsignedGreaterThan, len, base);
         let (other, checked) = (self.b.create_block(), self.b.create_block());
         self.b.ins().brif(nested, checked, NONE, other, NONE);
@@ -1456,6 +1472,12 @@ impl Translator<'_, '_> {
             .b
             .ins()
             .icmp_imm_s(IntCC::NotEqual, ret_pc, i64::from(HOST as i32));
+        self.guard(ok, before);
+        let watched = self
+            .b
+            .ins()
+            .uload8(T32, mem, fp, field(offset_of!(Frame, watched)));
+        let ok = self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0);
         self.guard(ok, before);
         self.b.ins().jump(checked, NONE);
         self.b.switch_to_block(checked);
