@@ -973,18 +973,28 @@ impl Translator<'_, '_> {
         self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit)
     }
 
-    /// Whether the words `var + 0 ..= var + top` (no wrapping) miss the
-    /// block's stack words.
-    fn off_stack(&mut self, var: Variable, top: u16) -> Option<Value> {
-        let (lo, hi) = self.stack_span?;
+    /// Leave unless the words `var + 0 ..= var + top` (no wrapping) miss
+    /// the block's stack words: one test of the first word where they lie
+    /// above the stack (objects and arrays on the heap), and of the last
+    /// word where they do not.
+    fn off_stack(&mut self, var: Variable, top: u16, before: &Before) {
+        let Some((lo, hi)) = self.stack_span else {
+            return;
+        };
         let first = self.b.use_var(var);
-        let last = self.seg_addr(var, top);
-        let below = self.b.ins().icmp(IntCC::UnsignedLessThan, last, lo);
         let above = self
             .b
             .ins()
             .icmp(IntCC::UnsignedGreaterThanOrEqual, first, hi);
-        Some(self.b.ins().bor(below, above))
+        let (below, cont) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(above, cont, NONE, below, NONE);
+        self.b.switch_to_block(below);
+        self.b.set_cold_block(below);
+        let last = self.seg_addr(var, top);
+        let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, last, lo);
+        self.guard(ok, before);
+        self.b.ins().jump(cont, NONE);
+        self.b.switch_to_block(cont);
     }
 
     /// The host address of the segment whose base register is `var`, whose
@@ -1000,11 +1010,9 @@ impl Translator<'_, '_> {
     fn ptr_base(&mut self, var: Variable, before: &Before) -> Option<Value> {
         let test = self.ptr_tests[(before.pc - self.block_start) as usize];
         if let PtrTest::First(top) = test {
-            let mut ok = self.span_ok(var, top);
-            if let Some(c) = self.off_stack(var, top) {
-                ok = self.b.ins().band(ok, c);
-            }
+            let ok = self.span_ok(var, top);
             self.guard(ok, before);
+            self.off_stack(var, top, before);
         }
         (test != PtrTest::Each).then(|| self.seg_base(var))
     }
