@@ -34,7 +34,8 @@ use crate::program::{FnId, Op, Program};
 use crate::timing::{Timing, STACK_BASE};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{
-    self, types, BlockArg, FuncRef, InstBuilder, JumpTableData, MemFlagsData, Value,
+    self, types, AliasRegionData, BlockArg, FuncRef, InstBuilder, JumpTableData, MemFlagsData,
+    Value,
 };
 use cranelift_frontend::{FunctionBuilder, Variable};
 use jack_os::{Profile, RAM_SIZE};
@@ -54,6 +55,36 @@ const NONE: &[BlockArg] = &[];
 /// A field offset as Cranelift takes it.
 fn field(offset: usize) -> i32 {
     offset as i32
+}
+
+/// The flags of each kind of memory access, whose alias regions tell
+/// Cranelift that RAM, the context's changing fields and the frame stack
+/// never overlap; what stays fixed while compiled code runs (the context's
+/// pointers and limits, the watch set) is read-only.
+#[derive(Clone, Copy)]
+struct Mem {
+    ram: MemFlagsData,
+    ctx: MemFlagsData,
+    frames: MemFlagsData,
+    fixed: MemFlagsData,
+}
+
+impl Mem {
+    fn new(func: &mut ir::Function) -> Mem {
+        let mut region = |user_id: u32, description: &'static str| {
+            let r = func.dfg.alias_regions.insert(AliasRegionData {
+                user_id,
+                description: description.into(),
+            });
+            MemFlagsData::trusted().with_alias_region(Some(r))
+        };
+        Mem {
+            ram: region(0, "ram"),
+            ctx: region(1, "ctx"),
+            frames: region(2, "frames"),
+            fixed: MemFlagsData::trusted().with_readonly().with_can_move(),
+        }
+    }
 }
 
 /// The registers kept in variables while compiled code runs.
@@ -96,6 +127,7 @@ struct Translator<'a, 'b> {
     ctx: Value,
     ram: Value,
     stop_at: Value,
+    mem: Mem,
     /// The Cranelift block of each VM block.
     cl: Vec<ir::Block>,
     /// VM block index by instruction index relative to the function start.
@@ -241,9 +273,13 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         nargs: b.declare_var(T16),
         steps: b.declare_var(T64),
     };
-    let mem = MemFlagsData::trusted();
-    let ram = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, ram)));
-    let stop_at = b.ins().load(T64, mem, ctx, field(offset_of!(Ctx, stop_at)));
+    let mem = Mem::new(b.func);
+    let ram = b
+        .ins()
+        .load(T64, mem.fixed, ctx, field(offset_of!(Ctx, ram)));
+    let stop_at = b
+        .ins()
+        .load(T64, mem.fixed, ctx, field(offset_of!(Ctx, stop_at)));
     let end = vm_blocks.last().map_or(start, |b| b.end.max(b.start + 1));
     let reach = reach(&env.code[start as usize..end as usize]);
     let f = &env.program.functions[env.id as usize];
@@ -269,6 +305,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         ctx,
         ram,
         stop_at,
+        mem,
         cl,
         block_at,
         start,
@@ -371,7 +408,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     t.b.ins().br_table(which, table);
 
     t.b.switch_to_block(default);
-    let pc = t.b.ins().load(T32, mem, ctx, field(offset_of!(Ctx, pc)));
+    let pc =
+        t.b.ins()
+            .load(T32, mem.ctx, ctx, field(offset_of!(Ctx, pc)));
     t.leave_with(pc, pc);
 
     for (i, blk) in vm_blocks.iter().enumerate() {
@@ -384,8 +423,10 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     };
     let (code, pc, cur) = (*code, *pc, *cur);
     t.store_state();
-    t.b.ins().store(mem, pc, ctx, field(offset_of!(Ctx, pc)));
-    t.b.ins().store(mem, cur, ctx, field(offset_of!(Ctx, cur)));
+    t.b.ins()
+        .store(mem.ctx, pc, ctx, field(offset_of!(Ctx, pc)));
+    t.b.ins()
+        .store(mem.ctx, cur, ctx, field(offset_of!(Ctx, cur)));
     let steps = t.b.use_var(t.v.steps);
     t.b.ins().return_(&[code, steps]);
     t.b.seal_all_blocks();
@@ -454,7 +495,7 @@ impl Translator<'_, '_> {
 
     /// Load the registers from the context into the variables.
     fn load_state(&mut self) {
-        let mem = MemFlagsData::trusted();
+        let mem = self.mem.ctx;
         for (var, o, ty) in self.state_fields() {
             let x = if ty == types::I8 {
                 self.b.ins().uload8(T32, mem, self.ctx, field(o))
@@ -467,7 +508,7 @@ impl Translator<'_, '_> {
 
     /// Store the variables into the context.
     fn store_state(&mut self) {
-        let mem = MemFlagsData::trusted();
+        let mem = self.mem.ctx;
         for (var, o, ty) in self.state_fields() {
             let x = self.b.use_var(var);
             if ty == types::I8 {
@@ -488,12 +529,12 @@ impl Translator<'_, '_> {
 
     fn load_word(&mut self, a: Value) -> Value {
         let p = self.word(a);
-        self.b.ins().load(T16, MemFlagsData::trusted(), p, 0)
+        self.b.ins().load(T16, self.mem.ram, p, 0)
     }
 
     fn store_word(&mut self, a: Value, x: Value) {
         let p = self.word(a);
-        self.b.ins().store(MemFlagsData::trusted(), x, p, 0);
+        self.b.ins().store(self.mem.ram, x, p, 0);
     }
 
     /// `5 <= a <= 24576` for a 16-bit address.
@@ -532,7 +573,7 @@ impl Translator<'_, '_> {
     /// Write stack words (depth relative to `base`, value) to RAM.
     fn store_pending(&mut self, base: Value, words: &[(i32, Value)]) {
         for &(d, x) in words {
-            self.b.ins().store(MemFlagsData::trusted(), x, base, 2 * d);
+            self.b.ins().store(self.mem.ram, x, base, 2 * d);
         }
     }
 
@@ -1039,16 +1080,12 @@ impl Translator<'_, '_> {
 
     /// Word `i` from host address `p`.
     fn load_at(&mut self, p: Value, i: u16) -> Value {
-        self.b
-            .ins()
-            .load(T16, MemFlagsData::trusted(), p, 2 * i32::from(i))
+        self.b.ins().load(T16, self.mem.ram, p, 2 * i32::from(i))
     }
 
     /// Word `i` from host address `p` = x.
     fn store_at(&mut self, p: Value, i: u16, x: Value) {
-        self.b
-            .ins()
-            .store(MemFlagsData::trusted(), x, p, 2 * i32::from(i));
+        self.b.ins().store(self.mem.ram, x, p, 2 * i32::from(i));
     }
 
     /// RAM[base + i] of segment `seg` (`base` its register).
@@ -1264,7 +1301,6 @@ impl Translator<'_, '_> {
         before: &Before,
         blk: &Block,
     ) {
-        let mem = MemFlagsData::trusted();
         let ctx = self.ctx;
         let f = &self.env.program.functions[callee as usize];
         // Where a call's `function` line is a step, the callee's zeroes
@@ -1282,21 +1318,23 @@ impl Translator<'_, '_> {
         let len = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
-        let limit = self
-            .b
-            .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_limit)));
+            .load(T64, self.mem.ctx, ctx, field(offset_of!(Ctx, frames_len)));
+        let limit = self.b.ins().load(
+            T64,
+            self.mem.fixed,
+            ctx,
+            field(offset_of!(Ctx, frames_limit)),
+        );
         // Room in the frame stack and native nesting bounded (no room if
         // calls must not run compiled), the callee not watched, and the new
         // frame in plain RAM.
         let watch = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, watch)));
+            .load(T64, self.mem.fixed, ctx, field(offset_of!(Ctx, watch)));
         let watched = self.b.ins().uload8(
             T32,
-            mem,
+            self.mem.fixed,
             watch,
             i32::try_from(callee).expect("function ids fit"),
         );
@@ -1333,18 +1371,18 @@ impl Translator<'_, '_> {
         ];
         let p = self.b.ins().iadd_imm_s(s.base, 2 * i64::from(s.depth));
         for (k, x) in saved.into_iter().enumerate() {
-            self.b.ins().store(mem, x, p, 2 * k as i32);
+            self.b.ins().store(self.mem.ram, x, p, 2 * k as i32);
         }
         let zero = self.c16(0);
         for k in 0..i32::from(n_vars) {
-            self.b.ins().store(mem, zero, p, 10 + 2 * k);
+            self.b.ins().store(self.mem.ram, zero, p, 10 + 2 * k);
         }
         // The frame stack entry (`Frame`, two words: caller and ret_pc; ret,
         // nargs, flags, and watched = false).
         let frames = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames)));
+            .load(T64, self.mem.fixed, ctx, field(offset_of!(Ctx, frames)));
         let off = self
             .b
             .ins()
@@ -1352,7 +1390,7 @@ impl Translator<'_, '_> {
         let fp = self.b.ins().iadd(frames, off);
         let head = i64::from(self.env.id) | i64::from(before.pc + 1) << 32;
         let head = self.b.ins().iconst(T64, head);
-        self.b.ins().store(mem, head, fp, 0);
+        self.b.ins().store(self.mem.frames, head, fp, 0);
         let nargs = self.b.use_var(self.v.nargs);
         let nargs = self.b.ins().uextend(T64, nargs);
         let nargs = self.b.ins().ishl_imm_u(nargs, 16);
@@ -1361,11 +1399,11 @@ impl Translator<'_, '_> {
         let flags = self.b.ins().ishl_imm_u(flags, 32);
         let tail = self.b.ins().bor(nargs, flags);
         let tail = self.b.ins().bor_imm_u(tail, i64::from(ret));
-        self.b.ins().store(mem, tail, fp, 8);
+        self.b.ins().store(self.mem.frames, tail, fp, 8);
         let len1 = self.b.ins().iadd_imm_s(len, 1);
         self.b
             .ins()
-            .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
+            .store(self.mem.ctx, len1, ctx, field(offset_of!(Ctx, frames_len)));
 
         // The callee's registers go as arguments (`native::Entry`).
         let this = self.b.use_var(self.v.this);
@@ -1410,7 +1448,7 @@ impl Translator<'_, '_> {
             (self.v.this, 3),
             (self.v.that, 4),
         ] {
-            let x = self.b.ins().load(T16, mem, p, 2 * k);
+            let x = self.b.ins().load(T16, self.mem.ram, p, 2 * k);
             self.b.def_var(var, x);
             restored.push(x);
         }
@@ -1436,20 +1474,21 @@ impl Translator<'_, '_> {
     /// word intact: restore its registers and either return to its
     /// compiled code (it called this one) or to the dispatcher.
     fn ret(&mut self, s: &mut Stack, before: &Before, blk: &Block) {
-        let mem = MemFlagsData::trusted();
         let ctx = self.ctx;
         let len = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_len)));
-        let base = self
-            .b
-            .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_base)));
+            .load(T64, self.mem.ctx, ctx, field(offset_of!(Ctx, frames_len)));
+        let base = self.b.ins().load(
+            T64,
+            self.mem.fixed,
+            ctx,
+            field(offset_of!(Ctx, frames_base)),
+        );
         let frames = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames)));
+            .load(T64, self.mem.fixed, ctx, field(offset_of!(Ctx, frames)));
         let len1 = self.b.ins().iadd_imm_s(len, -1);
         let off = self
             .b
@@ -1469,22 +1508,22 @@ impl Translator<'_, '_> {
         let cap = self
             .b
             .ins()
-            .load(T64, mem, ctx, field(offset_of!(Ctx, frames_cap)));
+            .load(T64, self.mem.fixed, ctx, field(offset_of!(Ctx, frames_cap)));
         let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, len1, cap);
         self.guard(ok, before);
         let ret_pc = self
             .b
             .ins()
-            .load(T32, mem, fp, field(offset_of!(Frame, ret_pc)));
+            .load(T32, self.mem.frames, fp, field(offset_of!(Frame, ret_pc)));
         let ok = self
             .b
             .ins()
             .icmp_imm_s(IntCC::NotEqual, ret_pc, i64::from(HOST as i32));
         self.guard(ok, before);
-        let watched = self
-            .b
-            .ins()
-            .uload8(T32, mem, fp, field(offset_of!(Frame, watched)));
+        let watched =
+            self.b
+                .ins()
+                .uload8(T32, self.mem.frames, fp, field(offset_of!(Frame, watched)));
         let ok = self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0);
         self.guard(ok, before);
         self.b.ins().jump(checked, NONE);
@@ -1507,11 +1546,11 @@ impl Translator<'_, '_> {
         };
         self.guard(ok, before);
         let fr = self.word(frame);
-        let ret_word = self.b.ins().load(T16, mem, fr, -10);
+        let ret_word = self.b.ins().load(T16, self.mem.ram, fr, -10);
         let expected = self
             .b
             .ins()
-            .load(T16, mem, fp, field(offset_of!(Frame, ret)));
+            .load(T16, self.mem.frames, fp, field(offset_of!(Frame, ret)));
         let ok = self.b.ins().icmp(IntCC::Equal, ret_word, expected);
         self.guard(ok, before);
 
@@ -1521,7 +1560,7 @@ impl Translator<'_, '_> {
         self.store_word(arg, x);
         self.b
             .ins()
-            .store(mem, len1, ctx, field(offset_of!(Ctx, frames_len)));
+            .store(self.mem.ctx, len1, ctx, field(offset_of!(Ctx, frames_len)));
         let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
         self.b.def_var(self.v.steps, steps);
         // Back into the caller's compiled code if it is below this one (it
@@ -1537,7 +1576,7 @@ impl Translator<'_, '_> {
         let ret_pc = self
             .b
             .ins()
-            .load(T32, mem, fp, field(offset_of!(Frame, ret_pc)));
+            .load(T32, self.mem.frames, fp, field(offset_of!(Frame, ret_pc)));
         let sp = self.b.ins().iadd_imm_s(arg, 1);
         self.b.def_var(self.v.sp, sp);
         let regs = [
@@ -1547,22 +1586,22 @@ impl Translator<'_, '_> {
             (self.v.lcl, -8),
         ];
         for (var, at) in regs {
-            let r = self.b.ins().load(T16, mem, fr, at);
+            let r = self.b.ins().load(T16, self.mem.ram, fr, at);
             self.b.def_var(var, r);
         }
         let caller = self
             .b
             .ins()
-            .load(T32, mem, fp, field(offset_of!(Frame, caller)));
+            .load(T32, self.mem.frames, fp, field(offset_of!(Frame, caller)));
         let nargs = self
             .b
             .ins()
-            .load(T16, mem, fp, field(offset_of!(Frame, nargs)));
+            .load(T16, self.mem.frames, fp, field(offset_of!(Frame, nargs)));
         self.b.def_var(self.v.nargs, nargs);
         let flags = self
             .b
             .ins()
-            .uload8(T32, mem, fp, field(offset_of!(Frame, flags)));
+            .uload8(T32, self.mem.frames, fp, field(offset_of!(Frame, flags)));
         self.b.def_var(self.v.flags, flags);
         let cont = self.c32(i64::from(CONTINUE));
         self.b.ins().jump(
@@ -1638,9 +1677,7 @@ impl Stack {
         if let Some(s) = self.slots.iter().find(|s| s.depth == depth) {
             return s.value;
         }
-        let x =
-            t.b.ins()
-                .load(T16, MemFlagsData::trusted(), self.base, 2 * depth);
+        let x = t.b.ins().load(T16, t.mem.ram, self.base, 2 * depth);
         self.slots.push(Slot {
             depth,
             value: x,
