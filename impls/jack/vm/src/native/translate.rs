@@ -434,6 +434,24 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
 }
 
 impl Translator<'_, '_> {
+    /// A field of the context that stays fixed while compiled code runs
+    /// (a pointer or a limit, at `offset`).
+    fn fixed_field(&mut self, offset: usize) -> Value {
+        self.b
+            .ins()
+            .load(T64, self.mem.fixed, self.ctx, field(offset))
+    }
+
+    /// The frame stack's length.
+    fn frames_len(&mut self) -> Value {
+        self.b.ins().load(
+            T64,
+            self.mem.ctx,
+            self.ctx,
+            field(offset_of!(Ctx, frames_len)),
+        )
+    }
+
     fn c16(&mut self, v: i64) -> Value {
         self.b.ins().iconst(T16, v & 0xFFFF)
     }
@@ -1315,23 +1333,12 @@ impl Translator<'_, '_> {
             self.exit_before(before);
             return;
         }
-        let len = self
-            .b
-            .ins()
-            .load(T64, self.mem.ctx, ctx, field(offset_of!(Ctx, frames_len)));
-        let limit = self.b.ins().load(
-            T64,
-            self.mem.fixed,
-            ctx,
-            field(offset_of!(Ctx, frames_limit)),
-        );
+        let len = self.frames_len();
+        let limit = self.fixed_field(offset_of!(Ctx, frames_limit));
         // Room in the frame stack and native nesting bounded (no room if
         // calls must not run compiled), the callee not watched, and the new
         // frame in plain RAM.
-        let watch = self
-            .b
-            .ins()
-            .load(T64, self.mem.fixed, ctx, field(offset_of!(Ctx, watch)));
+        let watch = self.fixed_field(offset_of!(Ctx, watch));
         let watched = self.b.ins().uload8(
             T32,
             self.mem.fixed,
@@ -1379,10 +1386,7 @@ impl Translator<'_, '_> {
         }
         // The frame stack entry (`Frame`, two words: caller and ret_pc; ret,
         // nargs, flags, and watched = false).
-        let frames = self
-            .b
-            .ins()
-            .load(T64, self.mem.fixed, ctx, field(offset_of!(Ctx, frames)));
+        let frames = self.fixed_field(offset_of!(Ctx, frames));
         let off = self
             .b
             .ins()
@@ -1475,20 +1479,9 @@ impl Translator<'_, '_> {
     /// compiled code (it called this one) or to the dispatcher.
     fn ret(&mut self, s: &mut Stack, before: &Before, blk: &Block) {
         let ctx = self.ctx;
-        let len = self
-            .b
-            .ins()
-            .load(T64, self.mem.ctx, ctx, field(offset_of!(Ctx, frames_len)));
-        let base = self.b.ins().load(
-            T64,
-            self.mem.fixed,
-            ctx,
-            field(offset_of!(Ctx, frames_base)),
-        );
-        let frames = self
-            .b
-            .ins()
-            .load(T64, self.mem.fixed, ctx, field(offset_of!(Ctx, frames)));
+        let len = self.frames_len();
+        let base = self.fixed_field(offset_of!(Ctx, frames_base));
+        let frames = self.fixed_field(offset_of!(Ctx, frames));
         let len1 = self.b.ins().iadd_imm_s(len, -1);
         let off = self
             .b
@@ -1505,10 +1498,7 @@ impl Translator<'_, '_> {
         let (other, checked) = (self.b.create_block(), self.b.create_block());
         self.b.ins().brif(nested, checked, NONE, other, NONE);
         self.b.switch_to_block(other);
-        let cap = self
-            .b
-            .ins()
-            .load(T64, self.mem.fixed, ctx, field(offset_of!(Ctx, frames_cap)));
+        let cap = self.fixed_field(offset_of!(Ctx, frames_cap));
         let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, len1, cap);
         self.guard(ok, before);
         let ret_pc = self
