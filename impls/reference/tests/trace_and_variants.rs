@@ -119,28 +119,38 @@ fn positive(e: i16, m: i16) -> Outcome<OpValue> {
     Outcome::Value(OpValue::Num(F316::new(0, e, m)))
 }
 
+/// `variant` of `o` gives the spec's result on each of `agreed` (operands
+/// and the positive result's exponent and mantissa), and on `apart`'s
+/// operands the spec gives the first result and the variant the second.
+fn parts_only_at(
+    variant: Variant,
+    o: Op,
+    agreed: &[([F316; 2], (i16, i16))],
+    apart: ([F316; 2], (i16, i16), (i16, i16)),
+) {
+    for v in [None, Some(variant)] {
+        for (args, (e, m)) in agreed {
+            assert_eq!(op_under(v, o, args), positive(*e, *m), "{variant} {args:?}");
+        }
+    }
+    let (args, (e, m), (fe, fm)) = apart;
+    assert_eq!(op_under(None, o, &args), positive(e, m));
+    assert_eq!(op_under(Some(variant), o, &args), positive(fe, fm));
+}
+
 /// `add-drop-far` drops the smaller operand only 14 or more exponents
 /// below: at a gap of 13 it adds as the spec does (a normalised mantissa
 /// still contributes its top bit), at 14 an unnormalised one that would
 /// still count (16384 >> 14 = 1) is dropped.
 #[test]
 fn add_drop_far_drops_only_operands_14_exponents_below() {
-    let fault = Some(Variant::AddDropFar);
     let gap_13 = F316::new(0, 114, 8192);
-    for v in [None, fault] {
-        assert_eq!(
-            op_under(v, Op::Add, &[F316::ONE, gap_13]),
-            positive(127, 8193)
-        );
-    }
     let gap_14 = F316::new(0, 113, 16384);
-    assert_eq!(
-        op_under(None, Op::Add, &[F316::ONE, gap_14]),
-        positive(127, 8193)
-    );
-    assert_eq!(
-        op_under(fault, Op::Add, &[F316::ONE, gap_14]),
-        positive(127, 8192)
+    parts_only_at(
+        Variant::AddDropFar,
+        Op::Add,
+        &[([F316::ONE, gap_13], (127, 8193))],
+        ([F316::ONE, gap_14], (127, 8193), (127, 8192)),
     );
 }
 
@@ -150,23 +160,16 @@ fn add_drop_far_drops_only_operands_14_exponents_below() {
 /// is the word -5536, whose bit 14 is set).
 #[test]
 fn add_carry_bit_tests_bit_14_of_the_sum() {
-    let fault = Some(Variant::AddCarryBit);
-    for v in [None, fault] {
-        assert_eq!(
-            op_under(v, Op::Add, &[F316::ONE, F316::ONE]),
-            positive(128, 8192)
-        );
-        let gap_13 = F316::new(0, 114, 8192);
-        assert_eq!(
-            op_under(v, Op::Add, &[F316::ONE, gap_13]),
-            positive(127, 8193)
-        );
-    }
+    let gap_13 = F316::new(0, 114, 8192);
     let wide = F316::new(0, 127, 30000);
-    assert_eq!(op_under(None, Op::Add, &[wide, wide]), positive(127, -5536));
-    assert_eq!(
-        op_under(fault, Op::Add, &[wide, wide]),
-        positive(128, -2768)
+    parts_only_at(
+        Variant::AddCarryBit,
+        Op::Add,
+        &[
+            ([F316::ONE, F316::ONE], (128, 8192)),
+            ([F316::ONE, gap_13], (127, 8193)),
+        ],
+        ([wide, wide], (127, -5536), (128, -2768)),
     );
 }
 
@@ -176,26 +179,16 @@ fn add_carry_bit_tests_bit_14_of_the_sum() {
 /// an unnormalised divisor (1 / (0,127,32000) has the quotient 2097).
 #[test]
 fn div_normalise_once_doubles_only_quotients_below_8192() {
-    let fault = Some(Variant::DivNormaliseOnce);
-    for v in [None, fault] {
-        assert_eq!(
-            op_under(v, Op::Div, &[F316::ONE, F316::ONE]),
-            positive(127, 8192)
-        );
-        let one_and_a_half = F316::new(0, 127, 12288);
-        assert_eq!(
-            op_under(v, Op::Div, &[F316::ONE, one_and_a_half]),
-            positive(126, 10922)
-        );
-    }
+    let one_and_a_half = F316::new(0, 127, 12288);
     let wide = F316::new(0, 127, 32000);
-    assert_eq!(
-        op_under(None, Op::Div, &[F316::ONE, wide]),
-        positive(125, 8388)
-    );
-    assert_eq!(
-        op_under(fault, Op::Div, &[F316::ONE, wide]),
-        positive(126, 4194)
+    parts_only_at(
+        Variant::DivNormaliseOnce,
+        Op::Div,
+        &[
+            ([F316::ONE, F316::ONE], (127, 8192)),
+            ([F316::ONE, one_and_a_half], (126, 10922)),
+        ],
+        ([F316::ONE, wide], (125, 8388), (126, 4194)),
     );
 }
 
