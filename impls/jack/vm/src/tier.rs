@@ -41,20 +41,19 @@ impl Machine {
             return u64::MAX;
         };
         let profile = self.os.profile();
-        if let Some(made) = self.program.native_made(profile) {
-            let native = made.as_ref().ok().cloned();
-            self.tier_credit();
-            self.native = native;
-            self.tier = None;
-            return u64::MAX;
-        }
-        let counter = &self.program.interpreted[crate::timing::index(profile)];
-        let total = counter.load(Ordering::Relaxed) + (self.steps - tier.credited);
-        if total < tier.threshold {
-            return self.steps.saturating_add(tier.threshold - total);
-        }
+        let native = match self.program.native_made(profile) {
+            Some(made) => made.as_ref().ok().cloned(),
+            None => {
+                let counter = &self.program.interpreted[crate::timing::index(profile)];
+                let total = counter.load(Ordering::Relaxed) + (self.steps - tier.credited);
+                if total < tier.threshold {
+                    return self.steps.saturating_add(tier.threshold - total);
+                }
+                self.program.native(profile).ok()
+            }
+        };
         self.tier_credit();
-        self.native = self.program.native(profile).ok();
+        self.native = native;
         self.tier = None;
         u64::MAX
     }
