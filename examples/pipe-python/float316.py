@@ -1,5 +1,6 @@
-"""Float316 in Python, from the spec (docs: shared/spec/seed-scene.md,
-section 2): the port this directory's adapter wraps. Every integer is a
+"""Float316 in Python, written from the format's rules (the reference
+implementation is impls/reference/src/float316.rs): the port this
+directory's adapter wraps. Every integer is a
 Jack word: 16-bit two's complement, wrapping, division truncating toward
 zero. A value is a tuple (s, e, m). A result is ("value", v), where v is a
 tuple or, for gt, a bool; or ("sys_error", code), ("hang",) or

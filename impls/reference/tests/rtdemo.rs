@@ -1,6 +1,6 @@
-//! `rtdemo` on ref-f64 is the BBC BASIC program's arithmetic: the listing
-//! (seed document `rtdemo-howdoesitwork.md`, lines 10-340) transcribed
-//! line by line below, recursion and all, gives every drawn pixel's colour
+//! `rtdemo` on ref-f64 is the BBC BASIC program's arithmetic: the BBC
+//! BASIC ray tracer demo's listing (its lines 10-340, numbered as in the
+//! listing) transcribed line by line below, recursion and all, gives every drawn pixel's colour
 //! and shade; the scene description must give the same, including pixels
 //! whose ray reflects twice.
 

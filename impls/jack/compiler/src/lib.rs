@@ -1,5 +1,5 @@
 //! Jack compiler: Jack source to Hack VM code, reproducing the official tools
-//! (spec `jack-vm-os.md` §4): the grammar with its quirks, the semantic checks
+//! (the nand2tetris JackCompiler's output, byte for byte): the grammar with its quirks, the semantic checks
 //! with their messages, and the exact code templates and label numbering.
 //!
 //! Two [`Profile`]s select the checks: `desktop` (default, the tools the seed

@@ -1,7 +1,9 @@
 //! The Jack OS of the nand2tetris web IDE, implemented natively in Rust for
 //! the Hack VM emulator (`hack-vm`) and described to the Jack compiler by a
-//! subroutine table. The reference is `shared/spec/jack-vm-os.md` (sections
-//! 0, 1 and 3); two profiles select which official tool is followed:
+//! subroutine table. It behaves as the official nand2tetris tools' OS does,
+//! quirks included (Output, Screen, Math, String, Array, Memory, Keyboard
+//! and Sys, each module's rules stated in its own documentation); two
+//! profiles select which official tool is followed:
 //! [`Profile::Desktop`] (default: truncating `Math.divide`, the documented
 //! API where the web IDE has defects) and [`Profile::Web`] (the web IDE
 //! exactly, defects included).

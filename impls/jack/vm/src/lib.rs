@@ -1,5 +1,7 @@
 //! A fast emulator of the nand2tetris Hack VM with the native Jack OS
-//! (`jack-os`), following `shared/spec/jack-vm-os.md` §1, §2.
+//! (`jack-os`): the VM language of the nand2tetris course (stack
+//! arithmetic, the eight memory segments over the Hack RAM map, labels,
+//! function calls and returns) as the official VM emulator runs it.
 //!
 //! - [`Program`]: load a directory of `.vm` files ([`Program::load_dir`]) or
 //!   in-memory sources ([`Program::from_sources`]) once, with every
