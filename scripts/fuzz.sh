@@ -2,8 +2,8 @@
 # Bounded fuzz run of the cargo-fuzz targets (fuzz/fuzz_targets), for the
 # nightly job:
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]     (default 180 s, every target)
-# Installs cargo-fuzz from crates.io when missing; needs the nightly
-# toolchain. New coverage goes to fuzz/work/TARGET (not committed; the
+# Installs what it needs when missing: the nightly toolchain (rustup) and
+# cargo-fuzz (crates.io, built with that toolchain). New coverage goes to fuzz/work/TARGET (not committed; the
 # checked-in seeds are fuzz/corpus/TARGET). A crash is copied to
 # fuzz/regressions/TARGET/, where `cargo test -p fuzz-checks` replays it
 # from then on: commit it with the fix. Exit 1 when any target crashed.
@@ -13,12 +13,11 @@ cd "$(dirname "$0")/.."
 
 seconds=${1:-180}
 shift || true
-if ! command -v cargo-fuzz >/dev/null; then
-    cargo install --locked cargo-fuzz
-fi
 if ! rustup toolchain list | grep -q '^nightly'; then
-    echo "fuzz.sh: the nightly toolchain is needed (rustup toolchain install nightly)" >&2
-    exit 2
+    rustup toolchain install nightly --profile minimal
+fi
+if ! command -v cargo-fuzz >/dev/null; then
+    cargo +nightly install --locked cargo-fuzz
 fi
 if [ $# -gt 0 ]; then
     targets=("$@")

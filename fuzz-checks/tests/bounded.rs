@@ -10,13 +10,24 @@ fn fuzz_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz")
 }
 
-/// The files of `fuzz/KIND/TARGET`, sorted (none when the folder is absent).
+/// The inputs of `fuzz/KIND/TARGET`, sorted. The folder must exist: a
+/// regressions folder with no crash yet holds only a `.gitkeep` (git keeps
+/// no empty folder), and a name that starts with a dot is no input.
 fn inputs(kind: &str, target: &str) -> Vec<(PathBuf, Vec<u8>)> {
     let dir = fuzz_dir().join(kind).join(target);
-    let Ok(entries) = std::fs::read_dir(&dir) else {
-        return Vec::new();
-    };
-    let mut files: Vec<PathBuf> = entries.map(|e| e.unwrap().path()).collect();
+    let entries = std::fs::read_dir(&dir).unwrap_or_else(|e| {
+        panic!(
+            "{}: {e} (every fuzz target has fuzz/{kind}/{target}/)",
+            dir.display()
+        )
+    });
+    let mut files: Vec<PathBuf> = entries
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            !p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with('.'))
+        })
+        .collect();
     files.sort();
     files
         .into_iter()
@@ -25,6 +36,22 @@ fn inputs(kind: &str, target: &str) -> Vec<(PathBuf, Vec<u8>)> {
             (p, bytes)
         })
         .collect()
+}
+
+/// Every folder of `fuzz/corpus` and `fuzz/regressions` is a target's: a
+/// misspelt one would never be replayed.
+#[test]
+fn every_input_folder_names_a_target() {
+    for kind in ["corpus", "regressions"] {
+        let dir = fuzz_dir().join(kind);
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+            assert!(
+                fuzz_checks::TARGETS.iter().any(|(t, _)| *t == name),
+                "fuzz/{kind}/{name} is no fuzz target's"
+            );
+        }
+    }
 }
 
 fn check_of(target: &str) -> fn(&[u8]) {
@@ -104,6 +131,8 @@ fn seeds_reach_the_deep_paths() {
     }
 }
 
+/// Every seed and every committed regression input, of every target (a
+/// target without its folders fails).
 #[test]
 fn seeds_and_regression_inputs_pass() {
     for (name, check) in fuzz_checks::TARGETS {
