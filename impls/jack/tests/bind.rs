@@ -177,8 +177,10 @@ fn whole_program_mode_captures_the_first_rows_and_their_traces() {
 }
 
 /// The whole program (`cargo test --release -p jack -- --ignored`).
+/// Ignored under `cargo test`: two whole-program runs (the bound program
+/// and the port), each with a traced pixel, after the whole image.
 #[test]
-#[ignore = "full program runs: nightly"]
+#[ignore = "two whole Main.main runs and the image: scripts/nightly.sh"]
 fn whole_program_mode_captures_the_render() {
     let render = entry().render().unwrap();
     let want: Vec<bool> = render

@@ -100,9 +100,10 @@ fn the_seed_program_starts_the_same_on_both_engines() {
 }
 
 /// The whole of `Main.main` (about 21 G instructions on each engine:
-/// `cargo test --release -p jack -- --ignored`).
+/// `cargo test --release -p jack -- --ignored`). Ignored under `cargo
+/// test`: the interpreter's run alone takes about 30 s.
 #[test]
-#[ignore = "full program run on both engines: nightly"]
+#[ignore = "Main.main on both engines (about 45 CPU s): scripts/nightly.sh"]
 fn the_whole_seed_program_is_the_same_on_both_engines() {
     main_agrees(u64::MAX, 1_000_000_007);
 }
