@@ -9,11 +9,15 @@ use common::{Op, Outcome, F316};
 use harness::cast::Cast;
 use harness::commands::check::{no_divergence_between, Verdict};
 use harness::contain::{Contained, Failure, FailureKind, Watchdog};
-use harness::implementation::{Answer, Bitmap, ImplError, Implementation, Numbers};
+use harness::implementation::{Answer, Bitmap, ImageAnswers, ImplError, Implementation, Numbers};
 use harness::pipe::{Pipe, PipeConfig};
 use harness::runner::{diff_set, RunOptions};
 use std::time::Duration;
 use vectors::{Level, OpVector, Vector, VectorSet};
+
+// This file uses the agreement check only.
+#[allow(dead_code)]
+mod support;
 
 const ADAPTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/adapters/misbehaving.py");
 
@@ -99,9 +103,16 @@ fn an_adapter_that_crashes_mid_batch_keeps_its_answers_and_shows_its_stderr() {
         text.contains("ZeroDivisionError: in my_port.double"),
         "{text}"
     );
-    // It takes no more batches afterwards.
+    // It takes no more batches afterwards, and says why: the crash.
     let again = pipe.eval(&doubles().vectors).unwrap_err();
-    assert_eq!(failure(&again).kind, FailureKind::NotRun);
+    let f = failure(&again);
+    assert_eq!(f.kind, FailureKind::NotRun);
+    assert!(
+        f.message.contains(
+            "the adapter takes no more batches: it exited with status 1 after answering 5 of the 10 inputs of batch 0"
+        ),
+        "{f}"
+    );
 }
 
 #[test]
@@ -145,10 +156,11 @@ fn a_wrong_count_is_named_with_the_field() {
     );
 }
 
-/// A test fault: ref-f316, except that it panics on its sixth vector
+/// A test fault: ref-f316, except that it panics on the vector `on`
 /// (`panics`) or never answers it (`loops`).
 struct Faulty {
     inner: Box<dyn Implementation>,
+    on: Vector,
     panics: bool,
 }
 
@@ -163,8 +175,7 @@ impl Implementation for Faulty {
         self.inner.supports(level)
     }
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
-        let set = doubles();
-        if let Some(v) = batch.iter().find(|v| **v == set.vectors[5]) {
+        if let Some(v) = batch.iter().find(|v| **v == self.on) {
             if self.panics {
                 let overflow = i16::MAX;
                 panic!("attempt to multiply with overflow: {overflow} * 2 in {v}");
@@ -177,12 +188,38 @@ impl Implementation for Faulty {
     }
 }
 
+/// [`Faulty`] on the sixth of the doubles.
 fn faulty(panics: bool) -> Contained {
+    faulty_on(doubles().vectors[5].clone(), panics)
+}
+
+fn faulty_on(on: Vector, panics: bool) -> Contained {
     let inner = Cast::builtin().open("ref-f316").unwrap();
     Contained::new(
-        Box::new(Faulty { inner, panics }),
+        Box::new(Faulty { inner, on, panics }),
         Watchdog::fixed(Duration::from_secs(2)),
     )
+}
+
+/// The agreement check of bindings.rs, jack.rs and gpu.rs fails a subject
+/// that answers its first inputs and then crashes, though every answer it
+/// kept agrees with ref-f316.
+#[test]
+fn the_agreement_check_fails_a_subject_that_crashes_after_answering() {
+    let ops = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();
+    let subject = faulty_on(ops.vectors[7].clone(), true);
+    let checked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        support::assert_agrees_with_ref_f316_on_the_small_sets(&subject)
+    }));
+    let payload = checked.expect_err("a crash at input #7 fails the check");
+    let message = payload
+        .downcast_ref::<String>()
+        .cloned()
+        .unwrap_or_default();
+    assert!(
+        message.contains("ref-f316+panics panicked on input #7"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -225,10 +262,22 @@ fn check_calls_a_contained_panic_or_hang_of_the_implementation_under_test_bad() 
     }
 }
 
-/// An implementation with a whole-program path only: it draws a two-pixel
-/// screen, or panics drawing it.
+/// An implementation with whole-image paths only: it draws a two-pixel
+/// screen and a two-pixel image with its costs, or panics drawing them.
 struct WholeProgram {
     panics: bool,
+}
+
+/// The two pixels [`WholeProgram`] renders.
+fn two_pixels() -> Vec<Outcome<Answer>> {
+    [(F316::ONE, true), (F316::ZERO, false)]
+        .map(|(shade, white)| {
+            Outcome::Value(Answer::Pixel {
+                shade: harness::implementation::Num::F316(shade),
+                white,
+            })
+        })
+        .to_vec()
 }
 
 impl Implementation for WholeProgram {
@@ -244,6 +293,13 @@ impl Implementation for WholeProgram {
     fn eval(&self, _: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
         Ok(Vec::new())
     }
+    fn render_image(&self, _: bool) -> Option<Result<ImageAnswers, ImplError>> {
+        assert!(!self.panics, "the image broke");
+        Some(Ok(ImageAnswers {
+            pixels: two_pixels(),
+            costs: Some(vec![3, 4]),
+        }))
+    }
     fn program_screen(&self, _: Option<u64>, _: bool) -> Option<Result<Bitmap, ImplError>> {
         assert!(!self.panics, "the screen broke");
         Some(Ok(Bitmap {
@@ -256,25 +312,43 @@ impl Implementation for WholeProgram {
 
 /// Containment keeps an implementation's whole-image paths (the nightly's
 /// Jack image with its costs and the whole program's screen come through
-/// them), and contains their panics.
+/// them), and contains their panics; an implementation without them has
+/// none once contained either.
 #[test]
 fn the_whole_image_paths_pass_through_containment() {
-    let contained = |panics| {
-        Contained::new(
-            Box::new(WholeProgram { panics }),
-            Watchdog::fixed(Duration::from_secs(2)),
-        )
+    let contained = |inner: Box<dyn Implementation>| {
+        Contained::new(inner, Watchdog::fixed(Duration::from_secs(2)))
     };
-    let screen = contained(false).program_screen(None, false);
+    let whole = |panics| contained(Box::new(WholeProgram { panics }));
+    let screen = whole(false).program_screen(None, false);
     let Some(Ok(bitmap)) = screen else {
         panic!("the screen is passed on: {screen:?}")
     };
     assert_eq!(bitmap.white, [true, false]);
-    assert!(contained(false).render_image(false).is_none());
-    let Some(Err(e)) = contained(true).program_screen(None, false) else {
-        panic!("a panic is a failure")
+    let image = whole(false).render_image(false);
+    let Some(Ok(image)) = image else {
+        panic!("the image is passed on: {image:?}")
     };
-    let f = failure(&e);
-    assert_eq!(f.kind, FailureKind::Panic);
-    assert!(f.message.contains("the screen broke"), "{f}");
+    assert_eq!(image.pixels, two_pixels());
+    assert_eq!(image.costs, Some(vec![3, 4]));
+    for (what, result) in [
+        (
+            "the screen broke",
+            whole(true).program_screen(None, false).map(|r| r.map(drop)),
+        ),
+        (
+            "the image broke",
+            whole(true).render_image(false).map(|r| r.map(drop)),
+        ),
+    ] {
+        let Some(Err(e)) = result else {
+            panic!("a panic is a failure: {what}")
+        };
+        let f = failure(&e);
+        assert_eq!(f.kind, FailureKind::Panic);
+        assert!(f.message.contains(what), "{f}");
+    }
+    let reference = contained(Cast::builtin().open("ref-f316").unwrap());
+    assert!(reference.render_image(false).is_none());
+    assert!(reference.program_screen(None, false).is_none());
 }

@@ -1,7 +1,9 @@
 //! `harness nightly --steps scenes --scene NAME`: a described scene on the
 //! reference implementations, with what it uses, what it never reaches and
-//! its cost per pixel in the report; a bad scene file fails the night with
-//! its field named; an unknown scene name is refused before the run.
+//! its cost per pixel in the report; gpu-f316 made from the description,
+//! compared with ref-f316 bit for bit (needs a wgpu adapter: lavapipe will
+//! do; F316_SKIP_GPU skips it); a bad scene file fails the night with its
+//! field named; an unknown scene name is refused before the run.
 
 mod binary;
 
@@ -10,10 +12,14 @@ use std::path::Path;
 use std::process::Output;
 
 fn night(out: &Path, scene: &str) -> Output {
+    night_of("ref-f64,ref-f32,ref-f316", out, scene)
+}
+
+fn night_of(impls: &str, out: &Path, scene: &str) -> Output {
     harness(&[
         "nightly",
         "--impls",
-        "ref-f64,ref-f32,ref-f316",
+        impls,
         "--steps",
         "scenes",
         "--scene",
@@ -72,6 +78,51 @@ fn the_scene_step_reports_use_reach_and_cost() {
     assert_eq!(f32["cases"], 320 * 240);
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("<section id=scenes>") && html.contains("rtdemo"));
+}
+
+fn report(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn the_scene_step_compares_gpu_f316_with_ref_f316_bit_for_bit() {
+    if std::env::var_os(gpu::SKIP_ENV).is_some() {
+        gpu::report_skipped("the scene step on gpu-f316");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("nightly");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../vectors/scenes/tests/carved.json");
+    let o = night_of("ref-f316,gpu-f316", &out, scene.to_str().unwrap());
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let report = report(&out);
+    assert_eq!(report["problems"], serde_json::json!([]), "{report}");
+    let row = |level: &str| {
+        report["comparisons"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["scope"] == "scene carved" && c["level"] == level)
+            .unwrap_or_else(|| panic!("no {level} row: {report}"))
+            .clone()
+    };
+    let (pixels, sdf) = (row("pixels"), row("sdf"));
+    for c in [&pixels, &sdf] {
+        assert_eq!(
+            (&c["a"], &c["b"]),
+            (&"ref-f316".into(), &"gpu-f316".into()),
+            "{c}"
+        );
+        assert_eq!(c["policy"], "bit-exact", "{c}");
+        assert_eq!(c["divergences"], 0, "{c}");
+    }
+    assert_eq!(pixels["cases"], 160 * 96, "every pixel of the 160x96 scene");
+    assert!(
+        sdf["cases"].as_u64().unwrap() > 512,
+        "uniform and derived points: {sdf}"
+    );
+    let costs = report["scenes"][0]["costs"].to_string();
+    assert!(costs.contains("gpu-f316"), "{costs}");
 }
 
 #[test]

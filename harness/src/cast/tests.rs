@@ -33,8 +33,13 @@ fn the_six_built_ins_are_entries_with_their_roles() {
     assert!(!cast.get("gpu-f32").unwrap().answers(Level::Ops));
     let kinds: Vec<&str> = crate::impls::KINDS.iter().map(|k| k.name()).collect();
     let mut unique = kinds.clone();
+    unique.sort_unstable();
     unique.dedup();
-    assert_eq!(kinds, unique, "kind names are unique");
+    assert_eq!(
+        kinds.len(),
+        unique.len(),
+        "kind names are unique: {kinds:?}"
+    );
 }
 
 #[test]

@@ -16,7 +16,7 @@ use crate::report::model::{Comparison, DivergenceExample, ErrorFigures, SceneCos
 use crate::report::{BIT_EXACT, ERROR_FIGURES};
 use anyhow::{bail, Context, Result};
 use common::{Op, Outcome, TraceRecord, F316};
-use reference::{Described, RefImpl, SceneImage, ScenePixel, Settings};
+use reference::{Described, RefImpl, SceneImage, ScenePixel, SdfValue, Settings};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -221,10 +221,11 @@ fn shapes(checked: &scene::Checked) -> Vec<String> {
     kinds.into_iter().map(String::from).collect()
 }
 
-fn pixel_text(p: &Outcome<ScenePixel>) -> String {
+fn pixel_text(p: Option<&Outcome<ScenePixel>>) -> String {
     match p {
-        Outcome::Value(v) => format!("{:?} level {}", v.value.triple, v.level),
-        o => format!("{:?}", o.kind()),
+        Some(Outcome::Value(v)) => format!("{:?} level {}", v.value.triple, v.level),
+        Some(o) => format!("{o:?}"),
+        None => "no pixel".into(),
     }
 }
 
@@ -238,27 +239,69 @@ fn example(case: String, a: String, b: String) -> DivergenceExample {
     }
 }
 
+/// Whether two answers are the same: two values that `values` calls the
+/// same, or the same trap (a `Sys.error` with the same code).
+fn same_answer<A, B>(a: &Outcome<A>, b: &Outcome<B>, values: impl FnOnce(&A, &B) -> bool) -> bool {
+    match (a, b) {
+        (Outcome::Value(x), Outcome::Value(y)) => values(x, y),
+        (Outcome::SysError(x), Outcome::SysError(y)) => x == y,
+        (Outcome::Hang, Outcome::Hang) | (Outcome::OutOfDomain, Outcome::OutOfDomain) => true,
+        _ => false,
+    }
+}
+
+/// Two answer lists side by side over the longer one: an answer only one
+/// list has is paired with `None` (a divergence, never dropped).
+fn side_by_side<'a, T, U>(
+    a: &'a [T],
+    b: &'a [U],
+) -> impl Iterator<Item = (usize, Option<&'a T>, Option<&'a U>)> {
+    (0..a.len().max(b.len())).map(move |i| (i, a.get(i), b.get(i)))
+}
+
+/// One divergence of `c`, kept as an example while there are few.
+fn diverged(c: &mut Comparison, case: impl FnOnce() -> DivergenceExample) {
+    c.divergences += 1;
+    if c.examples.len() < EXAMPLES {
+        c.examples.push(case());
+    }
+}
+
+/// Two images of different sizes diverge once for their size (their
+/// pixels are then compared in order, over the larger one).
+fn compare_sizes(c: &mut Comparison, a: &SceneImage, b: &SceneImage) {
+    if (a.width, a.height) != (b.width, b.height) {
+        c.cases += 1;
+        diverged(c, || {
+            example(
+                "image size".into(),
+                format!("{}x{}", a.width, a.height),
+                format!("{}x{}", b.width, b.height),
+            )
+        });
+    }
+}
+
+fn pixel_case(i: usize, width: usize) -> String {
+    let width = width.max(1);
+    format!("pixel({},{})", i % width, i / width)
+}
+
 /// ref-f316 against gpu-f316 on every pixel: triple, level and outcome.
 fn bit_exact_pixels(scope: &str, a: &SceneImage, b: &SceneImage) -> Comparison {
     let mut c = comparison("pixels", scope, "ref-f316", "gpu-f316", BIT_EXACT);
-    for (i, (pa, pb)) in a.pixels.iter().zip(&b.pixels).enumerate() {
+    compare_sizes(&mut c, a, b);
+    for (i, pa, pb) in side_by_side(&a.pixels, &b.pixels) {
         c.cases += 1;
-        let same = match (pa, pb) {
-            (Outcome::Value(x), Outcome::Value(y)) => {
+        let same = pa.zip(pb).is_some_and(|(pa, pb)| {
+            same_answer(pa, pb, |x, y| {
                 x.level == y.level && x.value.triple == y.value.triple
-            }
-            (x, y) => x.kind() == y.kind(),
-        };
+            })
+        });
         if !same {
-            c.divergences += 1;
-            if c.examples.len() < EXAMPLES {
-                let (x, y) = (i % a.width, i / a.width);
-                c.examples.push(example(
-                    format!("pixel({x},{y})"),
-                    pixel_text(pa),
-                    pixel_text(pb),
-                ));
-            }
+            diverged(&mut c, || {
+                example(pixel_case(i, a.width), pixel_text(pa), pixel_text(pb))
+            });
         }
     }
     c
@@ -293,58 +336,68 @@ fn bit_exact_sdf(
     points: &[[F316; 3]],
 ) -> Result<Comparison> {
     let theirs = kernel.sdf(gpu, points)?;
+    Ok(compare_sdf(scope, points, |p| ours.sdf(p), &theirs))
+}
+
+/// `ours` at each of `points` against `theirs`, the kernel's answers to
+/// them in order (a point it did not answer diverges).
+fn compare_sdf(
+    scope: &str,
+    points: &[[F316; 3]],
+    ours: impl Fn([F316; 3]) -> Outcome<SdfValue>,
+    theirs: &[Outcome<(gpu::GpuNum, gpu::GpuNum)>],
+) -> Comparison {
     let mut c = comparison("sdf", scope, "ref-f316", "gpu-f316", BIT_EXACT);
-    for (p, g) in points.iter().zip(&theirs) {
+    for (_, p, g) in side_by_side(points, theirs) {
         c.cases += 1;
-        let r = ours.sdf(*p);
-        let same = match (&r, g) {
-            (Outcome::Value(v), Outcome::Value((sd, col))) => {
+        let point = p.map_or_else(
+            || "an answer to no point".into(),
+            |p| format!("sdf({:?},{:?},{:?})", p[0], p[1], p[2]),
+        );
+        let r = p.map(|&p| ours(p));
+        let same = r.as_ref().zip(g).is_some_and(|(r, g)| {
+            same_answer(r, g, |v, (sd, col)| {
                 v.sd.triple == sd.triple && v.col.triple == col.triple
-            }
-            (x, y) => x.kind() == y.kind(),
-        };
+            })
+        });
         if !same {
-            c.divergences += 1;
-            if c.examples.len() < EXAMPLES {
-                c.examples.push(example(
-                    format!("sdf({:?},{:?},{:?})", p[0], p[1], p[2]),
-                    format!("{r:?}"),
-                    format!("{g:?}"),
-                ));
-            }
+            diverged(&mut c, || {
+                example(
+                    point,
+                    r.map_or_else(|| "no point".into(), |r| format!("{r:?}")),
+                    g.map_or_else(|| "no answer".into(), |g| format!("{g:?}")),
+                )
+            });
         }
     }
-    Ok(c)
+    c
 }
 
 /// A float implementation's shades against ref-f64's: error figures over
 /// the pixels both answer; a divergence is a pixel whose level or outcome
-/// differs.
+/// (a `Sys.error`'s code included) differs, or that one image lacks.
 fn float_pixels(scope: &str, oracle: &SceneImage, label: &str, image: &SceneImage) -> Comparison {
     let mut c = comparison("pixels", scope, "ref-f64", label, ERROR_FIGURES);
+    compare_sizes(&mut c, oracle, image);
     let (mut sum, mut max, mut n) = (0.0f64, 0.0f64, 0u64);
-    for (i, (o, p)) in oracle.pixels.iter().zip(&image.pixels).enumerate() {
+    for (i, o, p) in side_by_side(&oracle.pixels, &image.pixels) {
         c.cases += 1;
-        let flip = match (o, p) {
-            (Outcome::Value(x), Outcome::Value(y)) => {
+        let same = o.zip(p).is_some_and(|(o, p)| {
+            same_answer(o, p, |x, y| {
                 let e = (x.value.value - y.value.value).abs();
                 sum += e;
                 max = max.max(e);
                 n += 1;
-                x.level != y.level
-            }
-            (x, y) => x.kind() != y.kind(),
-        };
-        if flip {
-            c.divergences += 1;
-            if c.examples.len() < EXAMPLES {
-                let (x, y) = (i % oracle.width, i / oracle.width);
-                c.examples.push(example(
-                    format!("pixel({x},{y})"),
-                    format!("{o:?}"),
-                    format!("{p:?}"),
-                ));
-            }
+                x.level == y.level
+            })
+        });
+        if !same {
+            diverged(&mut c, || {
+                let text = |q: Option<&Outcome<ScenePixel>>| {
+                    q.map_or_else(|| "no pixel".into(), |q| format!("{q:?}"))
+                };
+                example(pixel_case(i, oracle.width), text(o), text(p))
+            });
         }
     }
     c.error = Some(ErrorFigures {
@@ -458,6 +511,112 @@ mod tests {
         }
         let err = resolve("no-such-scene").unwrap_err().to_string();
         assert!(err.contains("rtdemo, sdf-engine, seed, toon"), "{err}");
+    }
+
+    fn pixel(level: u8) -> Outcome<ScenePixel> {
+        Outcome::Value(ScenePixel {
+            value: reference::Scalar {
+                value: 0.5,
+                triple: Some(F316::new(0, 126, 8192)),
+            },
+            level,
+        })
+    }
+
+    fn image(width: usize, pixels: Vec<Outcome<ScenePixel>>) -> SceneImage {
+        SceneImage {
+            width,
+            height: pixels.len() / width,
+            levels: 2,
+            pixels,
+        }
+    }
+
+    /// Both pixel comparisons, bit-exact and by error figures, of `a`
+    /// against `b`: their (cases, divergences).
+    fn both(a: &SceneImage, b: &SceneImage) -> [(u64, u64); 2] {
+        [bit_exact_pixels("s", a, b), float_pixels("s", a, "x", b)]
+            .map(|c| (c.cases, c.divergences))
+    }
+
+    #[test]
+    fn pixels_differing_only_in_their_sys_error_code_diverge() {
+        let a = image(2, vec![pixel(1), Outcome::SysError(3)]);
+        assert_eq!(both(&a, &a), [(2, 0); 2]);
+        let b = image(2, vec![pixel(1), Outcome::SysError(4)]);
+        assert_eq!(both(&a, &b), [(2, 1); 2]);
+        let c = bit_exact_pixels("s", &a, &b);
+        assert_eq!(c.examples[0].case, "pixel(1,0)");
+        assert_eq!(
+            (c.examples[0].a.as_str(), c.examples[0].b.as_str()),
+            ("SysError(3)", "SysError(4)")
+        );
+        let hang = image(2, vec![pixel(1), Outcome::Hang]);
+        assert_eq!(both(&a, &hang), [(2, 1); 2]);
+    }
+
+    #[test]
+    fn a_missing_pixel_or_another_size_diverges() {
+        let a = image(2, vec![pixel(1), pixel(0), pixel(1), pixel(0)]);
+        let short = SceneImage {
+            pixels: a.pixels[..3].to_vec(),
+            ..a.clone()
+        };
+        assert_eq!(both(&a, &short), [(4, 1); 2]);
+        assert_eq!(both(&short, &a), [(4, 1); 2]);
+        let c = bit_exact_pixels("s", &a, &short);
+        assert_eq!(
+            (c.examples[0].case.as_str(), c.examples[0].b.as_str()),
+            ("pixel(1,1)", "no pixel")
+        );
+        // The same pixels, four in a row: the size diverges.
+        let row = image(4, a.pixels.clone());
+        assert_eq!(both(&a, &row), [(5, 1); 2]);
+        assert_eq!(
+            bit_exact_pixels("s", &a, &row).examples[0].case,
+            "image size"
+        );
+    }
+
+    #[test]
+    fn sdf_answers_compare_sys_error_codes_and_count_missing_answers() {
+        let points = [[F316::ZERO; 3], [F316::ONE; 3]];
+        let ours = |p: [F316; 3]| {
+            if p[0] == F316::ZERO {
+                Outcome::SysError(3)
+            } else {
+                let s = reference::Scalar {
+                    value: 1.0,
+                    triple: Some(F316::ONE),
+                };
+                Outcome::Value(SdfValue { sd: s, col: s })
+            }
+        };
+        let one = gpu::GpuNum {
+            value: 1.0,
+            triple: Some(F316::ONE),
+        };
+        let count = |theirs: &[Outcome<(gpu::GpuNum, gpu::GpuNum)>]| {
+            let c = compare_sdf("s", &points, ours, theirs);
+            (c.cases, c.divergences)
+        };
+        assert_eq!(
+            count(&[Outcome::SysError(3), Outcome::Value((one, one))]),
+            (2, 0)
+        );
+        assert_eq!(
+            count(&[Outcome::SysError(5), Outcome::Value((one, one))]),
+            (2, 1)
+        );
+        assert_eq!(count(&[Outcome::SysError(3)]), (2, 1));
+        assert_eq!(
+            count(&[
+                Outcome::SysError(3),
+                Outcome::Value((one, one)),
+                Outcome::Hang
+            ]),
+            (3, 1)
+        );
     }
 
     #[test]

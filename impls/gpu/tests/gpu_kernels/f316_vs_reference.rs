@@ -2,7 +2,7 @@
 //! (random values and a catalogue of hard cases) for every operation, and
 //! scene queries at generated points.
 
-use crate::support::{gpu, Rng};
+use crate::support::{gpu, paired, Rng};
 use common::{Op, F316};
 use reference::{Arith, RefImpl, Reference};
 
@@ -84,7 +84,7 @@ fn every_op_matches_the_reference_bit_for_bit() {
     }
     let got = gpu.f316_ops(&cases).expect("ops kernel runs");
     let mut mismatches = Vec::new();
-    for (&(op, a, b), got) in cases.iter().zip(&got) {
+    for (&(op, a, b), got) in paired("ops", &cases, &got) {
         let args: &[F316] = if op.arity() == 2 { &[a, b] } else { &[a] };
         let want = reference::op(op, args, Arith::default()).expect("arity");
         if *got != want {
@@ -132,7 +132,7 @@ fn scene_matches_the_reference_bit_for_bit() {
     let got = gpu.f316_sdf(&points).expect("sdf kernel runs");
     let reference = Reference::seed(RefImpl::F316);
     let mut mismatches = Vec::new();
-    for (p, got) in points.iter().zip(&got) {
+    for (p, got) in paired("sdf", &points, &got) {
         let want = reference
             .sdf(*p)
             .map(|s| (s.sd.triple.expect("triple"), s.col.triple.expect("triple")));

@@ -4,7 +4,7 @@
 //! those derived from the scene (`vectors::gen::scene_derived`);
 //! the f32 kernel renders and is compared with ref-f64 by its error.
 
-use crate::support::{gpu, Rng};
+use crate::support::{gpu, paired, same_answer, Rng};
 use common::{Outcome, F316};
 use gpu::GpuPixel;
 use reference::{Described, RefImpl, ScenePixel, Settings};
@@ -15,12 +15,9 @@ fn load(path: &str) -> scene::Checked {
 }
 
 fn same(g: &Outcome<GpuPixel>, r: &Outcome<ScenePixel>) -> bool {
-    match (g, r) {
-        (Outcome::Value(g), Outcome::Value(r)) => {
-            g.level == r.level && g.value.triple == r.value.triple
-        }
-        (g, r) => g.kind() == r.kind(),
-    }
+    same_answer(g, r, |g, r| {
+        g.level == r.level && g.value.triple == r.value.triple
+    })
 }
 
 /// Points around the scene, and those derived from it: near every
@@ -53,8 +50,10 @@ fn check(path: &str) -> usize {
         .expect("the generated kernel compiles");
     let theirs = kernel.render(gpu).unwrap();
     let ours = f316.render();
-    let bad: Vec<usize> = (0..ours.pixels.len())
-        .filter(|&i| !same(&theirs[i], &ours.pixels[i]))
+    let bad: Vec<usize> = paired(path, &ours.pixels, &theirs)
+        .enumerate()
+        .filter(|(_, (r, g))| !same(g, r))
+        .map(|(i, _)| i)
         .collect();
     assert!(
         bad.is_empty(),
@@ -67,14 +66,11 @@ fn check(path: &str) -> usize {
     );
     let pts = points(&c);
     let g = kernel.sdf(gpu, &pts).unwrap();
-    for (p, g) in pts.iter().zip(&g) {
+    for (p, g) in paired(path, &pts, &g) {
         let r = f316.sdf(*p);
-        let agree = match (g, r) {
-            (Outcome::Value((sd, col)), Outcome::Value(v)) => {
-                sd.triple == v.sd.triple && col.triple == v.col.triple
-            }
-            (g, r) => g.kind() == r.kind(),
-        };
+        let agree = same_answer(g, &r, |(sd, col), v| {
+            sd.triple == v.sd.triple && col.triple == v.col.triple
+        });
         assert!(agree, "{path}: sdf{p:?}: gpu {g:?} ref {r:?}");
     }
     let f64_image = Described::new(RefImpl::F64, &c, Settings::default())
@@ -88,13 +84,8 @@ fn check(path: &str) -> usize {
         )
         .expect("the f32 kernel compiles");
     let f32_image = f32_kernel.render(gpu).unwrap();
-    f32_image
-        .iter()
-        .zip(&f64_image.pixels)
-        .filter(|(a, b)| match (a, b) {
-            (Outcome::Value(a), Outcome::Value(b)) => a.level != b.level,
-            _ => true,
-        })
+    paired(path, &f64_image.pixels, &f32_image)
+        .filter(|(b, a)| !same_answer(a, b, |a, b| a.level == b.level))
         .count()
 }
 

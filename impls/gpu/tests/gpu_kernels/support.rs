@@ -48,3 +48,36 @@ impl Rng {
         (self.next() >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// `inputs` and `answers` side by side, once they are known to be as many:
+/// a kernel that answers fewer or more inputs than it was given fails.
+pub fn paired<'a, I, A>(
+    what: &str,
+    inputs: &'a [I],
+    answers: &'a [A],
+) -> impl Iterator<Item = (&'a I, &'a A)> {
+    assert_eq!(
+        answers.len(),
+        inputs.len(),
+        "{what}: {} answers to {} inputs",
+        answers.len(),
+        inputs.len()
+    );
+    inputs.iter().zip(answers)
+}
+
+/// Whether two answers are the same: values that `values` calls the same,
+/// or the same trap (a `Sys.error` with the same code).
+pub fn same_answer<A, B>(
+    a: &common::Outcome<A>,
+    b: &common::Outcome<B>,
+    values: impl FnOnce(&A, &B) -> bool,
+) -> bool {
+    use common::Outcome::*;
+    match (a, b) {
+        (Value(x), Value(y)) => values(x, y),
+        (SysError(x), SysError(y)) => x == y,
+        (Hang, Hang) | (OutOfDomain, OutOfDomain) => true,
+        _ => false,
+    }
+}
