@@ -379,6 +379,10 @@ impl Implementation for Contained {
         self.inner.batch_size(level)
     }
 
+    fn adapter(&self) -> Option<gpu::AdapterDescription> {
+        self.inner.adapter()
+    }
+
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
         let Some(first) = batch.first() else {
             return Ok(Vec::new());

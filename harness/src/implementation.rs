@@ -246,6 +246,12 @@ pub trait Implementation: Send + Sync {
         None
     }
 
+    /// The GPU adapter it runs on, for an implementation that runs on one
+    /// (`harness cast` prints it).
+    fn adapter(&self) -> Option<gpu::AdapterDescription> {
+        None
+    }
+
     /// The op trace of one input (see `common::trace` for the convention),
     /// or `Unsupported` when the implementation cannot trace.
     fn trace(&self, input: &Vector) -> Result<Vec<TraceRecord>, ImplError> {

@@ -48,15 +48,19 @@ fn a_variant_that_does_not_apply_is_an_error() {
     for (label, message) in [
         (
             "ref-f64+sqrt-floor-div",
-            "ref-f64 has no variant or fault `sqrt-floor-div` (it has dither-threshold, f32-oracle)",
+            "ref-f64 has no variant or fault `sqrt-floor-div` (it has dither-threshold, fma, f32-oracle)",
         ),
         (
             "ref-f64+newton-1",
-            "ref-f64 has no variant or fault `newton-1` (it has dither-threshold, f32-oracle)",
+            "ref-f64 has no variant or fault `newton-1` (it has dither-threshold, fma, f32-oracle)",
         ),
         (
             "ref-f32+mul-keep-low",
-            "ref-f32 has no variant or fault `mul-keep-low` (it has dither-threshold)",
+            "ref-f32 has no variant or fault `mul-keep-low` (it has dither-threshold, fma)",
+        ),
+        (
+            "ref-f316+fma",
+            "ref-f316 has no variant or fault `fma` (it has mul-low-product,",
         ),
         (
             "gpu-f316+newton-3",
@@ -72,6 +76,8 @@ fn a_variant_that_does_not_apply_is_an_error() {
         "ref-f316+newton-3+dither-threshold",
         "ref-f64+dither-threshold",
         "ref-f64+f32-oracle",
+        "ref-f32+fma",
+        "ref-f64+fma",
         "jack+web-divide",
     ] {
         assert!(cast.resolve(label).is_ok(), "{label}");

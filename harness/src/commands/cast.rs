@@ -1,7 +1,8 @@
 //! `harness cast [--json]`: every implementation of the cast (the
 //! built-ins and the project file's) with its kind, number type, levels,
-//! traces, variants, roles, where it is declared, and whether it can run
-//! here: each is opened once, and one that cannot says why.
+//! traces, variants, roles, where it is declared, whether it can run
+//! here (each is opened once, and one that cannot says why) and the GPU
+//! adapter of each that runs on one.
 
 use crate::cast::{Cast, Entry, VariantInfo};
 use rayon::prelude::*;
@@ -37,6 +38,9 @@ pub struct Listed {
     pub unavailable: Option<String>,
     /// Seconds it took to open.
     pub open_s: f64,
+    /// The GPU adapter it opened on, for one that runs on a GPU.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapter: Option<gpu::AdapterDescription>,
 }
 
 /// Open `entry` and list it.
@@ -55,6 +59,7 @@ fn listed(cast: &Cast, entry: &Entry) -> Listed {
         bit_exact_group: entry.bit_exact(),
         origin: entry.origin.to_string(),
         about: entry.about.clone(),
+        adapter: opened.as_ref().ok().and_then(|imp| imp.adapter()),
         available: opened.is_ok(),
         unavailable: opened.err().map(|e| e.to_string()),
         open_s: start.elapsed().as_secs_f64(),
@@ -101,6 +106,14 @@ pub fn text(list: &[Listed]) -> String {
         }
         if l.origin != "built-in" {
             out += &format!("{}: declared at {}: {}\n", l.name, l.origin, l.about);
+        }
+        if let Some(adapter) = &l.adapter {
+            let software = if adapter.is_software() {
+                " [software]"
+            } else {
+                ""
+            };
+            out += &format!("{} runs on {adapter}{software}\n", l.name);
         }
     }
     out

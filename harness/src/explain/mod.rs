@@ -251,6 +251,12 @@ fn parse_label(label: &str) -> Result<(RefImpl, Settings)> {
     }
     let settings = parts.try_fold(Settings::default(), |s, v| {
         let variant: Variant = v.parse()?;
+        if variant == Variant::Fma {
+            bail!(
+                "{label}: the shadow engine rounds every product and sum apart, so it cannot \
+                 explain contracted multiply-adds; compare {label} with `harness diff` instead"
+            );
+        }
         anyhow::Ok(variant.apply(s))
     })?;
     Ok((implementation, settings))

@@ -91,11 +91,12 @@ impl Kind for ReferenceKind {
 }
 
 /// The variants of the reference that change `formulation`'s answers: the
-/// Float316 arithmetic's apply to ref-f316 only, the dithering fault to all.
+/// Float316 arithmetic's apply to ref-f316 only, `fma` (multiply-adds
+/// contracted) to the float formulations, the dithering fault to all.
 fn variants_of(formulation: RefImpl) -> Vec<VariantInfo> {
     Variant::ALL
         .into_iter()
-        .filter(|v| formulation == RefImpl::F316 || *v == Variant::DitherThreshold)
+        .filter(|v| v.applies_to(formulation))
         .map(|v| VariantInfo {
             name: v.name().into(),
             role: match v.kind() {

@@ -257,6 +257,10 @@ impl Implementation for ShaderAdapter {
         usize::MAX
     }
 
+    fn adapter(&self) -> Option<gpu::AdapterDescription> {
+        Some(self.shader.adapter_info().clone())
+    }
+
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
         Ok(match batch.first() {
             None => Vec::new(),

@@ -19,22 +19,36 @@ pub struct AdapterDescription {
     pub driver: String,
     /// The driver's version string.
     pub driver_info: String,
+    /// Whether it is a software rasteriser on the CPU (lavapipe, llvmpipe,
+    /// SwiftShader): no figure or verdict from it stands for a GPU's.
+    pub software: bool,
 }
 
 impl AdapterDescription {
     fn from_info(info: &wgpu::AdapterInfo) -> Self {
+        // wgpu calls a CPU rasteriser `Cpu` on Vulkan; the names catch one
+        // that a backend reports otherwise.
+        let named = |s: &str| {
+            let s = s.to_lowercase();
+            ["llvmpipe", "lavapipe", "softpipe", "swiftshader"]
+                .iter()
+                .any(|n| s.contains(n))
+        };
         AdapterDescription {
             name: info.name.clone(),
             backend: format!("{:?}", info.backend),
             device_type: format!("{:?}", info.device_type),
             driver: info.driver.clone(),
             driver_info: info.driver_info.clone(),
+            software: info.device_type == wgpu::DeviceType::Cpu
+                || named(&info.name)
+                || named(&info.driver),
         }
     }
 
     /// Whether this is a software rasteriser running on the CPU (lavapipe).
     pub fn is_software(&self) -> bool {
-        self.device_type == format!("{:?}", wgpu::DeviceType::Cpu)
+        self.software
     }
 }
 

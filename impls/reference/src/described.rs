@@ -61,6 +61,10 @@ pub enum DescribedError {
     Prepare(#[from] PrepareError),
     #[error("the dither-threshold fault exists for the hand-written seed scene only")]
     Fault,
+    #[error(
+        "the fma variant (contracted multiply-adds) exists for the hand-written seed scene only"
+    )]
+    Contraction,
     #[error("{0} has no Float316 operations to trace (only ref-f316 does)")]
     NotTraceable(RefImpl),
 }
@@ -266,6 +270,9 @@ impl Described {
     ) -> Result<Self, DescribedError> {
         if settings.dither_threshold {
             return Err(DescribedError::Fault);
+        }
+        if settings.contract_multiply_add {
+            return Err(DescribedError::Contraction);
         }
         let form = match implementation {
             RefImpl::F316 => Formulation::Float316,

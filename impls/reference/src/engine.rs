@@ -82,6 +82,21 @@ pub trait Engine {
         let _ = (a, b);
         Err(Trap::OutOfDomain)
     }
+    /// Whether the scene's multiply-adds are computed as one fused
+    /// operation each ([`Engine::mul_add`]), as a GPU driver may contract
+    /// them. Only a float engine with the `fma` variant does; every other
+    /// engine computes the product and the sum apart, in the spec's order.
+    #[inline(always)]
+    fn contracts(&self) -> bool {
+        false
+    }
+    /// `c + a * b` (called where [`Engine::contracts`]). A fused engine
+    /// rounds once; by default the product, then `add(c, product)`.
+    #[inline(always)]
+    fn mul_add(&mut self, a: Self::N, b: Self::N, c: Self::N) -> R<Self::N> {
+        let p = self.mul(a, b)?;
+        self.add(c, p)
+    }
     /// The same value with its sign flipped (not a traced operation).
     fn negate(a: Self::N) -> Self::N;
     /// Whether the sign bit is set (negative or -0).

@@ -29,6 +29,8 @@ pub trait IeeeFloat:
     fn sqrt(self) -> Self;
     fn floor(self) -> Self;
     fn powf(self, p: Self) -> Self;
+    /// `self * a + b` rounded once (IEEE fusedMultiplyAdd).
+    fn mul_add(self, a: Self, b: Self) -> Self;
     fn rem_euclid(self, r: Self) -> Self;
     fn is_sign_negative(self) -> bool;
 }
@@ -52,6 +54,9 @@ macro_rules! ieee_float {
             fn powf(self, p: Self) -> Self {
                 <$t>::powf(self, p)
             }
+            fn mul_add(self, a: Self, b: Self) -> Self {
+                <$t>::mul_add(self, a, b)
+            }
             fn rem_euclid(self, r: Self) -> Self {
                 <$t>::rem_euclid(self, r)
             }
@@ -65,14 +70,26 @@ macro_rules! ieee_float {
 ieee_float!(f64);
 ieee_float!(f32);
 
-/// The float engine: stateless, never traps, does not trace.
+/// The float engine: never traps, does not trace; `fused` when it
+/// contracts multiply-adds (the `fma` variant).
 #[derive(Clone, Copy, Debug, Default)]
-pub struct FloatEngine<T>(std::marker::PhantomData<T>);
+pub struct FloatEngine<T> {
+    fused: bool,
+    number: std::marker::PhantomData<T>,
+}
 
 impl<T> FloatEngine<T> {
-    /// A float engine.
+    /// A float engine that rounds every operation apart (the spec).
     pub fn new() -> Self {
-        FloatEngine(std::marker::PhantomData)
+        FloatEngine::contracting(false)
+    }
+
+    /// A float engine that computes multiply-adds fused when `fused`.
+    pub fn contracting(fused: bool) -> Self {
+        FloatEngine {
+            fused,
+            number: std::marker::PhantomData,
+        }
     }
 }
 
@@ -141,6 +158,18 @@ impl<T: IeeeFloat> Engine for FloatEngine<T> {
 
     fn pow(&mut self, a: T, b: T) -> R<T> {
         Ok(a.powf(b))
+    }
+
+    fn contracts(&self) -> bool {
+        self.fused
+    }
+
+    fn mul_add(&mut self, a: T, b: T, c: T) -> R<T> {
+        Ok(if self.fused {
+            a.mul_add(b, c)
+        } else {
+            c + a * b
+        })
     }
 
     fn negate(a: T) -> T {

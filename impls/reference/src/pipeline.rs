@@ -45,8 +45,12 @@ fn floor<E: Engine>(e: &mut E, k: &Consts<E::N>, p: V3<E::N>) -> R<Surface<E::N>
                 (_, true) => k.one,
                 (_, false) => k.zero,
             };
-            let checker = e.mul(parity, k.floor_checker)?;
-            let col = e.add(checker, k.floor_colour)?;
+            let col = if e.contracts() {
+                e.mul_add(parity, k.floor_checker, k.floor_colour)?
+            } else {
+                let checker = e.mul(parity, k.floor_checker)?;
+                e.add(checker, k.floor_colour)?
+            };
             Ok(Surface { sd, col })
         },
     )
@@ -75,13 +79,21 @@ fn torus<E: Engine>(e: &mut E, k: &Consts<E::N>, p: V3<E::N>) -> R<Surface<E::N>
         |e| {
             let q = vec3::sub(e, p, k.torus_centre)?;
             let xx = e.mul(q.x, q.x)?;
-            let zz = e.mul(q.z, q.z)?;
-            let r2 = e.add(xx, zz)?;
+            let r2 = if e.contracts() {
+                e.mul_add(q.z, q.z, xx)?
+            } else {
+                let zz = e.mul(q.z, q.z)?;
+                e.add(xx, zz)?
+            };
             let r = e.sqrt(r2)?;
             let d1 = e.sub(r, k.ring_radius)?;
             let dd = e.mul(d1, d1)?;
-            let yy = e.mul(q.y, q.y)?;
-            let t2 = e.add(dd, yy)?;
+            let t2 = if e.contracts() {
+                e.mul_add(q.y, q.y, dd)?
+            } else {
+                let yy = e.mul(q.y, q.y)?;
+                e.add(dd, yy)?
+            };
             let t = e.sqrt(t2)?;
             let sd = e.sub(t, k.tube_radius)?;
             Ok(Surface {
@@ -123,8 +135,7 @@ fn march<E: Engine>(
         let stop = e.frame(
             || format!("{label} step {i}"),
             |e| {
-                let along = vec3::scale(e, rd, depth)?;
-                let p = vec3::add(e, ro, along)?;
+                let p = vec3::add_scaled(e, ro, rd, depth)?;
                 let s = sdf(e, k, p)?;
                 depth = e.add(depth, s.sd)?;
                 col = s.col;
@@ -154,8 +165,7 @@ fn normal<E: Engine>(e: &mut E, k: &Consts<E::N>, p: V3<E::N>) -> R<V3<E::N>> {
             }
             let mut n = vec3::scale(e, k.normal_k[0], d[0])?;
             for (&ki, &di) in k.normal_k.iter().zip(&d).skip(1) {
-                let t = vec3::scale(e, ki, di)?;
-                n = vec3::add(e, n, t)?;
+                n = vec3::add_scaled(e, n, ki, di)?;
             }
             vec3::normalize(e, n)
         },
@@ -173,8 +183,13 @@ fn light<E: Engine>(e: &mut E, k: &Consts<E::N>, p: V3<E::N>, n: V3<E::N>) -> R<
             let c = vec3::normalize(e, c)?;
             let a = vec3::angle(e, l, n, k.one, k.zero)?;
             let a = e.double(a)?;
-            let na = vec3::scale(e, n, a)?;
-            let r = vec3::sub(e, na, l)?;
+            let r = if e.contracts() {
+                let minus_l = V3::new(E::negate(l.x), E::negate(l.y), E::negate(l.z));
+                vec3::add_scaled(e, minus_l, n, a)?
+            } else {
+                let na = vec3::scale(e, n, a)?;
+                vec3::sub(e, na, l)?
+            };
             let a = vec3::angle(e, l, n, k.one, k.zero)?;
             let diffuse = e.diffuse(k, a)?;
             let s = vec3::angle(e, r, c, k.one, k.zero)?;
@@ -203,13 +218,17 @@ pub fn shade<E: Engine>(e: &mut E, k: &Consts<E::N>, u: E::N, v: E::N) -> R<E::N
     if e.decide(Decision::Miss, [depth, k.max_distance], miss) {
         return Ok(k.background);
     }
-    let along = vec3::scale(e, rd, depth)?;
-    let p = vec3::add(e, k.camera, along)?;
+    let p = vec3::add_scaled(e, k.camera, rd, depth)?;
     let n = normal(e, k, p)?;
     let lit = light(e, k, p, n)?;
-    let value = e.mul(col, lit)?;
-    let ambient = e.ambient(k)?;
-    let value = e.add(value, ambient)?;
+    let value = if e.contracts() {
+        let ambient = e.ambient(k)?;
+        e.mul_add(col, lit, ambient)?
+    } else {
+        let value = e.mul(col, lit)?;
+        let ambient = e.ambient(k)?;
+        e.add(value, ambient)?
+    };
     e.frame(
         || "shadow".into(),
         |e| {

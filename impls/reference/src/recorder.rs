@@ -69,6 +69,13 @@ impl<E: Engine> Engine for Recorder<'_, E> {
         quarter(a) -> E::N;
     }
 
+    fn contracts(&self) -> bool {
+        self.inner.contracts()
+    }
+    fn mul_add(&mut self, a: E::N, b: E::N, c: E::N) -> R<E::N> {
+        self.inner.mul_add(a, b, c)
+    }
+
     fn decide(&mut self, decision: Decision, operands: [E::N; 2], taken: bool) -> bool {
         self.log.push(Decided {
             decision,

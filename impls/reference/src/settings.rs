@@ -4,6 +4,7 @@
 //! are the spec, and cost nothing: a variant is a field test at the point
 //! where it changes the algorithm.
 
+use crate::api::RefImpl;
 use std::fmt;
 use std::str::FromStr;
 
@@ -89,6 +90,11 @@ pub struct Settings {
     /// A pixel is white when its dithered value is not below 0.5 (spec:
     /// strictly above 0.5).
     pub dither_threshold: bool,
+    /// The float formulation computes each multiply-add of the scene as
+    /// one fused operation, rounded once (`mul_add`), as a GPU driver may
+    /// contract `a * b + c` (see [`crate::Engine::contracts`]). The spec
+    /// rounds the product and the sum apart.
+    pub contract_multiply_add: bool,
 }
 
 /// Whether a variant is a precision trade-off or a deliberate fault.
@@ -123,11 +129,14 @@ pub enum Variant {
     MulKeepLow,
     /// `dither-threshold` (fault): `>=` instead of `>` against 0.5.
     DitherThreshold,
+    /// `fma` (float formulations only): multiply-adds contracted into
+    /// fused operations, as a GPU driver may compile them.
+    Fma,
 }
 
 impl Variant {
     /// Every variant.
-    pub const ALL: [Variant; 10] = [
+    pub const ALL: [Variant; 11] = [
         Variant::MulLowProduct,
         Variant::Newton1,
         Variant::Newton3,
@@ -138,6 +147,7 @@ impl Variant {
         Variant::DivNormaliseOnce,
         Variant::MulKeepLow,
         Variant::DitherThreshold,
+        Variant::Fma,
     ];
 
     /// The command-line name.
@@ -153,13 +163,27 @@ impl Variant {
             Variant::DivNormaliseOnce => "div-normalise-once",
             Variant::MulKeepLow => "mul-keep-low",
             Variant::DitherThreshold => "dither-threshold",
+            Variant::Fma => "fma",
+        }
+    }
+
+    /// Whether it changes `implementation`'s answers: the Float316
+    /// arithmetic's variants apply to `ref-f316` only, `fma` to the float
+    /// formulations only, the dithering fault to all three.
+    pub fn applies_to(self, implementation: RefImpl) -> bool {
+        match self {
+            Variant::DitherThreshold => true,
+            Variant::Fma => implementation != RefImpl::F316,
+            _ => implementation == RefImpl::F316,
         }
     }
 
     /// Precision variant or fault.
     pub const fn kind(self) -> VariantKind {
         match self {
-            Variant::MulLowProduct | Variant::Newton1 | Variant::Newton3 => VariantKind::Precision,
+            Variant::MulLowProduct | Variant::Newton1 | Variant::Newton3 | Variant::Fma => {
+                VariantKind::Precision
+            }
             _ => VariantKind::Fault,
         }
     }
@@ -177,6 +201,7 @@ impl Variant {
             Variant::AddDropFar => s.arith.add_drops_operand_at_gap_14 = true,
             Variant::DivNormaliseOnce => s.arith.div_normalises_once = true,
             Variant::DitherThreshold => s.dither_threshold = true,
+            Variant::Fma => s.contract_multiply_add = true,
         }
         s
     }
@@ -190,7 +215,7 @@ impl fmt::Display for Variant {
 
 /// An unknown variant name.
 #[derive(Debug, thiserror::Error)]
-#[error("unknown variant `{0}` (expected one of mul-low-product, newton-1, newton-3, sqrt-floor-div, add-align-off-by-one, add-carry-bit, add-drop-far, div-normalise-once, mul-keep-low, dither-threshold)")]
+#[error("unknown variant `{0}` (expected one of mul-low-product, newton-1, newton-3, sqrt-floor-div, add-align-off-by-one, add-carry-bit, add-drop-far, div-normalise-once, mul-keep-low, dither-threshold, fma)")]
 pub struct UnknownVariant(pub String);
 
 impl FromStr for Variant {

@@ -41,12 +41,32 @@ pub fn scale<E: Engine>(e: &mut E, a: V3<E::N>, k: E::N) -> R<V3<E::N>> {
     Ok(V3::new(e.mul(a.x, k)?, e.mul(a.y, k)?, e.mul(a.z, k)?))
 }
 
-/// `add(add(mul(ax,bx), mul(ay,by)), mul(az,bz))`.
+/// `a + b * k` component-wise: `add(a, scale(b, k))`, or one multiply-add
+/// per component in an engine that [contracts](Engine::contracts).
+pub fn add_scaled<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>, k: E::N) -> R<V3<E::N>> {
+    if e.contracts() {
+        return Ok(V3::new(
+            e.mul_add(b.x, k, a.x)?,
+            e.mul_add(b.y, k, a.y)?,
+            e.mul_add(b.z, k, a.z)?,
+        ));
+    }
+    let t = scale(e, b, k)?;
+    add(e, a, t)
+}
+
+/// `add(add(mul(ax,bx), mul(ay,by)), mul(az,bz))`; contracted, each
+/// product after the first is fused with the sum before it:
+/// `fma(az, bz, fma(ay, by, ax*bx))`.
 pub fn dot<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>) -> R<E::N> {
     e.frame(
         || "dot".into(),
         |e| {
             let xx = e.mul(a.x, b.x)?;
+            if e.contracts() {
+                let s = e.mul_add(a.y, b.y, xx)?;
+                return e.mul_add(a.z, b.z, s);
+            }
             let yy = e.mul(a.y, b.y)?;
             let s = e.add(xx, yy)?;
             let zz = e.mul(a.z, b.z)?;
@@ -66,13 +86,17 @@ pub fn length<E: Engine>(e: &mut E, v: V3<E::N>) -> R<E::N> {
     )
 }
 
-/// `(ay*bz - by*az, az*bx - bz*ax, ax*by - bx*ay)`, each as `sub(mul, mul)`.
+/// `(ay*bz - by*az, az*bx - bz*ax, ax*by - bx*ay)`, each as `sub(mul, mul)`;
+/// contracted, the second product is fused: `fma(-by, az, ay*bz)`.
 pub fn cross<E: Engine>(e: &mut E, a: V3<E::N>, b: V3<E::N>) -> R<V3<E::N>> {
     e.frame(
         || "cross".into(),
         |e| {
             let mut c = |p: E::N, q: E::N, r: E::N, s: E::N| -> R<E::N> {
                 let m1 = e.mul(p, q)?;
+                if e.contracts() {
+                    return e.mul_add(E::negate(r), s, m1);
+                }
                 let m2 = e.mul(r, s)?;
                 e.sub(m1, m2)
             };

@@ -10,6 +10,9 @@ fn adapter_is_named() {
     let info = gpu.adapter_info();
     assert!(!info.name.is_empty());
     assert!(!info.backend.is_empty());
+    if info.driver == "llvmpipe" {
+        assert!(info.is_software(), "{info}");
+    }
     eprintln!("adapter: {info}");
 }
 
