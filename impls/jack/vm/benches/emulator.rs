@@ -5,8 +5,12 @@
 //! one machine, and many clones of a snapshot in parallel with rayon. Also
 //! the real thing: the Jack raymarcher (`impls/jack/raymarcher`, compiled
 //! with jack-compiler) computing pixels from a snapshot taken after
-//! `Main.init`.
+//! `Main.init`. And the corpus of programs written in other styles
+//! (`tests/support/corpus.rs`), each on both engines, with a table of their
+//! rates beside the raymarcher's.
 
+#[path = "../tests/support/corpus.rs"]
+mod corpus;
 #[path = "../tests/support/raymarcher.rs"]
 mod support;
 
@@ -14,6 +18,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use hack_vm::{Config, Engine, Exit, Machine, Program};
 use rayon::prelude::*;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 use support::raymarcher;
 
 const ROUNDS: i16 = 2000;
@@ -100,5 +105,133 @@ fn jack_raymarcher(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, emulator, jack_raymarcher);
+/// VM instructions per corpus run: about 20 M (0.01-0.05 s a run).
+const CORPUS_STEPS: u64 = 20_000_000;
+
+/// A corpus program loaded, with the size of a run of about
+/// [`CORPUS_STEPS`] (rounds of `Main.run`, or steps from the start).
+struct Loaded {
+    entry: &'static corpus::Entry,
+    program: Arc<Program>,
+    size: u64,
+}
+
+fn load_corpus() -> Vec<Loaded> {
+    corpus::CORPUS
+        .iter()
+        .map(|entry| {
+            let profile = hack_vm::Profile::Desktop;
+            let program = entry.program(profile);
+            let size = match entry.work {
+                corpus::Work::Main => CORPUS_STEPS,
+                corpus::Work::Rounds => {
+                    let mut m = entry.machine(&program, profile, Engine::Native);
+                    entry.start(&mut m, 1);
+                    let exit = m.run(None);
+                    assert!(matches!(exit, Exit::Returned(_)), "{}: {exit}", entry.name);
+                    (CORPUS_STEPS / m.steps()).clamp(1, 32767)
+                }
+            };
+            Loaded {
+                entry,
+                program,
+                size,
+            }
+        })
+        .collect()
+}
+
+/// One run of `l` on `engine` (compiled code compiled beforehand): its
+/// steps.
+fn corpus_run(l: &Loaded, engine: Engine) -> u64 {
+    let mut m = l
+        .entry
+        .machine(&l.program, hack_vm::Profile::Desktop, engine);
+    let size = i16::try_from(l.size).unwrap_or(i16::MAX);
+    l.entry.start(&mut m, size);
+    let exit = match l.entry.work {
+        corpus::Work::Main => m.run(Some(l.size)),
+        corpus::Work::Rounds => m.run(None),
+    };
+    assert!(
+        matches!(exit, Exit::Returned(_) | Exit::Budget { .. }),
+        "{}: {exit}",
+        l.entry.name
+    );
+    m.steps()
+}
+
+/// Each corpus program on each engine, under criterion.
+fn corpus_programs(c: &mut Criterion) {
+    let loaded = load_corpus();
+    let mut g = c.benchmark_group("hack-vm corpus");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    for l in &loaded {
+        let _ = l.program.compile_native(hack_vm::Profile::Desktop);
+        for engine in [Engine::Interp, Engine::Native] {
+            g.throughput(Throughput::Elements(corpus_run(l, engine)));
+            g.bench_function(format!("{}, {engine:?}", l.entry.name), |b| {
+                b.iter(|| corpus_run(l, engine))
+            });
+        }
+    }
+    g.finish();
+}
+
+/// The best rate (VM instructions per second) of five runs of `run`,
+/// which returns its steps.
+fn best_rate(mut run: impl FnMut() -> u64) -> f64 {
+    (0..5)
+        .map(|_| {
+            let t = Instant::now();
+            let steps = run();
+            steps as f64 / t.elapsed().as_secs_f64()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A table on stderr: each corpus program's rate on each engine, and its
+/// ratio to the raymarcher's on the same engine, measured one after
+/// another in this process (so the ratios hold on a loaded machine).
+fn corpus_table(_: &mut Criterion) {
+    let loaded = load_corpus();
+    let ray = raymarcher();
+    let _ = ray.compile_native(hack_vm::Profile::Desktop);
+    let engines = [Engine::Interp, Engine::Native];
+    let ray_rates = engines.map(|engine| {
+        let init = support::initialised(&ray, engine);
+        best_rate(|| pixels(&init))
+    });
+    eprintln!(
+        "\n| program | interpreter | compiled | interpreter / raymarcher | compiled / raymarcher |"
+    );
+    eprintln!("|---|---:|---:|---:|---:|");
+    let row = |name: &str, rates: [f64; 2]| {
+        eprintln!(
+            "| {name} | {:.3} G/s | {:.3} G/s | {:.2} | {:.2} |",
+            rates[0] / 1e9,
+            rates[1] / 1e9,
+            rates[0] / ray_rates[0],
+            rates[1] / ray_rates[1]
+        );
+    };
+    row("raymarcher (ours), 32 pixels", ray_rates);
+    for l in &loaded {
+        let _ = l.program.compile_native(hack_vm::Profile::Desktop);
+        row(
+            l.entry.name,
+            engines.map(|engine| best_rate(|| corpus_run(l, engine))),
+        );
+    }
+}
+
+criterion_group!(
+    benches,
+    emulator,
+    jack_raymarcher,
+    corpus_programs,
+    corpus_table
+);
 criterion_main!(benches);

@@ -68,8 +68,9 @@ proptest! {
         labels in prop::collection::vec(0usize..60, 3),
         args in prop::array::uniform2(any::<i16>()),
         web in any::<bool>(),
+        pad in pad(),
     ) {
-        let src = random_program(body, labels);
+        let src = random_program(body, labels, pad);
         let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("generated programs load");
         let profile = if web { hack_vm::Profile::Web } else { hack_vm::Profile::Desktop };
         let config = Config { profile, engine: Engine::Interp, ..Config::default() };
@@ -160,6 +161,8 @@ fn expression() -> impl Strategy<Value = Vec<String>> {
                     "call Math.multiply 2",
                     "call Math.divide 2",
                     "call Main.g 2",
+                    "call Main.m 2",
+                    "call Main.s 2",
                 ])
             )
                 .prop_map(|(a, b, op)| [a, b, vec![op.to_string()]].concat()),
@@ -191,6 +194,7 @@ fn statement() -> impl Strategy<Value = Stmt> {
             "push constant 400\npop constant 1", "push constant 250\npop constant 2",
             "push constant 7\nreturn",
         ]).prop_map(|r| Stmt::Raw(r.to_string())),
+        1 => (0u16..8).prop_map(|k| Stmt::Raw(arg_beside_stack(k))),
     ];
     leaf.prop_recursive(3, 24, 4, |inner| {
         let body = prop::collection::vec(inner, 0..4);
@@ -242,17 +246,20 @@ fn render(stmts: &[Stmt], labels: &mut u32, out: &mut Vec<String>) {
 fn structured_case() -> impl Strategy<Value = EngineCase> {
     (
         prop::collection::vec(statement(), 1..8),
-        prop::array::uniform2(any::<i16>()),
+        // Three arguments cover every `argument` index the statements use
+        // (so compiled code runs them); two fail the entry test at some.
+        prop::collection::vec(any::<i16>(), 2..=3),
         any::<bool>(),
         prop::collection::vec(0u64..400, 0..5),
         prop::option::of(1u64..50),
         prop::option::of(any::<u8>()),
+        pad(),
     )
-        .prop_map(|(stmts, args, web, budgets, hold, watched)| {
+        .prop_map(|(stmts, args, web, budgets, hold, watched, pad)| {
             let mut body = Vec::new();
             render(&stmts, &mut 0, &mut body);
             EngineCase {
-                src: random_program(body, Vec::new()),
+                src: random_program(body, Vec::new(), pad),
                 args,
                 web,
                 budgets,
@@ -270,24 +277,32 @@ fn enter(program: &std::sync::Arc<Program>, config: Config, args: &[i16]) -> Mac
     m
 }
 
-/// `Main.f` made of `body` with labels L0.. inserted at `labels`, and the
-/// functions it may call.
-fn random_program(body: Vec<String>, labels: Vec<usize>) -> String {
+/// `Main.f` made of `body` with labels L0.. inserted at `labels`, placed
+/// after a function of `pad` two-command statements (so that its code lies
+/// that deep in the program), and the functions it may call.
+fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
     let mut lines: Vec<String> = body;
     for (k, at) in labels.into_iter().enumerate() {
         lines.insert(at.min(lines.len()), format!("label L{k}"));
     }
     format!(
-        "function Main.main 0\npush constant 0\nreturn\nfunction Main.f 3\n{}\npush constant 0\nreturn\n{}",
+        "function Main.main 0\npush constant 0\nreturn\nfunction Main.pad 0\n{}push constant 0\nreturn\n\
+         function Main.f 3\n{}\npush constant 0\nreturn\n{}",
+        "push constant 1\npop temp 0\n".repeat(usize::from(pad)),
         lines.join("\n"),
         // Fused argument reads are checked once per call: a call with
         // too few arguments must fail exactly where plain code fails.
         // Main.m opens like a method, which a fused call runs itself.
-        // Main.r recurses (calls and returns inside compiled code).
+        // Main.r recurses (calls and returns inside compiled code). Main.s
+        // and Main.w are setters (through THIS, and through THAT, which
+        // can point into their own frame). Main.g, Main.m, Main.s and
+        // Main.w with two arguments run inline in compiled callers.
         "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n\
          function Main.m 1\npush argument 0\npop pointer 0\npush this 0\npush argument 1\nadd\nreturn\n\
          function Main.r 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
-         push argument 0\npush constant 1\nsub\ncall Main.r 1\npush constant 3\nadd\nreturn\n"
+         push argument 0\npush constant 1\nsub\ncall Main.r 1\npush constant 3\nadd\nreturn\n\
+         function Main.s 0\npush argument 0\npop pointer 0\npush argument 1\npop this 1\npush constant 0\nreturn\n\
+         function Main.w 0\npush argument 0\npop pointer 1\npush argument 1\npop that 0\npush constant 0\nreturn\n"
     )
 }
 
@@ -295,7 +310,7 @@ fn random_program(body: Vec<String>, labels: Vec<usize>) -> String {
 #[derive(Debug, Clone)]
 struct EngineCase {
     src: String,
-    args: [i16; 2],
+    args: Vec<i16>,
     web: bool,
     /// Successive budgets (the last run has 3000 more).
     budgets: Vec<u64>,
@@ -311,15 +326,16 @@ fn engine_case() -> impl Strategy<Value = EngineCase> {
     (
         prop::collection::vec(command(), 1..60),
         prop::collection::vec(0usize..60, 3),
-        prop::array::uniform2(any::<i16>()),
+        prop::collection::vec(any::<i16>(), 2..=2),
         any::<bool>(),
         prop::collection::vec(0u64..200, 0..4),
         prop::option::of(1u64..50),
         prop::option::of(any::<u8>()),
+        pad(),
     )
         .prop_map(
-            |(body, labels, args, web, budgets, hold, watched)| EngineCase {
-                src: random_program(body, labels),
+            |(body, labels, args, web, budgets, hold, watched, pad)| EngineCase {
+                src: random_program(body, labels, pad),
                 args,
                 web,
                 budgets,
@@ -327,6 +343,20 @@ fn engine_case() -> impl Strategy<Value = EngineCase> {
                 watched,
             },
         )
+}
+
+/// The length of the function before `Main.f` (see [`random_program`]):
+/// none, or enough that `Main.f` starts hundreds of instructions into the
+/// program, as most functions of a real program do.
+fn pad() -> impl Strategy<Value = u16> {
+    prop_oneof![Just(0u16), 1u16..300]
+}
+
+/// ARG set to LCL + `k` (LCL read from RAM[1] through THAT = 0): the
+/// `argument` words then lie on or beside the stack words that compiled
+/// code keeps in registers (Main.f has three locals).
+fn arg_beside_stack(k: u16) -> String {
+    format!("push constant 0\npop pointer 1\npush that 1\npush constant {k}\nadd\npop constant 2")
 }
 
 /// An Auto threshold that lands inside the runs: most random programs end
@@ -428,8 +458,8 @@ fn pointer_reads_of_held_stack_words_agree() {
                 push local 1\npush local 2\nadd\nreturn";
     for web in [false, true] {
         let case = EngineCase {
-            src: random_program(vec![body.to_string()], vec![]),
-            args: [0, 0],
+            src: random_program(vec![body.to_string()], vec![], 0),
+            args: vec![0, 0],
             web,
             budgets: vec![],
             hold: None,
@@ -437,6 +467,73 @@ fn pointer_reads_of_held_stack_words_agree() {
         };
         engines_agree(&case, Engine::Native, None).expect("the engines agree");
     }
+}
+
+/// `Main.f` of `body` after a function of `pad` statements, run on both
+/// engines under each profile in `profiles` from each first budget in
+/// `budgets` (then to the end): they agree.
+fn agree_on(body: &str, pad: u16, args: &[i16], webs: &[bool], budgets: &[u64]) {
+    for &web in webs {
+        for &budget in budgets {
+            let case = EngineCase {
+                src: random_program(vec![body.to_string()], vec![], pad),
+                args: args.to_vec(),
+                web,
+                budgets: vec![budget],
+                hold: None,
+                watched: None,
+            };
+            if let Err(e) = engines_agree(&case, Engine::Native, None) {
+                panic!("web {web}, first budget {budget}: {e}");
+            }
+        }
+    }
+}
+
+/// ARG on the stack words a block keeps in registers (code whose stack
+/// depths are static, where the function's entry test must see it): an
+/// `argument` read of a word just pushed, and a write under a pushed word.
+#[test]
+fn argument_words_on_the_held_stack_agree() {
+    for k in 0..6 {
+        let body = format!(
+            "{}\npush constant 5\npush constant 6\npush argument 0\npush argument 1\nadd\nadd\n\
+             push constant 9\npop argument 1\nadd\npop local 0\npush local 0\nreturn",
+            arg_beside_stack(k)
+        );
+        agree_on(&body, 0, &[1, 2], &[false, true], &[0]);
+    }
+}
+
+/// A block of 1,791 pushes, the whole desktop stack less one word,
+/// entered with SP one word too high (code whose depths are not static,
+/// where each block tests its stack): the last push overflows.
+#[test]
+fn a_block_as_long_as_the_stack_overflows_at_its_last_push() {
+    let unsettled = "push constant 0\nif-goto X\npush constant 1\nlabel X";
+    for (sp, pushes) in [(257, 1791), (256, 1791), (256, 1792), (258, 1790)] {
+        let body = format!(
+            "{unsettled}\npush constant {sp}\npop constant 0\n{}pop temp 0",
+            "push constant 1\n".repeat(pushes)
+        );
+        agree_on(&body, 0, &[0, 0], &[false], &[0]);
+    }
+}
+
+/// Budget stops in a function that starts deep in the program, on every
+/// step of a path that falls through into a block which does not test the
+/// budget (a forward jump's target), and of the code after a call, under
+/// both profiles.
+#[test]
+fn budget_stops_deep_in_the_program_agree() {
+    let body = format!(
+        "push constant 0\nif-goto X\n{}label X\n{}push constant 2\ncall Main.r 1\npop temp 2\n{}push constant 1",
+        "push constant 1\npop temp 0\n".repeat(10),
+        "push constant 2\npop temp 1\n".repeat(10),
+        "push constant 3\npop temp 3\n".repeat(10)
+    );
+    let budgets: Vec<u64> = (1..90).collect();
+    agree_on(&body, 300, &[0, 0], &[false, true], &budgets);
 }
 
 #[test]
@@ -476,7 +573,13 @@ fn command() -> impl Strategy<Value = String> {
         2 => (0u16..2).prop_map(|p| format!("pop pointer {p}")),
         1 => value.prop_map(|v| format!("pop constant {}", v % 6)),
         4 => prop::sample::select(vec!["add", "sub", "neg", "eq", "gt", "lt", "and", "or", "not"]).prop_map(String::from),
-        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1"]).prop_map(String::from),
+        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1", "call Main.s 2", "call Main.w 2"]).prop_map(String::from),
+        // A write k words above SP (read through RAM[0]) by an inlined
+        // setter: onto its arguments, its frame (RET, the saved registers)
+        // or its own stack.
+        1 => (0u16..10, 0u16..300).prop_map(|(k, v)| format!(
+            "push constant 0\npop pointer 1\npush that 0\npush constant {k}\nadd\npush constant {v}\ncall Main.w 2"
+        )),
         1 => Just("push constant 24576\npop pointer 1\npush that 0".to_string()),
         // THIS or THAT at SP (read through RAM[0]): their accesses meet
         // the stack words that compiled code keeps in registers.
@@ -484,6 +587,7 @@ fn command() -> impl Strategy<Value = String> {
         1 => (0u8..3).prop_map(|l| format!("if-goto L{l}")),
         1 => (0u8..3).prop_map(|l| format!("goto L{l}")),
         1 => Just("return".to_string()),
+        1 => (0u16..8).prop_map(arg_beside_stack),
         // Shapes the fuser turns into one instruction: runs of moves
         // between consecutive words, and an array read into a variable.
         1 => (seg.clone(), 0u16..3, seg.clone(), 0u16..3, 1u16..6).prop_map(|(s, i, d, j, n)| {

@@ -170,6 +170,86 @@ struct Translator<'a, 'b> {
     /// and the lowest held by a block that uses `argument` (from
     /// `static_ok`).
     range: Option<(i32, i32, i32)>,
+    /// While the body of a callee run inline is translated: the call, so
+    /// that leaving compiled code inside it first makes the frame the call
+    /// would have pushed on the frame stack.
+    inlined: Option<Inlined>,
+}
+
+/// A callee that a compiled call runs inline, in the caller's code: the
+/// instructions from where a call lands (`start`) to its first `return`
+/// (`end` is past it) run straight, none left to the interpreter, and
+/// every `local` and `argument` access lies inside the frame the call
+/// makes. One-line methods (getters, setters) and small leaf functions.
+#[derive(Clone, Copy, Debug)]
+struct Inline {
+    start: u32,
+    end: u32,
+    /// Steps of the whole run, its `return` included.
+    steps: u64,
+    /// The highest SP over the run, relative to the callee's LCL.
+    top: i32,
+}
+
+/// Callees of more instructions are called, not run inline.
+const MAX_INLINE_OPS: usize = 24;
+
+/// Whether a call of `callee` with `nargs` arguments runs it inline (see
+/// [`Inline`]).
+fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
+    let f = &env.program.functions[callee as usize];
+    if !f.headed {
+        return None;
+    }
+    let start = f.start - u32::from(env.timing.function_step);
+    let ops = &env.code[start as usize..];
+    let len = ops
+        .iter()
+        .take(MAX_INLINE_OPS)
+        .position(|op| *op == Op::Return)?;
+    let body = &ops[..len];
+    let fits = |op: &Op| match *op {
+        Op::PushLocal(i) | Op::PopLocal(i) => i < f.n_vars,
+        Op::PushArg(i) | Op::PopArg(i) => i < nargs,
+        op => blocks::kind(op) == Kind::Straight,
+    };
+    if !body.iter().all(fits) {
+        return None;
+    }
+    // Where the call zeroes the locals (web), the run starts above them.
+    let locals = if env.timing.function_step {
+        0
+    } else {
+        i32::from(f.n_vars)
+    };
+    let run = &ops[..=len];
+    let (min_depth, max_depth) = blocks::depth_range(run);
+    (min_depth >= 0).then(|| Inline {
+        start,
+        end: start + len as u32 + 1,
+        steps: run.iter().map(|op| op.steps()).sum(),
+        top: locals + max_depth,
+    })
+}
+
+/// The call whose callee runs inline (see `Translator::inlined`), and
+/// the caller's registers it saved in the frame.
+#[derive(Clone, Copy)]
+struct Inlined {
+    callee: FnId,
+    /// The call's argument count.
+    n: u16,
+    /// The caller's instruction after the call, and the RET word.
+    ret_pc: u32,
+    ret: u16,
+    /// The frame stack's length at the call, and the caller's argument
+    /// count and flags.
+    frames_len: Value,
+    nargs: Value,
+    flags: Value,
+    /// The caller's LCL and ARG.
+    lcl: Value,
+    arg: Value,
 }
 
 /// How a `this` or `that` access of a block tests its address.
@@ -321,6 +401,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         budgets,
         frame_shown: false,
         range: None,
+        inlined: None,
     };
     t.range = t.static_range();
     // A compiled call passes the registers; the dispatcher, the context.
@@ -606,9 +687,22 @@ impl Translator<'_, '_> {
         self.leave_with(pc, pc);
     }
 
-    /// Leave compiled code with `code` and `pc`, in this function.
+    /// Leave compiled code with `code` and `pc`, in this function (or in
+    /// the callee being run inline, after pushing its frame on the frame
+    /// stack).
     fn leave_with(&mut self, code: Value, pc: Value) {
-        let me = self.c32(i64::from(self.env.id));
+        let mut me = self.env.id;
+        if let Some(call) = self.inlined {
+            self.push_frame_entry(
+                call.frames_len,
+                call.ret_pc,
+                call.ret,
+                call.nargs,
+                call.flags,
+            );
+            me = call.callee;
+        }
+        let me = self.c32(i64::from(me));
         let args = [
             BlockArg::Value(code),
             BlockArg::Value(pc),
@@ -703,15 +797,10 @@ impl Translator<'_, '_> {
             low = low.min(d + blk.min_depth);
             high = high.max(d + blk.max_depth);
             let code = &self.env.code[blk.start as usize..blk.end as usize];
-            if let Some(&Op::Call { callee, .. }) = code.last() {
+            if let Some(&Op::Call { callee, nargs, .. }) = code.last() {
                 let at = depths[(blk.end - 1 - self.start) as usize].expect("reached");
-                let n_vars = if self.env.timing.function_step {
-                    0
-                } else {
-                    self.env.program.functions[usize::from(callee)].n_vars
-                };
                 low = low.min(at);
-                high = high.max(at + 5 + i32::from(n_vars));
+                high = high.max(at + 5 + self.frame_top(FnId::from(callee), nargs));
             }
             if let (Some((lo, _)), rest) = held_span(code) {
                 if reach(rest)[ARGUMENT].is_some() {
@@ -890,7 +979,20 @@ impl Translator<'_, '_> {
             depth: 0,
             slots: Vec::new(),
         };
-        for pc in blk.start..blk.end {
+        self.ops(&mut s, blk.start, blk.end, steps0, blk);
+        if blocks::kind(self.env.code[blk.end as usize - 1]) == Kind::Straight {
+            // Falls through into the next block (or the interpreted
+            // instruction that ends this one).
+            self.end_block(&mut s, steps0, blk);
+            self.jump_to(blk.end);
+        }
+    }
+
+    /// Translate instructions `from..to` of a block entered with step count
+    /// `steps0` and stack `s` (`blk` is the block of the function being
+    /// translated, which a final jump, call or return charges).
+    fn ops(&mut self, s: &mut Stack, from: u32, to: u32, steps0: Value, blk: &Block) {
+        for pc in from..to {
             let op = self.env.code[pc as usize];
             let may_touch_stack = self.may_touch_stack(op, pc);
             if may_touch_stack {
@@ -898,14 +1000,14 @@ impl Translator<'_, '_> {
             }
             let before = Before {
                 pc,
-                k: u64::from(pc - blk.start),
+                k: u64::from(pc - from),
                 depth: s.depth,
                 steps0,
-                sp0,
-                base,
+                sp0: s.sp0,
+                base: s.base,
                 pending: s.pending(),
             };
-            self.op(op, &mut s, &before, blk);
+            self.op(op, s, &before, blk);
             if may_touch_stack {
                 s.forget();
             }
@@ -913,12 +1015,6 @@ impl Translator<'_, '_> {
                 s.flush(self);
                 s.forget();
             }
-        }
-        if blocks::kind(self.env.code[blk.end as usize - 1]) == Kind::Straight {
-            // Falls through into the next block (or the interpreted
-            // instruction that ends this one).
-            self.end_block(&mut s, steps0, blk);
-            self.jump_to(blk.end);
         }
     }
 
@@ -1353,7 +1449,8 @@ impl Translator<'_, '_> {
         if self.depths.is_none() {
             // (With static depths the entry test covered the frame.)
             let base64 = self.b.ins().uextend(T64, base);
-            let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(n_vars));
+            let top = self.frame_top(callee, n);
+            let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(top));
             let end = i64::from(self.env.timing.stack_end());
             ok.push(
                 self.b
@@ -1384,30 +1481,24 @@ impl Translator<'_, '_> {
         for k in 0..i32::from(n_vars) {
             self.b.ins().store(self.mem.ram, zero, p, 10 + 2 * k);
         }
-        // The frame stack entry (`Frame`, two words: caller and ret_pc; ret,
-        // nargs, flags, and watched = false).
-        let frames = self.fixed_field(offset_of!(Ctx, frames));
-        let off = self
-            .b
-            .ins()
-            .imul_imm_s(len, std::mem::size_of::<Frame>() as i64);
-        let fp = self.b.ins().iadd(frames, off);
-        let head = i64::from(self.env.id) | i64::from(before.pc + 1) << 32;
-        let head = self.b.ins().iconst(T64, head);
-        self.b.ins().store(self.mem.frames, head, fp, 0);
-        let nargs = self.b.use_var(self.v.nargs);
-        let nargs = self.b.ins().uextend(T64, nargs);
-        let nargs = self.b.ins().ishl_imm_u(nargs, 16);
-        let flags = self.b.use_var(self.v.flags);
-        let flags = self.b.ins().uextend(T64, flags);
-        let flags = self.b.ins().ishl_imm_u(flags, 32);
-        let tail = self.b.ins().bor(nargs, flags);
-        let tail = self.b.ins().bor_imm_u(tail, i64::from(ret));
-        self.b.ins().store(self.mem.frames, tail, fp, 8);
-        let len1 = self.b.ins().iadd_imm_s(len, 1);
-        self.b
-            .ins()
-            .store(self.mem.ctx, len1, ctx, field(offset_of!(Ctx, frames_len)));
+        if let Some(inline) = inline_callee(&self.env, callee, n) {
+            let call = Inlined {
+                callee,
+                n,
+                ret_pc: before.pc + 1,
+                ret,
+                frames_len: len,
+                nargs: self.b.use_var(self.v.nargs),
+                flags: self.b.use_var(self.v.flags),
+                lcl: self.b.use_var(self.v.lcl),
+                arg: self.b.use_var(self.v.arg),
+            };
+            let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
+            self.run_inline(call, inline, base, p, steps, n_vars, blk);
+            return;
+        }
+        let (nargs, flags) = (self.b.use_var(self.v.nargs), self.b.use_var(self.v.flags));
+        self.push_frame_entry(len, before.pc + 1, ret, nargs, flags);
 
         // The callee's registers go as arguments (`native::Entry`).
         let this = self.b.use_var(self.v.this);
@@ -1456,22 +1547,206 @@ impl Translator<'_, '_> {
             self.b.def_var(var, x);
             restored.push(x);
         }
-        // LCL and ARG as before the call keep the entry test's word; if the
-        // callee changed them, the interpreter runs on from the next one.
-        let same_lcl = self.b.ins().icmp(IntCC::Equal, restored[0], lcl);
-        let same_arg = self.b.ins().icmp(IntCC::Equal, restored[1], arg);
+        self.continue_after_call(restored[0], restored[1], lcl, arg, before.pc + 1);
+    }
+
+    /// After a call returned in compiled code with LCL and ARG `restored`
+    /// from its frame: if they are the caller's `lcl` and `arg`, which keep
+    /// the entry test's word, continue at `next`; if the callee changed
+    /// them, the interpreter runs on from there.
+    fn continue_after_call(
+        &mut self,
+        restored_lcl: Value,
+        restored_arg: Value,
+        lcl: Value,
+        arg: Value,
+        next: u32,
+    ) {
+        let same_lcl = self.b.ins().icmp(IntCC::Equal, restored_lcl, lcl);
+        let same_arg = self.b.ins().icmp(IntCC::Equal, restored_arg, arg);
         let same = self.b.ins().band(same_lcl, same_arg);
         let (cont, bad) = (self.b.create_block(), self.b.create_block());
         self.b.ins().brif(same, cont, NONE, bad, NONE);
         self.b.switch_to_block(bad);
         self.b.set_cold_block(bad);
-        let pc = self.c32(i64::from(before.pc + 1));
+        let pc = self.c32(i64::from(next));
         self.leave_with(pc, pc);
         self.b.switch_to_block(cont);
         // The same values: keep the ones the function entered with.
         self.b.def_var(self.v.lcl, lcl);
         self.b.def_var(self.v.arg, arg);
-        self.jump_to(before.pc + 1);
+        self.jump_to(next);
+    }
+
+    /// The highest SP that a call of `callee` with `nargs` arguments
+    /// reaches before its callee's own code tests the stack, relative to
+    /// the callee's LCL: its locals where the call zeroes them, the whole
+    /// run of a callee run inline.
+    fn frame_top(&self, callee: FnId, nargs: u16) -> i32 {
+        match inline_callee(&self.env, callee, nargs) {
+            Some(inline) => inline.top,
+            None if self.env.timing.function_step => 0,
+            None => i32::from(self.env.program.functions[callee as usize].n_vars),
+        }
+    }
+
+    /// Push the frame stack entry of a call (`Frame`, two words: caller and
+    /// ret_pc; ret, nargs, flags, and watched = false) at index `len`.
+    fn push_frame_entry(&mut self, len: Value, ret_pc: u32, ret: u16, nargs: Value, flags: Value) {
+        let frames = self.fixed_field(offset_of!(Ctx, frames));
+        let off = self
+            .b
+            .ins()
+            .imul_imm_s(len, std::mem::size_of::<Frame>() as i64);
+        let fp = self.b.ins().iadd(frames, off);
+        let head = i64::from(self.env.id) | i64::from(ret_pc) << 32;
+        let head = self.b.ins().iconst(T64, head);
+        self.b.ins().store(self.mem.frames, head, fp, 0);
+        let nargs = self.b.ins().uextend(T64, nargs);
+        let nargs = self.b.ins().ishl_imm_u(nargs, 16);
+        let flags = self.b.ins().uextend(T64, flags);
+        let flags = self.b.ins().ishl_imm_u(flags, 32);
+        let tail = self.b.ins().bor(nargs, flags);
+        let tail = self.b.ins().bor_imm_u(tail, i64::from(ret));
+        self.b.ins().store(self.mem.frames, tail, fp, 8);
+        let len1 = self.b.ins().iadd_imm_s(len, 1);
+        self.b.ins().store(
+            self.mem.ctx,
+            len1,
+            self.ctx,
+            field(offset_of!(Ctx, frames_len)),
+        );
+    }
+
+    /// Run callee `inline` of `call` in this function's code, its frame
+    /// written to RAM at `p` (host address of the caller's SP `base`), from
+    /// step count `steps` (the call's included), the locals zeroed by the
+    /// call being `zeroed`: the callee's registers in the variables, its
+    /// instructions translated as a block of its own (leaving compiled code
+    /// anywhere in it pushes its frame stack entry first), then its return.
+    #[allow(clippy::too_many_arguments)]
+    fn run_inline(
+        &mut self,
+        call: Inlined,
+        inline: Inline,
+        base: Value,
+        p: Value,
+        steps: Value,
+        zeroed: u16,
+        blk: &Block,
+    ) {
+        let f = &self.env.program.functions[call.callee as usize];
+        let n = call.n;
+        let nargs = self.c16(i64::from(n));
+        let flags = self.c32(i64::from(f.entry_flags(n)));
+        let lcl = self.b.ins().iadd_imm_s(base, 5);
+        let arg = self.b.ins().iadd_imm_s(base, -i64::from(n));
+        let sp0 = self.b.ins().iadd_imm_s(lcl, i64::from(zeroed));
+        for (var, x) in [
+            (self.v.steps, steps),
+            (self.v.lcl, lcl),
+            (self.v.arg, arg),
+            (self.v.sp, sp0),
+            (self.v.nargs, nargs),
+            (self.v.flags, flags),
+        ] {
+            self.b.def_var(var, x);
+        }
+        let code = &self.env.code[inline.start as usize..inline.end as usize];
+        let saved = (
+            self.reach,
+            std::mem::replace(&mut self.ptr_tests, ptr_tests(code)),
+            self.block_start,
+            self.stack_span,
+            self.flags_known,
+        );
+        self.reach = reach(code);
+        self.block_start = inline.start;
+        self.flags_known = 0;
+        self.inlined = Some(call);
+        let sbase = self.b.ins().iadd_imm_s(p, 2 * (5 + i64::from(zeroed)));
+        let (span, _) = held_span(code);
+        self.stack_span = span.map(|(lo, hi)| {
+            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(lo));
+            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(hi));
+            (lo, hi)
+        });
+        let entry = Before {
+            pc: inline.start,
+            k: 0,
+            depth: 0,
+            steps0: steps,
+            sp0,
+            base: sbase,
+            pending: Vec::new(),
+        };
+        let ok = self.fits(steps, inline.steps);
+        self.guard(ok, &entry);
+        let mut s = Stack {
+            sp0,
+            base: sbase,
+            depth: 0,
+            slots: Vec::new(),
+        };
+        self.ops(&mut s, inline.start, inline.end - 1, steps, blk);
+        self.return_inline(&mut s, call, inline, steps);
+        (
+            self.reach,
+            self.ptr_tests,
+            self.block_start,
+            self.stack_span,
+            self.flags_known,
+        ) = saved;
+    }
+
+    /// The `return` of a callee run inline: as `ret` does, with what the
+    /// call knows (the frame is the call's, the caller's code continues).
+    fn return_inline(&mut self, s: &mut Stack, call: Inlined, inline: Inline, steps0: Value) {
+        s.flush(self);
+        let before = Before {
+            pc: inline.end - 1,
+            k: u64::from(inline.end - 1 - inline.start),
+            depth: s.depth,
+            steps0,
+            sp0: s.sp0,
+            base: s.base,
+            pending: Vec::new(),
+        };
+        // The RET word intact (else the interpreter returns where it says).
+        let frame = self.b.use_var(self.v.lcl);
+        let fr = self.word(frame);
+        let ret_word = self.b.ins().load(T16, self.mem.ram, fr, -10);
+        let ok = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::Equal, ret_word, i64::from(call.ret as i16));
+        self.guard(ok, &before);
+        let x = s.pop(self);
+        let arg = self.b.use_var(self.v.arg);
+        self.store_word(arg, x);
+        self.inlined = None;
+        let steps = self.b.ins().iadd_imm_s(steps0, inline.steps as i64);
+        let sp = self.b.ins().iadd_imm_s(arg, 1);
+        for (var, x) in [
+            (self.v.steps, steps),
+            (self.v.sp, sp),
+            (self.v.nargs, call.nargs),
+            (self.v.flags, call.flags),
+        ] {
+            self.b.def_var(var, x);
+        }
+        let mut restored = Vec::new();
+        for (var, at) in [
+            (self.v.lcl, -8),
+            (self.v.arg, -6),
+            (self.v.this, -4),
+            (self.v.that, -2),
+        ] {
+            let r = self.b.ins().load(T16, self.mem.ram, fr, at);
+            self.b.def_var(var, r);
+            restored.push(r);
+        }
+        self.continue_after_call(restored[0], restored[1], call.lcl, call.arg, call.ret_pc);
     }
 
     /// `return` to a caller whose frame is on the frame stack with its RET
