@@ -52,6 +52,18 @@ impl<T> Outcome<T> {
         }
     }
 
+    /// Whether `self` and `other` are the same answer: two values that
+    /// `values` calls the same, or the same trap (a `Sys.error` with the
+    /// same code).
+    pub fn same_as<U>(&self, other: &Outcome<U>, values: impl FnOnce(&T, &U) -> bool) -> bool {
+        match (self, other) {
+            (Outcome::Value(x), Outcome::Value(y)) => values(x, y),
+            (Outcome::SysError(x), Outcome::SysError(y)) => x == y,
+            (Outcome::Hang, Outcome::Hang) | (Outcome::OutOfDomain, Outcome::OutOfDomain) => true,
+            _ => false,
+        }
+    }
+
     /// The value, if this is one.
     pub fn value(self) -> Option<T> {
         match self {

@@ -4,7 +4,7 @@
 //! those derived from the scene (`vectors::gen::scene_derived`);
 //! the f32 kernel renders and is compared with ref-f64 by its error.
 
-use crate::support::{gpu, paired, same_answer, Rng};
+use crate::support::{gpu, paired, Rng};
 use common::{Outcome, F316};
 use gpu::GpuPixel;
 use reference::{Described, RefImpl, ScenePixel, Settings};
@@ -15,7 +15,7 @@ fn load(path: &str) -> scene::Checked {
 }
 
 fn same(g: &Outcome<GpuPixel>, r: &Outcome<ScenePixel>) -> bool {
-    same_answer(g, r, |g, r| {
+    g.same_as(r, |g, r| {
         g.level == r.level && g.value.triple == r.value.triple
     })
 }
@@ -68,7 +68,7 @@ fn check(path: &str) -> usize {
     let g = kernel.sdf(gpu, &pts).unwrap();
     for (p, g) in paired(path, &pts, &g) {
         let r = f316.sdf(*p);
-        let agree = same_answer(g, &r, |(sd, col), v| {
+        let agree = g.same_as(&r, |(sd, col), v| {
             sd.triple == v.sd.triple && col.triple == v.col.triple
         });
         assert!(agree, "{path}: sdf{p:?}: gpu {g:?} ref {r:?}");
@@ -85,7 +85,7 @@ fn check(path: &str) -> usize {
         .expect("the f32 kernel compiles");
     let f32_image = f32_kernel.render(gpu).unwrap();
     paired(path, &f64_image.pixels, &f32_image)
-        .filter(|(b, a)| !same_answer(a, b, |a, b| a.level == b.level))
+        .filter(|(b, a)| !a.same_as(b, |a, b| a.level == b.level))
         .count()
 }
 

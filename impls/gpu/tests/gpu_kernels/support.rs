@@ -65,19 +65,3 @@ pub fn paired<'a, I, A>(
     );
     inputs.iter().zip(answers)
 }
-
-/// Whether two answers are the same: values that `values` calls the same,
-/// or the same trap (a `Sys.error` with the same code).
-pub fn same_answer<A, B>(
-    a: &common::Outcome<A>,
-    b: &common::Outcome<B>,
-    values: impl FnOnce(&A, &B) -> bool,
-) -> bool {
-    use common::Outcome::*;
-    match (a, b) {
-        (Value(x), Value(y)) => values(x, y),
-        (SysError(x), SysError(y)) => x == y,
-        (Hang, Hang) | (OutOfDomain, OutOfDomain) => true,
-        _ => false,
-    }
-}
