@@ -136,10 +136,15 @@ else
     levels=(all)
     shader_level=all
 fi
-# `diff A B` at each level: exit 0 agreement, 1 divergence.
+# `diff A B` at each level B answers: exit 0 agreement, 1 divergence, 3 not
+# compared (gpu-f32 computes no Float316 operation, and a level asked for and
+# not answered is not compared, so it is not asked for ops).
 diff_pair() {
     local a=$1 b=$2 level
     for level in "${levels[@]}"; do
+        if [ "$b" = gpu-f32 ] && [ "$level" = ops ]; then
+            continue
+        fi
         "$bin" diff "$a" "$b" --level "$level" --report "$out/diff-$a-$b/$level" || return $?
     done
 }

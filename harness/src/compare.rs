@@ -228,13 +228,19 @@ fn numbers_of(answer: &Answer) -> Vec<Num> {
     }
 }
 
+/// The distance from `oracle` to `x` in units in the last place of f32, the
+/// unit taken at the larger of the two magnitudes: finite at an oracle of
+/// 0 (where the unit at 0 itself would make any error astronomical), and 0
+/// when both are 0.
 fn ulps_f32(x: f64, oracle: f64) -> f64 {
-    let o = oracle as f32;
-    let ulp = if o.is_finite() && o != 0.0 {
-        let bits = o.abs().to_bits();
-        f64::from(f32::from_bits(bits + 1)) - f64::from(o.abs())
+    let at = x.abs().max(oracle.abs()) as f32;
+    if at == 0.0 {
+        return 0.0;
+    }
+    let ulp = if at.is_finite() {
+        f64::from(f32::from_bits(at.to_bits() + 1)) - f64::from(at)
     } else {
-        f64::from(f32::MIN_POSITIVE)
+        f64::from(f32::MAX) - f64::from(f32::from_bits(f32::MAX.to_bits() - 1))
     };
     (x - oracle).abs() / ulp
 }
@@ -794,15 +800,18 @@ mod tests {
     }
 
     /// Distances in f32 units in the last place, at 1, at a power of two
-    /// (the ulp above it), and at zero (the smallest normal as the unit).
+    /// (the ulp above it), and at zero (the unit at the subject's value).
     #[test]
     fn f32_ulps_are_exact() {
         let ulp_at_one = f64::from(f32::EPSILON);
         assert_eq!(ulps_f32(1.0 + ulp_at_one, 1.0), 1.0);
         assert_eq!(ulps_f32(1.0 - 3.0 * ulp_at_one, 1.0), 3.0);
+        // At an oracle of 0 the unit is the subject's own: finite, at most
+        // 2^23 or so, never the 1e38 of the unit at 0.
+        let at_zero = ulps_f32(1e-7, 0.0);
+        assert!(at_zero > 1e6 && at_zero < 2f64.powi(24), "{at_zero}");
+        assert_eq!(ulps_f32(0.0, 0.0), 0.0);
         assert_eq!(ulps_f32(-4.0 - 8.0 * ulp_at_one, -4.0), 2.0);
-        let tiny = f64::from(f32::MIN_POSITIVE);
-        assert_eq!(ulps_f32(2.5 * tiny, 0.0), 2.5);
     }
 
     #[test]

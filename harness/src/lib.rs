@@ -31,3 +31,4 @@ pub mod stability;
 pub mod sweep;
 pub mod testkit;
 pub mod text;
+pub mod verdict;

@@ -5,7 +5,7 @@
 //! need it; and the error figures of one render against another.
 
 use crate::cast::Cast;
-use crate::implementation::{Answer, Implementation};
+use crate::implementation::{Answer, Implementation, Numbers};
 use crate::report::images::Grid;
 use crate::report::RenderImages;
 use crate::runner::{self, RunOptions};
@@ -24,10 +24,8 @@ pub struct FullRender {
     pub setup_s: f64,
     /// Wall-clock seconds for every pixel.
     pub render_s: f64,
-    /// Bits and shades.
+    /// Bits, shades and the pixels that trapped.
     pub images: RenderImages,
-    /// Pixels whose computation trapped (drawn white, shade NaN).
-    pub trapped: u64,
     /// Each pixel's cost, when the implementation counts one (the Jack
     /// program's VM instructions).
     pub costs: Option<Grid<u64>>,
@@ -63,24 +61,28 @@ pub fn full_image_set() -> VectorSet {
 
 impl FullRender {
     /// A full render from each pixel's `(white, shade)` in row order;
-    /// `None` for a pixel whose computation trapped, which is never drawn:
-    /// white, as the Hack screen starts.
+    /// `None` for a pixel whose computation trapped: a trap in the image,
+    /// never a colour (its bit and shade are placeholders that
+    /// [`RenderImages::traps`] marks).
     pub fn from_pixels(
         label: &str,
         setup_s: f64,
         render_s: f64,
         pixels: impl IntoIterator<Item = Option<(bool, f64)>>,
     ) -> Result<FullRender> {
-        let mut trapped = 0;
+        let mut traps = Vec::new();
         let (bits, shades): (Vec<bool>, Vec<f64>) = pixels
             .into_iter()
             .map(|p| {
-                p.unwrap_or_else(|| {
-                    trapped += 1;
-                    (true, f64::NAN)
-                })
+                traps.push(p.is_none());
+                p.unwrap_or((true, f64::NAN))
             })
             .unzip();
+        let traps = if traps.contains(&true) {
+            Some(Grid::new(WIDTH, HEIGHT, traps)?)
+        } else {
+            None
+        };
         Ok(FullRender {
             label: label.into(),
             setup_s,
@@ -88,23 +90,26 @@ impl FullRender {
             images: RenderImages {
                 bits: Grid::new(WIDTH, HEIGHT, bits)?,
                 shades: Some(Grid::new(WIDTH, HEIGHT, shades)?),
+                traps,
             },
-            trapped,
             costs: None,
         })
     }
 }
 
-/// Open `label` from the cast and render every pixel. Fails when the
-/// implementation cannot be opened (unknown, unavailable) or gives no
-/// answers.
-pub fn render(cast: &Cast, label: &str, progress: bool) -> Result<FullRender> {
+/// Open `label` from the cast and render every pixel: the render and the
+/// implementation's number type. Fails when the implementation cannot be
+/// opened (unknown, unavailable) or gives no answers.
+pub fn render(cast: &Cast, label: &str, progress: bool) -> Result<(FullRender, Numbers)> {
     let start = Instant::now();
     let imp = cast
         .open(label)
         .with_context(|| format!("implementation `{label}`"))?;
     let setup_s = start.elapsed().as_secs_f64();
-    Ok(render_with(imp.as_ref(), setup_s, progress)?.0)
+    Ok((
+        render_with(imp.as_ref(), setup_s, progress)?.0,
+        imp.numbers(),
+    ))
 }
 
 /// Every pixel through `imp`, opened in `setup_s` seconds: the render and
@@ -118,7 +123,7 @@ pub fn render_with(
     let start = Instant::now();
     let (answers, costs) = match imp.render_image(progress) {
         Some(image) => {
-            let image = image.map_err(|e| anyhow!("{label}: {e}"))?;
+            let image = image.map_err(|e| anyhow::Error::new(e).context(label.clone()))?;
             (image.pixels, image.costs)
         }
         None => {
@@ -126,7 +131,10 @@ pub fn render_with(
                 .into_iter()
                 .next()
                 .context("the runner returned no run")?;
-            (run.answers.map_err(|e| anyhow!("{label}: {e}"))?, None)
+            let answers = run
+                .answers
+                .map_err(|e| anyhow::Error::new(e).context(label.clone()))?;
+            (answers, None)
         }
     };
     let render_s = start.elapsed().as_secs_f64();
@@ -158,30 +166,40 @@ pub fn spec_image() -> Result<Grid<bool>> {
     )?)
 }
 
-/// Mean and max absolute shade error of `subject` against `oracle` (pixels
-/// that trapped on either side are left out) and dithered flips.
-pub fn error_against(
-    subject: &RenderImages,
-    oracle: &RenderImages,
-) -> Result<(Option<(f64, f64)>, u64)> {
-    let flips = subject
-        .bits
-        .positions_where(&oracle.bits, |a, b| a != b)?
-        .len() as u64;
-    let errors = match (&subject.shades, &oracle.shades) {
-        (Some(s), Some(o)) => {
-            s.same_size(o)?;
-            let diffs: Vec<f64> = s
-                .data()
-                .iter()
-                .zip(o.data())
-                .map(|(a, b)| (a - b).abs())
-                .filter(|d| d.is_finite())
-                .collect();
-            let max = diffs.iter().copied().fold(0f64, f64::max);
-            Some((diffs.iter().sum::<f64>() / diffs.len().max(1) as f64, max))
+/// The error figures of one whole image against the oracle's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageError {
+    /// Mean and max absolute shade error over the pixels both answered
+    /// (`None` without shades on both sides).
+    pub shade: Option<(f64, f64)>,
+    /// Pixels that differ: a different dithered bit, or a trap on one side
+    /// only.
+    pub flips: u64,
+    /// Pixels the subject trapped on where the oracle answered (or the
+    /// other way round), counted as such, never dropped.
+    pub traps: u64,
+    pub pixels: u64,
+}
+
+impl ImageError {
+    /// The figures of `subject` against `oracle`.
+    pub fn of(subject: &RenderImages, oracle: &RenderImages) -> Result<ImageError> {
+        Ok(ImageError {
+            shade: subject.shade_error(oracle)?,
+            flips: subject.differing(oracle)?.len() as u64,
+            traps: subject.trap_mismatches(oracle),
+            pixels: subject.bits.data().len() as u64,
+        })
+    }
+
+    /// Why these figures diverge beyond the policy of a subject computing
+    /// with `numbers`, if they do: a trap against a value, or more flips
+    /// than the policy's fraction.
+    pub fn beyond_policy(&self, numbers: Numbers) -> Option<String> {
+        crate::report::PairGate {
+            bit_exact: false,
+            flip_limit: Some(crate::compare::Thresholds::for_subject(numbers).max_flip_fraction),
         }
-        _ => None,
-    };
-    Ok((errors, flips))
+        .judge(self.pixels, self.flips, None, self.traps)
+    }
 }

@@ -8,7 +8,7 @@
 //! one in its last bits; every other field is reproduced exactly.
 
 use crate::compare::{Comparison, Group, MAX_KEPT};
-use crate::implementation::Implementation;
+use crate::implementation::{ImplError, Implementation};
 use crate::runner::{diff_set, LevelReport, RunOptions};
 use std::collections::BTreeMap;
 use vectors::{Shard, VectorSet};
@@ -70,6 +70,18 @@ pub struct Merged {
     pub count: u32,
     /// The shards not given (K of K/N).
     pub missing: Vec<u32>,
+    /// Every implementation that gave no answers (or stopped early) in a
+    /// shard: the shard, the implementation's label, the set and why.
+    pub failures: Vec<ShardFailure>,
+}
+
+/// An implementation's failure in one shard.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShardFailure {
+    pub shard: Shard,
+    pub label: String,
+    pub set: String,
+    pub error: ImplError,
 }
 
 /// Join shard reports (each the reports of one `diff --shard K/N` run, its
@@ -109,6 +121,18 @@ pub fn merge(parts: &[Vec<LevelReport>]) -> Result<Merged, MergeError> {
     }
     let count = count.expect("at least one part");
     let missing = (0..count).filter(|k| !seen.contains_key(k)).collect();
+    let failures = parts
+        .iter()
+        .flatten()
+        .flat_map(|r| {
+            r.failures().map(|(label, e)| ShardFailure {
+                shard: r.shard.unwrap_or(Shard::WHOLE),
+                label: label.to_string(),
+                set: r.set.clone(),
+                error: e.clone(),
+            })
+        })
+        .collect();
     let reports = (0..first.len())
         .map(|s| merge_set(parts.iter().map(|p| &p[s])))
         .collect::<Result<_, _>>()?;
@@ -116,6 +140,7 @@ pub fn merge(parts: &[Vec<LevelReport>]) -> Result<Merged, MergeError> {
         reports,
         count,
         missing,
+        failures,
     })
 }
 
@@ -128,30 +153,36 @@ fn merge_set<'a>(parts: impl Iterator<Item = &'a LevelReport>) -> Result<LevelRe
         run.seconds = parts.iter().map(|p| p.runs[i].seconds).sum();
         run.error = parts.iter().find_map(|p| p.runs[i].error.clone());
     }
-    let pairs = |p: &LevelReport| -> Vec<(String, String)> {
-        p.comparisons
-            .iter()
-            .map(|c| (c.a.clone(), c.b.clone()))
-            .collect()
-    };
-    if let Some(p) = parts.iter().find(|p| pairs(p) != pairs(parts[0])) {
-        return Err(MergeError::Mismatch(format!(
-            "set {}: compared pairs differ ({:?} against {:?})",
-            p.set,
-            pairs(p),
-            pairs(parts[0])
-        )));
+    // A pair is missing from a shard where one side gave no answer at all:
+    // each pair is merged over the shards that compared it.
+    let mut pairs: Vec<(String, String)> = Vec::new();
+    for c in parts.iter().flat_map(|p| &p.comparisons) {
+        let pair = (c.a.clone(), c.b.clone());
+        if !pairs.contains(&pair) {
+            pairs.push(pair);
+        }
     }
-    out.comparisons = (0..out.comparisons.len())
-        .map(|c| merge_comparison(parts.iter().map(|p| &p.comparisons[c]), out.vectors))
+    out.comparisons = pairs
+        .iter()
+        .map(|(a, b)| {
+            merge_comparison(
+                parts
+                    .iter()
+                    .flat_map(|p| &p.comparisons)
+                    .filter(|c| (&c.a, &c.b) == (a, b)),
+            )
+        })
         .collect();
     Ok(out)
 }
 
-fn merge_comparison<'a>(parts: impl Iterator<Item = &'a Comparison>, vectors: usize) -> Comparison {
+/// One pair's comparisons in several shards as one: the vectors each
+/// actually compared are summed (a shard whose implementation stopped early
+/// compared fewer than it holds).
+fn merge_comparison<'a>(parts: impl Iterator<Item = &'a Comparison>) -> Comparison {
     let parts: Vec<&Comparison> = parts.collect();
     let mut out = parts[0].clone();
-    out.vectors = vectors;
+    out.vectors = parts.iter().map(|c| c.vectors).sum();
     let found: usize = parts.iter().map(|c| c.divergences.len() + c.omitted).sum();
     let mut divergences: Vec<_> = parts.iter().flat_map(|c| c.divergences.clone()).collect();
     divergences.sort_by_key(|d| d.index);

@@ -10,7 +10,13 @@ use std::fmt::{self, Write};
 pub const PRINTED: usize = 12;
 
 fn divergence(out: &mut String, c: &Comparison, d: &Divergence) -> fmt::Result {
-    let tolerated = if d.tolerated { ", within policy" } else { "" };
+    // A tolerated difference (a flip, a shade) is judged with the others,
+    // by the set's flip fraction: within policy only when that holds.
+    let tolerated = match (d.tolerated, c.findings.is_empty()) {
+        (false, _) => ", beyond policy",
+        (true, true) => ", within policy (judged by the flip fraction)",
+        (true, false) => ", counted in the flip fraction, which is beyond policy",
+    };
     writeln!(
         out,
         "    #{} {} [{}] {}{tolerated}",
@@ -64,20 +70,35 @@ pub fn comparison(c: &Comparison) -> String {
         };
         writeln!(out, "  {} vs {}: policy {policy}", c.a, c.b)?;
         if let Some(s) = &c.stats {
-            let ulps = s
-                .max_ulps_f32
-                .map(|u| format!(", max {u:.1} ulps f32"))
-                .unwrap_or_default();
-            writeln!(
-                out,
-                "    figures: {} values, max abs {:.3e}, mean abs {:.3e}, max rel {:.3e}{ulps}; {} of {} pixels flip",
-                s.values, s.max_abs, s.mean_abs, s.max_rel, s.flips, s.pixels
-            )?;
+            let values = if s.values == 0 {
+                "0 values (error figures n/a)".to_string()
+            } else {
+                let ulps = s
+                    .max_ulps_f32
+                    .map(|u| format!(", max {u:.1} ulps f32"))
+                    .unwrap_or_default();
+                format!(
+                    "{} values, max abs {:.3e}, mean abs {:.3e}, max rel {:.3e}{ulps}",
+                    s.values, s.max_abs, s.mean_abs, s.max_rel
+                )
+            };
+            let flips = if s.pixels == 0 {
+                "no dithered pixels".to_string()
+            } else {
+                format!("{} of {} pixels flip", s.flips, s.pixels)
+            };
+            writeln!(out, "    figures: {values}; {flips}")?;
         }
         for finding in &c.findings {
             writeln!(out, "    FINDING: {finding}")?;
         }
         let total: usize = c.groups.iter().map(|g| g.count).sum();
+        let beyond: usize = c
+            .groups
+            .iter()
+            .filter(|g| !g.tolerated)
+            .map(|g| g.count)
+            .sum();
         if !c.diverged {
             let note = if total > 0 {
                 format!(" ({total} differences within policy)")
@@ -86,9 +107,13 @@ pub fn comparison(c: &Comparison) -> String {
             };
             writeln!(out, "    no divergence on {} vectors{note}", c.vectors)?;
         } else {
+            let judged = match total - beyond {
+                0 => String::new(),
+                n => format!(", {n} judged by the flip fraction"),
+            };
             writeln!(
                 out,
-                "    DIVERGENCE: {total} differences on {} vectors",
+                "    DIVERGENCE: {beyond} differences beyond policy{judged} on {} vectors",
                 c.vectors
             )?;
         }
@@ -98,7 +123,11 @@ pub fn comparison(c: &Comparison) -> String {
         writeln!(out, "    groups:")?;
         for g in &c.groups {
             let op = g.op.map(|o| format!("{o} / ")).unwrap_or_default();
-            let tolerated = if g.tolerated { ", within policy" } else { "" };
+            let tolerated = if g.tolerated {
+                ", judged by the flip fraction"
+            } else {
+                ""
+            };
             writeln!(
                 out,
                 "      {op}{}: {} x{} (first #{}){tolerated}",

@@ -7,7 +7,7 @@
 
 use common::{Op, Outcome, F316};
 use harness::cast::Cast;
-use harness::commands::check::{no_divergence_between, Verdict};
+use harness::commands::check::{no_divergence_between, Bisect};
 use harness::contain::{Contained, Failure, FailureKind, Watchdog};
 use harness::implementation::{Answer, Bitmap, ImageAnswers, ImplError, Implementation, Numbers};
 use harness::pipe::{Pipe, PipeConfig};
@@ -254,7 +254,7 @@ fn check_calls_a_contained_panic_or_hang_of_the_implementation_under_test_bad() 
     let reference = Cast::builtin().open("ref-f316").unwrap();
     for subject in [faulty(true), faulty(false)] {
         let verdict = no_divergence_between(reference.as_ref(), &subject, &[doubles()]).unwrap();
-        let Verdict::Bad(why) = &verdict else {
+        let Bisect::Bad(why) = &verdict else {
             panic!("bad expected: {verdict:?}")
         };
         assert!(why.contains(&subject.label()), "{why}");

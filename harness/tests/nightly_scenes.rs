@@ -136,7 +136,8 @@ fn a_bad_scene_file_fails_the_night_naming_the_field() {
     std::fs::write(&file, bad).unwrap();
     let out = dir.path().join("nightly");
     let o = night(&out, file.to_str().unwrap());
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert_eq!(o.status.code(), Some(3), "not compared: {}", text(&o));
+    assert!(text(&o).contains("failed: scene "), "{}", text(&o));
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     let problems = report["problems"].to_string();

@@ -9,7 +9,7 @@ use harness::cast::Cast;
 use harness::implementation::Implementation;
 use harness::measure;
 use harness::report::model::{Render, RunMeta};
-use harness::report::{PixelLocalizer, ReportBuilder};
+use harness::report::{PairGate, PixelLocalizer, ReportBuilder};
 use harness::runner::{self, RunOptions};
 use harness::stability;
 use std::process::Command;
@@ -21,7 +21,7 @@ fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
     let mut builder =
         ReportBuilder::new(&dir.join("report"), RunMeta::collect(), cast.role_names()).unwrap();
     for label in ["ref-f316", "ref-f64"] {
-        let full = measure::render(&cast, label, false).unwrap();
+        let (full, _) = measure::render(&cast, label, false).unwrap();
         builder
             .add_render(
                 Render {
@@ -40,7 +40,7 @@ fn build_report(dir: &std::path::Path) -> std::path::PathBuf {
         .add_pair(
             "ref-f316",
             "ref-f64",
-            false,
+            PairGate::default(),
             PixelLocalizer::Impossible("ref-f64 computes with f64".into()),
             |x, y| format!("harness diff ref-f316 ref-f64 --vectors repro/pixel-{x}-{y}.json"),
         )

@@ -13,13 +13,13 @@
 //! - `--min-speed IMPL PIXELS_PER_SEC`: IMPL renders the whole image at
 //!   least that fast (wall clock, this machine).
 
-use crate::cast::OpenError;
 use crate::cast::{Cast, CastError};
 use crate::commands::diff::{sets_for, LevelArg};
 use crate::contain::Failure;
 use crate::implementation::{ImplError, Implementation};
-use crate::measure;
+use crate::measure::{self, ImageError};
 use crate::runner::{diff_set, RunOptions};
+use crate::verdict::{self, one_line};
 use anyhow::{Context, Result};
 use std::process::ExitCode;
 use vectors::VectorSet;
@@ -58,9 +58,9 @@ pub enum Metric {
     Flips,
 }
 
-/// The answer to a check.
+/// The answer to a check, in `git bisect run`'s terms.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Verdict {
+pub enum Bisect {
     /// The comparison holds.
     Good(String),
     /// It fails.
@@ -69,22 +69,22 @@ pub enum Verdict {
     Undecidable(String),
 }
 
-impl Verdict {
+impl Bisect {
     /// The exit status for `git bisect run`: 0, 1 or 125.
     pub fn exit_code(&self) -> u8 {
         match self {
-            Verdict::Good(_) => 0,
-            Verdict::Bad(_) => 1,
-            Verdict::Undecidable(_) => UNDECIDABLE,
+            Bisect::Good(_) => 0,
+            Bisect::Bad(_) => 1,
+            Bisect::Undecidable(_) => UNDECIDABLE,
         }
     }
 
     /// The one line printed.
     pub fn line(&self) -> String {
         match self {
-            Verdict::Good(why) => format!("good: {why}"),
-            Verdict::Bad(why) => format!("bad: {why}"),
-            Verdict::Undecidable(why) => format!("skip: {why}"),
+            Bisect::Good(why) => format!("good: {why}"),
+            Bisect::Bad(why) => format!("bad: {why}"),
+            Bisect::Undecidable(why) => format!("skip: {why}"),
         }
     }
 }
@@ -100,8 +100,8 @@ fn parse_number(what: &str, text: &str) -> Result<f64> {
     Ok(v)
 }
 
-/// Decide the question; every failure to decide is [`Verdict::Undecidable`].
-pub fn decide(args: &CheckArgs, cast: &Cast) -> Verdict {
+/// Decide the question; every failure to decide is [`Bisect::Undecidable`].
+pub fn decide(args: &CheckArgs, cast: &Cast) -> Bisect {
     let result = if let Some(ab) = &args.no_divergence {
         no_divergence(cast, &ab[0], &ab[1], args.level)
     } else if let Some(v) = &args.max_error {
@@ -112,34 +112,21 @@ pub fn decide(args: &CheckArgs, cast: &Cast) -> Verdict {
         Err(anyhow::anyhow!("no question given"))
     };
     result.unwrap_or_else(|e| match contained_failure(&e) {
-        Some(f) => Verdict::Bad(one_line(&f.to_string())),
-        None => Verdict::Undecidable(format!("{e:#}")),
+        Some(f) => Bisect::Bad(one_line(&f.to_string())),
+        None => Bisect::Undecidable(format!("{e:#}")),
     })
 }
 
 /// The contained failure of an implementation of its own (not a batch
 /// left unrun) behind an error, if that is what it is.
 fn contained_failure(e: &anyhow::Error) -> Option<&Failure> {
-    e.chain().find_map(|cause| {
-        let imp = cause.downcast_ref::<ImplError>().or_else(|| {
-            cause.downcast_ref::<OpenError>().and_then(|o| match o {
-                OpenError::Impl(i) => Some(i),
-                _ => None,
-            })
-        });
-        match imp {
-            Some(ImplError::Contained(f)) if f.is_own() => Some(f.as_ref()),
-            _ => None,
-        }
-    })
+    match verdict::implementation_failure(e) {
+        Some(ImplError::Contained(f)) if f.is_own() => Some(f.as_ref()),
+        _ => None,
+    }
 }
 
-/// A multi-line message (a failure with its stderr lines) on one line.
-fn one_line(text: &str) -> String {
-    text.lines().map(str::trim).collect::<Vec<_>>().join(" ")
-}
-
-fn no_divergence(cast: &Cast, a: &str, b: &str, level: Option<LevelArg>) -> Result<Verdict> {
+fn no_divergence(cast: &Cast, a: &str, b: &str, level: Option<LevelArg>) -> Result<Bisect> {
     let sets = sets_for(level, None)?;
     let ia = cast
         .open(a)
@@ -156,7 +143,7 @@ pub fn no_divergence_between(
     ia: &dyn Implementation,
     ib: &dyn Implementation,
     sets: &[VectorSet],
-) -> Result<Verdict> {
+) -> Result<Bisect> {
     let (a, b) = (ia.label(), ib.label());
     let mut compared = 0;
     for set in sets {
@@ -165,7 +152,7 @@ pub fn no_divergence_between(
             match e {
                 ImplError::Unsupported(_) => continue,
                 ImplError::Contained(f) if f.is_own() => {
-                    return Ok(Verdict::Bad(one_line(&format!("on {}: {f}", set.name))));
+                    return Ok(Bisect::Bad(one_line(&format!("on {}: {f}", set.name))));
                 }
                 _ => anyhow::bail!("{label} on {}: {e}", set.name),
             }
@@ -181,7 +168,7 @@ pub fn no_divergence_between(
                 let at = first
                     .map(|d| format!(", first at {}", d.input))
                     .unwrap_or_default();
-                return Ok(Verdict::Bad(format!(
+                return Ok(Bisect::Bad(format!(
                     "{a} and {b} diverge on {} ({} level){at}",
                     set.name, set.level
                 )));
@@ -189,51 +176,58 @@ pub fn no_divergence_between(
         }
     }
     anyhow::ensure!(compared > 0, "{a} and {b} share no level to compare");
-    Ok(Verdict::Good(format!(
+    Ok(Bisect::Good(format!(
         "{a} and {b} agree on {compared} vectors"
     )))
 }
 
-fn max_error(cast: &Cast, imp: &str, threshold: f64, metric: Metric) -> Result<Verdict> {
+fn max_error(cast: &Cast, imp: &str, threshold: f64, metric: Metric) -> Result<Bisect> {
     let oracle_name = &cast.oracle().name;
-    let subject = measure::render(cast, imp, false)?;
-    let oracle = measure::render(cast, oracle_name, false)?;
-    let (errors, flips) = measure::error_against(&subject.images, &oracle.images)?;
+    let (subject, _) = measure::render(cast, imp, false)?;
+    let (oracle, _) = measure::render(cast, oracle_name, false)?;
+    let figures = ImageError::of(&subject.images, &oracle.images)?;
+    // A trap is an answer that no error figure can bound.
+    if figures.traps > 0 {
+        return Ok(Bisect::Bad(format!(
+            "{imp}: {} of {} pixels trapped where {oracle_name} answered",
+            figures.traps, figures.pixels
+        )));
+    }
     let value = match metric {
-        Metric::Flips => flips as f64,
-        Metric::Max => errors.context("no shades to compare")?.1,
-        Metric::Mean => errors.context("no shades to compare")?.0,
+        Metric::Flips => figures.flips as f64,
+        Metric::Max => figures.shade.context("no shades to compare")?.1,
+        Metric::Mean => figures.shade.context("no shades to compare")?.0,
     };
     let what =
         format!("{imp}: {metric:?} error against {oracle_name} {value:e}, threshold {threshold:e}")
             .to_lowercase();
     Ok(if value <= threshold {
-        Verdict::Good(what)
+        Bisect::Good(what)
     } else {
-        Verdict::Bad(what)
+        Bisect::Bad(what)
     })
 }
 
-fn min_speed(cast: &Cast, imp: &str, threshold: f64) -> Result<Verdict> {
-    let r = measure::render(cast, imp, false)?;
+fn min_speed(cast: &Cast, imp: &str, threshold: f64) -> Result<Bisect> {
+    let (r, _) = measure::render(cast, imp, false)?;
     let speed = r.pixels() as f64 / r.render_s.max(1e-9);
     let what = format!("{imp}: {speed:.0} pixels/s, threshold {threshold:.0}");
     Ok(if speed >= threshold {
-        Verdict::Good(what)
+        Bisect::Good(what)
     } else {
-        Verdict::Bad(what)
+        Bisect::Bad(what)
     })
 }
 
 /// Run `harness check`: print the verdict's line and exit with its code
 /// (a project file that cannot be read makes the question undecidable).
 pub fn run(args: CheckArgs, cast: Result<Cast, CastError>) -> Result<ExitCode> {
-    let verdict = match cast {
+    let answer = match cast {
         Ok(cast) => decide(&args, &cast),
-        Err(e) => Verdict::Undecidable(e.to_string()),
+        Err(e) => Bisect::Undecidable(e.to_string()),
     };
-    println!("{}", verdict.line());
-    Ok(ExitCode::from(verdict.exit_code()))
+    println!("{}", answer.line());
+    Ok(ExitCode::from(answer.exit_code()))
 }
 
 #[cfg(test)]
@@ -242,10 +236,10 @@ mod tests {
 
     #[test]
     fn exit_codes_follow_git_bisect() {
-        assert_eq!(Verdict::Good("x".into()).exit_code(), 0);
-        assert_eq!(Verdict::Bad("x".into()).exit_code(), 1);
-        assert_eq!(Verdict::Undecidable("x".into()).exit_code(), 125);
-        assert_eq!(Verdict::Undecidable("no GPU".into()).line(), "skip: no GPU");
+        assert_eq!(Bisect::Good("x".into()).exit_code(), 0);
+        assert_eq!(Bisect::Bad("x".into()).exit_code(), 1);
+        assert_eq!(Bisect::Undecidable("x".into()).exit_code(), 125);
+        assert_eq!(Bisect::Undecidable("no GPU".into()).line(), "skip: no GPU");
     }
 
     #[test]

@@ -3,14 +3,18 @@
 //! compare the first with each other one, print the divergences (each with
 //! the localize command that reproduces it) and, with `--report`, write a
 //! JSON report and a one-line repro file per divergence.
-//! Exit 0: no divergence; 1: divergence; 2: usage or input error (also when
-//! an implementation is unavailable: nothing was compared).
+//! Every implementation that opens runs; one that does not is reported
+//! with the reason. The exit status is the run's [`Verdict`]: 0 agreed, 1 a
+//! divergence beyond policy, 3 something asked for was not compared (a
+//! failed open, a crash or hang, a level asked for and not answered); 2 a
+//! usage or input error.
 
-use crate::cast::Cast;
+use crate::cast::{Cast, OpenError};
 use crate::merge::run_shard;
 use crate::report::atomic::{write_file, StagingDir};
 use crate::runner::{LevelReport, RunOptions};
 use crate::text;
+use crate::verdict::Verdict;
 use anyhow::{bail, Context};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -64,6 +68,11 @@ pub struct DiffArgs {
     /// shards' reports.
     #[arg(long)]
     pub shard: Option<Shard>,
+    /// An implementation that cannot run on this machine (no Vulkan
+    /// adapter, no interpreter) is reported as skipped without failing the
+    /// run.
+    #[arg(long)]
+    pub allow_unavailable: bool,
 }
 
 /// The sets a diff runs: the file given, or each level's small set.
@@ -126,26 +135,36 @@ pub fn run(args: DiffArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
     }
     let sets = sets_for(args.level, args.vectors.as_deref())?;
     let labels: Vec<String> = [args.a, args.b].into_iter().chain(args.more).collect();
-    let opened = labels
-        .iter()
-        .map(|l| {
-            cast.open(l)
-                .with_context(|| format!("implementation `{l}`"))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let refs: Vec<&dyn crate::implementation::Implementation> =
-        opened.iter().map(|b| b.as_ref()).collect();
+    let mut verdict = Verdict::new(args.allow_unavailable);
+    let mut opened = Vec::new();
+    for label in &labels {
+        match cast.open(label) {
+            Ok(imp) => opened.push(imp),
+            Err(OpenError::Impl(e)) => verdict.failed(format!("{label} (open)"), &e),
+            Err(e) => return Err(e).with_context(|| format!("implementation `{label}`")),
+        }
+    }
+    // Every comparison is the first implementation against another one.
+    let first_opened = opened.first().is_some_and(|i| i.label() == labels[0]);
+    let refs: Vec<&dyn crate::implementation::Implementation> = if first_opened {
+        opened.iter().map(|b| b.as_ref()).collect()
+    } else {
+        Vec::new()
+    };
     let options = RunOptions {
         progress: crate::progress::wanted(),
     };
-    let mut reports: Vec<LevelReport> = sets
-        .iter()
-        .map(|set| run_shard(&refs, set, args.shard.unwrap_or(Shard::WHOLE), options))
-        .collect();
+    let mut reports: Vec<LevelReport> = if refs.len() >= 2 {
+        sets.iter()
+            .map(|set| run_shard(&refs, set, args.shard.unwrap_or(Shard::WHOLE), options))
+            .collect()
+    } else {
+        Vec::new()
+    };
     if let Some(dir) = &args.report {
         write_report(dir, &mut reports)?;
     }
-    let mut failed = false;
+    let asked = args.vectors.is_some() || args.level.is_some_and(|l| l != LevelArg::All);
     for r in &reports {
         print!("{}", text::level_report(r));
         let timings: Vec<String> = r
@@ -154,19 +173,10 @@ pub fn run(args: DiffArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
             .map(|s| format!("{} {:.2}s", s.label, s.seconds))
             .collect();
         println!("  time: {}", timings.join(", "));
-        failed |= r
-            .failures()
-            .any(|(_, e)| !matches!(e, crate::implementation::ImplError::Unsupported(_)));
+        verdict.add_level(r, asked);
     }
     if let Some(dir) = &args.report {
         println!("report: {}", dir.join("report.json").display());
     }
-    Ok(if reports.iter().any(LevelReport::diverged) {
-        ExitCode::from(1)
-    } else if failed {
-        eprintln!("error: an implementation gave no answers; nothing was compared for it");
-        ExitCode::from(2)
-    } else {
-        ExitCode::SUCCESS
-    })
+    Ok(verdict.report())
 }

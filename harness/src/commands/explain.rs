@@ -142,9 +142,21 @@ pub fn run(args: ExplainArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
         print!("{}", explain::story(&explanation));
         print!("{}", holds(&[input])?);
     }
-    Ok(if explanation.class == Class::Agree {
-        ExitCode::SUCCESS
-    } else {
+    Ok(if differs(&explanation) {
         ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
     })
+}
+
+/// Whether the input differs as the pixels policy judges it: a pixel by
+/// its dithered bit (a shade difference alone is explained, and matters
+/// only through the bit), an SDF point by any difference.
+fn differs(e: &explain::Explanation) -> bool {
+    match &e.answers {
+        Some(a) if a.low_white.is_some() && e.class != Class::Unexplained => {
+            a.low_white != a.oracle_white
+        }
+        _ => e.class != Class::Agree,
+    }
 }

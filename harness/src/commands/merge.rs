@@ -2,13 +2,16 @@
 //! --shard K/N --report DIR` runs into the report of the whole campaign
 //! (identical to the unsharded run's, timings apart), say which shards are
 //! missing, and with `--out` write it with its repro files.
-//! Exit 0: every shard present and no divergence; 1: a divergence or a
-//! missing shard; 2: the reports cannot be merged.
+//! The exit status is the merged [`Verdict`]: 1 on a divergence in any
+//! shard; 3 when a shard is missing or an implementation failed in one
+//! (every shard's failures are carried, and the counts are what was
+//! actually compared); 2 when the reports cannot be merged.
 
 use crate::commands::diff::write_report;
 use crate::merge::merge;
 use crate::runner::LevelReport;
 use crate::text;
+use crate::verdict::{Missing, Verdict};
 use anyhow::Context;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,6 +25,10 @@ pub struct MergeArgs {
     /// Write the merged report.json and repro/ here.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// An implementation that could not run on a shard's machine (no
+    /// Vulkan adapter) is reported as skipped without failing the merge.
+    #[arg(long)]
+    pub allow_unavailable: bool,
 }
 
 /// Run `harness merge`.
@@ -44,26 +51,34 @@ pub fn run(args: MergeArgs) -> anyhow::Result<ExitCode> {
     if let Some(dir) = &args.out {
         write_report(dir, &mut merged.reports)?;
     }
+    let mut verdict = Verdict::new(args.allow_unavailable);
     for r in &merged.reports {
         print!("{}", text::level_report(r));
+        verdict.add_comparisons(r);
+    }
+    // A level a shard's implementation does not answer is that shard's
+    // own `diff` to judge (it knows whether the level was asked for).
+    for f in merged
+        .failures
+        .iter()
+        .filter(|f| !matches!(f.error, crate::implementation::ImplError::Unsupported(_)))
+    {
+        verdict.failed(
+            format!("{} on {} (shard {})", f.label, f.set, f.shard),
+            &f.error,
+        );
     }
     let present = merged.count as usize - merged.missing.len();
     println!("shards: {present} of {}", merged.count);
-    if !merged.missing.is_empty() {
-        let list: Vec<String> = merged
-            .missing
-            .iter()
-            .map(|k| format!("{k}/{}", merged.count))
-            .collect();
-        println!("missing shards: {}", list.join(", "));
+    for k in &merged.missing {
+        verdict.not_compared(
+            format!("shard {k}/{}", merged.count),
+            Missing::Shard,
+            "no report given",
+        );
     }
     if let Some(dir) = &args.out {
         println!("report: {}", dir.join("report.json").display());
     }
-    let diverged = merged.reports.iter().any(LevelReport::diverged);
-    Ok(if diverged || !merged.missing.is_empty() {
-        ExitCode::from(1)
-    } else {
-        ExitCode::SUCCESS
-    })
+    Ok(verdict.report())
 }

@@ -7,8 +7,12 @@
 //! report directory (`report.json`, `index.html`, images) that replaces the
 //! previous one atomically, plus a line in the history file. The cast is
 //! the project's with the seed scene's Shadertoy port added. The steps are
-//! [`crate::nightly::steps`]. Exit 0 when the night passed
-//! ([`crate::nightly::Summary::passed`]), 1 when it did not.
+//! [`crate::nightly::steps`]. The exit status is the night's verdict
+//! ([`crate::verdict`]): 0 passed, 1 a comparison beyond its policy (any
+//! level, bit-exact or error figures, an image pair, the self-test), 3
+//! something not compared (an implementation that did not open or failed
+//! on a set, a failed render; an unavailable one unless
+//! `--allow-unavailable`).
 
 use crate::cast::Cast;
 use crate::impls::shader;
@@ -46,6 +50,11 @@ pub struct NightlyArgs {
     /// from 0; a vector's shard is a stable hash of its identity).
     #[arg(long)]
     pub shard: Option<Shard>,
+    /// An implementation that cannot run on this machine (no Vulkan
+    /// adapter, no interpreter) is reported as skipped without failing the
+    /// night.
+    #[arg(long)]
+    pub allow_unavailable: bool,
 }
 
 /// Run the nightly job over `cast` and the seed scene's Shadertoy port
@@ -85,6 +94,7 @@ pub fn run(args: NightlyArgs, mut cast: Cast) -> Result<ExitCode> {
         implementations: args.implementations,
         progress: crate::progress::wanted(),
         shard: args.shard.unwrap_or(Shard::WHOLE),
+        allow_unavailable: args.allow_unavailable,
         scenes: if args.scenes.is_empty() {
             nightly::scenes::shipped()?
         } else {
@@ -100,9 +110,5 @@ pub fn run(args: NightlyArgs, mut cast: Cast) -> Result<ExitCode> {
         summary.line(),
         dir.join("index.html").display()
     );
-    Ok(if summary.passed() {
-        ExitCode::SUCCESS
-    } else {
-        ExitCode::from(1)
-    })
+    Ok(summary.verdict.report())
 }

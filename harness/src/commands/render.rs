@@ -1,10 +1,15 @@
 //! `harness render`: render the 512x256 dithered image with one
 //! implementation of the cast (the one whole-image render,
-//! [`crate::measure`]), write it as PNG (white 255, black 0) and optionally
-//! the per-pixel shade values before dithering as JSON.
+//! [`crate::measure`]), write it as PNG (white 255, black 0, a trapped
+//! pixel in the trap colour) and optionally the per-pixel shade values
+//! before dithering as JSON. Exit 0 when every pixel answered a value, 1
+//! when some trapped (`Sys.error`, hang, out of domain: counted by kind),
+//! 3 when the implementation failed or could not open.
 
 use crate::cast::Cast;
 use crate::implementation::{Answer, Num};
+use crate::report::images::dithered;
+use crate::verdict::{self, Status};
 use anyhow::{Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::Outcome;
@@ -106,9 +111,40 @@ pub fn write_png(path: &Path, white: &[bool]) -> Result<()> {
     let samples = white.iter().map(|&w| if w { 255 } else { 0 }).collect();
     let img = image::GrayImage::from_raw(WIDTH as u32, HEIGHT as u32, samples)
         .context("the image does not have 512x256 pixels")?;
+    save_atomically(path, &image::DynamicImage::ImageLuma8(img))
+}
+
+/// Write `img` as PNG to `path`, atomically.
+fn save_atomically(path: &Path, img: &image::DynamicImage) -> Result<()> {
     write_atomically(path, |tmp| {
         img.save_with_format(tmp, image::ImageFormat::Png)
             .with_context(|| format!("cannot write {}", tmp.display()))
+    })
+}
+
+/// How many pixels trapped, by kind, as one phrase (`None` when none did).
+fn traps_text(answers: &[Outcome<Answer>]) -> Option<String> {
+    let count = |f: fn(&Outcome<Answer>) -> bool| answers.iter().filter(|a| f(a)).count();
+    let kinds = [
+        ("Sys.error", count(|a| matches!(a, Outcome::SysError(_)))),
+        ("hang", count(|a| matches!(a, Outcome::Hang))),
+        (
+            "out of domain",
+            count(|a| matches!(a, Outcome::OutOfDomain)),
+        ),
+    ];
+    let total: usize = kinds.iter().map(|(_, n)| n).sum();
+    let parts: Vec<String> = kinds
+        .iter()
+        .filter(|(_, n)| *n > 0)
+        .map(|(k, n)| format!("{n} {k}"))
+        .collect();
+    (total > 0).then(|| {
+        format!(
+            "{total} of {} pixels trapped ({})",
+            answers.len(),
+            parts.join(", ")
+        )
     })
 }
 
@@ -137,12 +173,27 @@ pub fn run(args: RenderArgs, cast: &Cast) -> Result<ExitCode> {
         .chain(args.variants.iter().map(String::as_str))
         .collect::<Vec<_>>()
         .join("+");
-    let imp = cast
+    let rendered = cast
         .open_for_scene(&label, scene.as_ref())
-        .with_context(|| format!("implementation `{label}`"))?;
-    let (full, answers) =
-        crate::measure::render_with(imp.as_ref(), 0.0, crate::progress::wanted())?;
-    write_png(&args.out, full.images.bits.data())?;
+        .with_context(|| format!("implementation `{label}`"))
+        .and_then(|imp| crate::measure::render_with(imp.as_ref(), 0.0, crate::progress::wanted()));
+    let (full, answers) = match rendered {
+        Ok(r) => r,
+        Err(e) if verdict::implementation_failure(&e).is_some() => {
+            eprintln!("error: {}", verdict::one_line(&format!("{e:#}")));
+            println!("render: {label} gave no image; nothing written");
+            return Ok(Status::Incomplete.exit_code());
+        }
+        Err(e) => return Err(e),
+    };
+    let images = &full.images;
+    match &images.traps {
+        None => write_png(&args.out, images.bits.data())?,
+        Some(traps) => save_atomically(
+            &args.out,
+            &image::DynamicImage::ImageRgb8(dithered(&images.bits, Some(traps))),
+        )?,
+    }
     if let Some(path) = &args.values {
         let pixels = answers
             .iter()
@@ -157,5 +208,11 @@ pub fn run(args: RenderArgs, cast: &Cast) -> Result<ExitCode> {
         };
         write_json_atomically(path, &file)?;
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(match traps_text(&answers) {
+        Some(text) => {
+            println!("render: {label}: {text}, drawn in the trap colour");
+            Status::Diverged.exit_code()
+        }
+        None => ExitCode::SUCCESS,
+    })
 }

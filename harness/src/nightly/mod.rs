@@ -24,6 +24,7 @@ use crate::cast::{Cast, Entry};
 use crate::implementation::Implementation;
 use crate::report::model::{RunMeta, StepTiming};
 use crate::report::ReportBuilder;
+use crate::verdict::{Missing, Status, Verdict};
 use anyhow::Result;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -49,6 +50,9 @@ pub struct Options {
     /// from 0, by the vectors' identity hash); [`vectors::Shard::WHOLE`]
     /// runs them whole.
     pub shard: vectors::Shard,
+    /// An implementation that cannot run here is skipped without failing
+    /// the night.
+    pub allow_unavailable: bool,
 }
 
 /// An implementation of the cast, opened for the night.
@@ -60,7 +64,7 @@ pub struct Opened<'c> {
 }
 
 /// A render in the report, and what it may be compared with.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Rendered {
     pub label: String,
     /// It belongs to the bit-exact group (a Float316 entry with no variant
@@ -70,6 +74,10 @@ pub struct Rendered {
     /// For the screen of a whole-program run, the label of the
     /// implementation whose entry points answer for its pixels.
     pub screen_of: Option<String>,
+    /// The most dithered pixels it may flip against the oracle's render,
+    /// as a fraction (its number type's policy); `None` for a render that
+    /// is measured, not judged (a precision variant, a program screen).
+    pub flip_limit: Option<f64>,
 }
 
 /// What the steps share.
@@ -82,8 +90,10 @@ pub struct Night<'c> {
     pub variants: Vec<Box<dyn Implementation>>,
     pub builder: ReportBuilder,
     pub rendered: Vec<Rendered>,
-    /// Renders that failed, one line each (also problems of the report).
-    pub failed_renders: Vec<String>,
+    /// What could not be compared so far (an implementation that did not
+    /// open, failed on a set, or whose render failed); the report's
+    /// comparisons join it at the end.
+    pub verdict: Verdict,
 }
 
 impl<'c> Night<'c> {
@@ -110,6 +120,13 @@ impl<'c> Night<'c> {
     pub fn problem(&mut self, line: String) {
         self.builder.report_mut().problems.push(line);
     }
+
+    /// Record something that could not be compared: it fails the night
+    /// (an unavailable one unless allowed), and is a problem of the report.
+    pub fn not_compared(&mut self, what: String, missing: Missing, why: String) {
+        self.problem(format!("{what}: {why}"));
+        self.verdict.not_compared(what, missing, why);
+    }
 }
 
 /// The implementation labelled `label` among `opened` and `variants`.
@@ -128,40 +145,36 @@ fn lookup<'a>(
 /// How the night ended.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Summary {
-    /// Divergences of bit-exact level comparisons.
-    pub bit_exact: u64,
-    /// Differing pixels between the images of bit-exact implementations.
-    pub image_divergences: u64,
-    /// Renders that failed.
-    pub failed_renders: usize,
-    /// Whether the self-test passed (`None`: not run).
-    pub selftest: Option<bool>,
+    /// Every comparison of the night and what could not be compared.
+    pub verdict: Verdict,
     pub problems: usize,
     pub duration_s: f64,
 }
 
 impl Summary {
-    /// Whether the night passed: no bit-exact divergence at any level or in
-    /// any image, no failed render, no failed self-test.
-    pub fn passed(&self) -> bool {
-        self.bit_exact == 0
-            && self.image_divergences == 0
-            && self.failed_renders == 0
-            && self.selftest != Some(false)
+    /// The night's status (its exit status is [`Status::code`]).
+    pub fn status(&self) -> Status {
+        self.verdict.status()
     }
 
     /// The one line printed at the end.
     pub fn line(&self) -> String {
+        let v = &self.verdict;
+        let beyond = v
+            .compared
+            .iter()
+            .filter(|c| c.beyond_policy.is_some())
+            .count();
+        let missing = v.not_compared.len();
         format!(
-            "{} bit-exact divergences, {} differing pixels between bit-exact images, {} failed renders, self-test {}, {} problems, {:.0} s",
-            self.bit_exact,
-            self.image_divergences,
-            self.failed_renders,
-            match self.selftest {
-                Some(true) => "passed",
-                Some(false) => "FAILED",
-                None => "not run",
+            "{}: {} comparisons on {} cases, {beyond} beyond policy, {missing} not compared, {} problems, {:.0} s",
+            match self.status() {
+                Status::Agreed => "passed",
+                Status::Diverged => "DIVERGED",
+                Status::Incomplete => "INCOMPLETE",
             },
+            v.compared.len(),
+            v.cases(),
             self.problems,
             self.duration_s
         )
@@ -204,7 +217,7 @@ pub fn run(cast: &Cast, options: &Options) -> Result<(Summary, PathBuf)> {
         variants: Vec::new(),
         builder,
         rendered: Vec::new(),
-        failed_renders: Vec::new(),
+        verdict: Verdict::new(options.allow_unavailable),
     };
     for step in steps::all() {
         let wanted = options
@@ -216,13 +229,12 @@ pub fn run(cast: &Cast, options: &Options) -> Result<(Summary, PathBuf)> {
             timer.done(&step.name());
         }
     }
-    let failed_renders = night.failed_renders.len();
+    let mut verdict = std::mem::take(&mut night.verdict);
     let report = night.builder.report_mut();
+    report.add_comparisons_to(&mut verdict);
+    report.verdict = verdict.clone();
     let mut summary = Summary {
-        bit_exact: report.bit_exact_divergences(),
-        image_divergences: report.bit_exact_image_divergences(),
-        failed_renders,
-        selftest: report.selftest.as_ref().map(|s| s.passed),
+        verdict,
         problems: report.problems.len(),
         duration_s: 0.0,
     };
@@ -243,48 +255,22 @@ pub fn run(cast: &Cast, options: &Options) -> Result<(Summary, PathBuf)> {
 mod tests {
     use super::*;
 
-    fn summary() -> Summary {
-        Summary {
-            bit_exact: 0,
-            image_divergences: 0,
-            failed_renders: 0,
-            selftest: Some(true),
-            problems: 3,
-            duration_s: 1.0,
-        }
-    }
-
     #[test]
-    fn a_bit_exact_image_divergence_or_a_failed_render_fails_the_night() {
-        assert!(
-            summary().passed(),
-            "problems alone (an unavailable GPU) do not fail it"
+    fn the_line_says_the_status_and_what_was_not_compared() {
+        let mut verdict = Verdict::new(false);
+        verdict.compared("a vs b on s", 5, None);
+        let summary = |verdict: &Verdict| Summary {
+            verdict: verdict.clone(),
+            problems: 1,
+            duration_s: 2.0,
+        };
+        assert_eq!(
+            summary(&verdict).line(),
+            "passed: 1 comparisons on 5 cases, 0 beyond policy, 0 not compared, 1 problems, 2 s"
         );
-        let broken = [
-            Summary {
-                image_divergences: 1,
-                ..summary()
-            },
-            Summary {
-                failed_renders: 1,
-                ..summary()
-            },
-            Summary {
-                bit_exact: 1,
-                ..summary()
-            },
-            Summary {
-                selftest: Some(false),
-                ..summary()
-            },
-        ];
-        for s in broken {
-            assert!(!s.passed(), "{}", s.line());
-        }
-        assert!(Summary {
-            selftest: None,
-            ..summary()
-        }
-        .passed());
+        verdict.not_compared("port (open)", Missing::Failed, "exit 3");
+        assert!(summary(&verdict).line().starts_with("INCOMPLETE: "));
+        verdict.compared("a vs c on s", 5, Some("flips".into()));
+        assert_eq!(summary(&verdict).status(), Status::Diverged);
     }
 }

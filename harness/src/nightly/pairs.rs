@@ -4,16 +4,17 @@
 use super::Rendered;
 use crate::implementation::Implementation;
 use crate::localize::{localizable, localize};
-use crate::report::PixelLocalizer;
+use crate::report::{PairGate, PixelLocalizer};
 use vectors::{PixelVector, Vector};
 
 /// Two renders to compare.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct PlannedPair {
     pub a: String,
     pub b: String,
-    /// Both are bit-exact renders: any differing pixel fails the night.
-    pub bit_exact: bool,
+    /// What fails the night: any differing pixel of two bit-exact renders,
+    /// or more flips against the oracle than the render's policy allows.
+    pub gate: PairGate,
 }
 
 /// The pairs of the renders: each program screen against its entry points'
@@ -26,17 +27,25 @@ pub fn plan(rendered: &[Rendered], tracer: &str, oracle: &str) -> Vec<PlannedPai
             pairs.push(PlannedPair {
                 a: own.label.clone(),
                 b: screen.label.clone(),
-                bit_exact: own.bit_exact && screen.bit_exact,
+                gate: PairGate {
+                    bit_exact: own.bit_exact && screen.bit_exact,
+                    flip_limit: None,
+                },
             });
         }
     }
     for r in rendered {
         for base in [tracer, oracle] {
             if let Some(base) = find(base).filter(|b| b.label != r.label) {
+                let bit_exact = base.label == tracer && base.bit_exact && r.bit_exact;
+                let against_oracle = base.label == oracle;
                 pairs.push(PlannedPair {
                     a: base.label.clone(),
                     b: r.label.clone(),
-                    bit_exact: base.label == tracer && base.bit_exact && r.bit_exact,
+                    gate: PairGate {
+                        bit_exact,
+                        flip_limit: r.flip_limit.filter(|_| against_oracle),
+                    },
                 });
             }
         }
@@ -119,10 +128,12 @@ mod tests {
     use common::image_consts::{HEIGHT, WIDTH};
 
     fn rendered(label: &str, bit_exact: bool, screen_of: Option<&str>) -> Rendered {
+        let float_entry = !bit_exact && !label.contains('+');
         Rendered {
             label: label.into(),
             bit_exact,
             screen_of: screen_of.map(String::from),
+            flip_limit: float_entry.then_some(0.01),
         }
     }
 
@@ -133,15 +144,27 @@ mod tests {
             rendered("ref-f316", true, None),
             rendered("jack", true, None),
             rendered("my-port", true, None),
+            rendered("gpu-f32", false, None),
             rendered("ref-f316+newton-3", false, None),
             rendered("jack-main", true, Some("jack")),
         ];
         let planned = plan(&renders, "ref-f316", "ref-f64");
         let gated: Vec<(&str, &str)> = planned
             .iter()
-            .filter(|p| p.bit_exact)
+            .filter(|p| p.gate.bit_exact)
             .map(|p| (p.a.as_str(), p.b.as_str()))
             .collect();
+        let flip_gated: Vec<(&str, &str)> = planned
+            .iter()
+            .filter(|p| p.gate.flip_limit.is_some())
+            .map(|p| (p.a.as_str(), p.b.as_str()))
+            .collect();
+        assert_eq!(
+            flip_gated,
+            [("ref-f64", "gpu-f32")],
+            "a float entry's render against the oracle, never a variant's, a screen's \
+             or a Float316 render's (those are judged against the tracer)"
+        );
         assert_eq!(
             gated,
             [
@@ -178,6 +201,7 @@ mod tests {
         RenderImages {
             bits: Grid::new(WIDTH, HEIGHT, bits).unwrap(),
             shades: None,
+            traps: None,
         }
     }
 
@@ -207,7 +231,7 @@ mod tests {
             [(&a, None), (&b, None)],
         );
         let pair = builder
-            .add_pair(&a, &b, false, localizer, |x, y| {
+            .add_pair(&a, &b, PairGate::default(), localizer, |x, y| {
                 pixel_repro(&a, &b, true, x, y)
             })
             .unwrap();

@@ -2,10 +2,10 @@
 
 use super::pairs::{self, PlannedPair};
 use super::{Night, Opened, Rendered};
-use crate::cast::VariantRole;
-use crate::compare::{Comparison as LevelComparison, Divergence, Policy};
+use crate::cast::{OpenError, VariantRole};
+use crate::compare::{Comparison as LevelComparison, Divergence, Policy, Thresholds};
 use crate::exhaustive;
-use crate::implementation::Implementation;
+use crate::implementation::{ImplError, Implementation, Numbers};
 use crate::localize::{localizable, localize};
 use crate::measure::{self, FullRender};
 use crate::progress;
@@ -15,6 +15,7 @@ use crate::report::model::{
 };
 use crate::report::{RenderImages, BIT_EXACT, ERROR_FIGURES};
 use crate::runner::{self, ImplRun, RunOptions};
+use crate::verdict::{self, Missing};
 use crate::{selftest, stability};
 use anyhow::{Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
@@ -136,11 +137,28 @@ impl Step for Open {
                 open_s,
                 ..ImplStatus::default()
             };
-            match opened {
-                Ok(imp) => night.opened.push(Opened { entry, imp, open_s }),
-                Err(e) => status.note = Some(e.to_string()),
-            }
+            let failed = match opened {
+                Ok(imp) => {
+                    night.opened.push(Opened { entry, imp, open_s });
+                    None
+                }
+                Err(e) => {
+                    status.note = Some(e.to_string());
+                    Some(e)
+                }
+            };
             night.builder.report_mut().implementations.push(status);
+            if let Some(e) = failed {
+                let missing = match &e {
+                    OpenError::Impl(ImplError::Unavailable(_)) => Missing::Unavailable,
+                    _ => Missing::Failed,
+                };
+                night.not_compared(
+                    format!("{} (open)", entry.name),
+                    missing,
+                    verdict::one_line(&e.to_string()),
+                );
+            }
             bar.inc(1);
         }
         bar.finish_and_clear();
@@ -404,12 +422,19 @@ impl Step for Renders {
             .map(|v| format!("{}+{}", tracer.name, v.name))
             .collect();
         let progress = night.options.progress;
-        let entries: Vec<(String, bool, f64)> = night
+        let entries: Vec<(String, bool, f64, Option<f64>)> = night
             .opened
             .iter()
-            .map(|o| (o.entry.name.clone(), o.entry.bit_exact(), o.open_s))
+            .map(|o| {
+                // Float316 renders are judged bit for bit against the
+                // tracer's; their distance from the oracle is measured.
+                let numbers = o.imp.numbers();
+                let limit = (numbers != Numbers::Float316)
+                    .then(|| Thresholds::for_subject(numbers).max_flip_fraction);
+                (o.entry.name.clone(), o.entry.bit_exact(), o.open_s, limit)
+            })
             .collect();
-        for (label, bit_exact, open_s) in entries {
+        for (label, bit_exact, open_s, limit) in entries {
             let imp = night.find(&label).context("an opened implementation")?;
             let result = measure::render_with(imp, open_s, progress);
             add(
@@ -418,6 +443,7 @@ impl Step for Renders {
                 result.map(|(full, _)| full),
                 &spec,
                 bit_exact,
+                limit,
             );
         }
         for label in variant_labels {
@@ -436,19 +462,21 @@ impl Step for Renders {
                     night.variants.push(imp);
                     Ok(full)
                 });
-            add(night, &label, result, &spec, false);
+            add(night, &label, result, &spec, false, None);
         }
         Ok(())
     }
 }
 
-/// Add a render, or record it as failed.
+/// Add a render, or record it as failed. `flip_limit` is the fraction of
+/// pixels it may flip against the oracle (`None`: not judged).
 fn add(
     night: &mut Night<'_>,
     label: &str,
     result: Result<FullRender>,
     spec: &Grid<bool>,
     bit_exact: bool,
+    flip_limit: Option<f64>,
 ) {
     let added = result.and_then(|full| {
         add_render(night, &full, spec)?;
@@ -464,12 +492,9 @@ fn add(
             label: label.to_string(),
             bit_exact,
             screen_of: None,
+            flip_limit,
         }),
-        Err(e) => {
-            let line = format!("render {label}: {e:#}");
-            night.failed_renders.push(line.clone());
-            night.problem(line);
-        }
+        Err(e) => night.not_compared(format!("render {label}"), Missing::Failed, format!("{e:#}")),
     }
 }
 
@@ -523,12 +548,12 @@ impl Step for Screens {
                     images: RenderImages {
                         bits: Grid::new(WIDTH, HEIGHT, bitmap.white)?,
                         shades: None,
+                        traps: None,
                     },
-                    trapped: 0,
                     costs: None,
                 })
             });
-            add(night, &screen_label, result, &spec, bit_exact);
+            add(night, &screen_label, result, &spec, bit_exact, None);
             if let Some(r) = night
                 .rendered
                 .last_mut()
@@ -609,7 +634,7 @@ fn compare_pair(night: &mut Night<'_>, pair: &PlannedPair) -> Result<()> {
     );
     let repro = |x: usize, y: usize| pairs::pixel_repro(ra, rb, by_localize, x, y);
     let listed: Vec<(usize, usize)> = builder
-        .add_pair(a, b, pair.bit_exact, localizer, repro)?
+        .add_pair(a, b, pair.gate, localizer, repro)?
         .divergences
         .iter()
         .map(|d| (d.x as usize, d.y as usize))
@@ -660,6 +685,7 @@ impl Step for Speed {
                 mean_shade_error: point.mean_shade_error,
                 max_shade_error: point.max_shade_error,
                 pixel_flips: point.pixel_flips,
+                trapped: render.trapped,
             });
             builder.report_mut().speed_error.points.push(point);
         }
@@ -667,19 +693,29 @@ impl Step for Speed {
     }
 }
 
-/// Implementations that gave no answers become problems of the report.
+/// Implementations that gave no answers (or stopped before the end) on a
+/// set fail the night; each is a problem of the report too.
 fn record_failures(night: &mut Night<'_>, level: &runner::LevelReport) {
-    let lines: Vec<String> = level
+    let failures: Vec<(String, ImplError)> = level
         .failures()
-        .map(|(label, e)| format!("{} on {}: {e}", label, level.set))
+        .map(|(label, e)| (format!("{label} on {}", level.set), e.clone()))
         .collect();
-    night.builder.report_mut().problems.extend(lines);
+    for (what, e) in failures {
+        night.not_compared(what, Missing::of(&e), verdict::one_line(&e.to_string()));
+    }
 }
 
 /// A runner comparison as a report row, its examples localized when both
-/// sides are opened Float316 implementations.
+/// sides are opened Float316 implementations. A Float316 subject's error
+/// figures against the oracle are measured, not judged: Float316 is judged
+/// bit for bit against the tracer, and its distance from f64 is what the
+/// explain step accounts for.
 fn summarise(night: &Night<'_>, c: &LevelComparison, set: &str) -> Comparison {
     let tracer = night.find(&night.cast.tracer().name);
+    let judged = c.policy == Policy::Exact
+        || night
+            .find(&c.a)
+            .is_some_and(|a| a.numbers() != Numbers::Float316);
     let first_op = |d: &Divergence| {
         let (a, b, t) = (night.find(&c.a)?, night.find(&c.b)?, tracer?);
         (c.policy == Policy::Exact).then(|| match localize(a, b, t, &d.input) {
@@ -699,6 +735,8 @@ fn summarise(night: &Night<'_>, c: &LevelComparison, set: &str) -> Comparison {
         .into(),
         cases: c.vectors as u64,
         divergences: (c.divergences.iter().filter(|d| !d.tolerated).count() + c.omitted) as u64,
+        beyond_policy: c.diverged && judged,
+        findings: c.findings.clone(),
         error: c.stats.as_ref().map(|s| ErrorFigures {
             mean_abs: s.mean_abs,
             max_abs: s.max_abs,

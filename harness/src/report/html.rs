@@ -7,6 +7,7 @@
 use crate::report::history::{History, HistoryEntry};
 use crate::report::model::*;
 use crate::report::plot::short_number;
+use crate::verdict::Status;
 use std::fmt::Write;
 
 /// Escape text for HTML content and attribute values.
@@ -183,13 +184,19 @@ pub fn render(report: &Report, history: &History) -> String {
 }
 
 fn summary(h: &mut String, r: &Report) {
-    let available = r.implementations.iter().filter(|i| i.available).count();
+    let opened = r.implementations.iter().filter(|i| i.available).count();
     let pixel_pairs_differing = r
         .image_pairs
         .iter()
         .filter(|p| p.differing_pixels > 0)
         .count();
-    let exact = r.bit_exact_divergences();
+    let v = &r.verdict;
+    let beyond = v
+        .compared
+        .iter()
+        .filter(|c| c.beyond_policy.is_some())
+        .count();
+    let missing = v.not_compared.len();
     let card = |h: &mut String, value: String, label: &str, class: &str| {
         let _ = write!(
             h,
@@ -197,17 +204,33 @@ fn summary(h: &mut String, r: &Report) {
         );
     };
     h.push_str("<section id=summary><h2>Summary</h2><div class=cards>");
+    let (status, class) = match v.status() {
+        Status::Agreed => ("passed", "ok"),
+        Status::Diverged => ("DIVERGED", "bad"),
+        Status::Incomplete => ("INCOMPLETE", "bad"),
+    };
+    card(h, status.into(), "verdict", class);
     card(
         h,
-        format!("{available}/{}", r.implementations.len()),
-        "implementations ran",
-        "",
+        format!("{opened}/{}", r.implementations.len()),
+        "implementations opened",
+        if opened == r.implementations.len() {
+            ""
+        } else {
+            "warn"
+        },
     );
     card(
         h,
-        exact.to_string(),
-        "bit-exact divergences (all levels)",
-        if exact == 0 { "ok" } else { "bad" },
+        format!("{beyond}/{}", v.compared.len()),
+        "comparisons beyond policy (levels, images, self-test)",
+        if beyond == 0 { "ok" } else { "bad" },
+    );
+    card(
+        h,
+        missing.to_string(),
+        "not compared (failed, unavailable)",
+        if missing == 0 { "ok" } else { "bad" },
     );
     card(
         h,
@@ -226,6 +249,27 @@ fn summary(h: &mut String, r: &Report) {
     }
     card(h, seconds(r.meta.duration_s), "run duration", "");
     h.push_str("</div>\n");
+    let failing: Vec<String> = v
+        .compared
+        .iter()
+        .filter_map(|c| {
+            c.beyond_policy
+                .as_ref()
+                .map(|why| format!("{}: {why}", c.what))
+        })
+        .chain(
+            v.not_compared
+                .iter()
+                .map(|n| format!("{} {}: {}", n.missing, n.what, n.why)),
+        )
+        .collect();
+    if !failing.is_empty() {
+        h.push_str("<h3>What fails the run</h3><ul class=problems>");
+        for line in &failing {
+            let _ = write!(h, "<li>{}</li>", esc(line));
+        }
+        h.push_str("</ul>");
+    }
     if !r.problems.is_empty() {
         h.push_str("<h3>Problems (steps that did not run or failed)</h3><ul class=problems>");
         for p in &r.problems {

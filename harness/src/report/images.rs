@@ -195,15 +195,42 @@ pub const A_WHITE_COLOUR: [u8; 3] = [230, 0, 60];
 /// Overlay colour where A is black and B white.
 pub const B_WHITE_COLOUR: [u8; 3] = [0, 90, 230];
 
-/// The dithered image (`true` = white).
-pub fn dithered(bits: &Grid<bool>) -> RgbImage {
+/// The colour of a pixel that trapped (`Sys.error`, hang, out of domain),
+/// in renders and overlays alike: a trap is never drawn as black or white.
+pub const TRAP_COLOUR: [u8; 3] = [255, 160, 0];
+
+/// The dithered image (`true` = white), trapped pixels in [`TRAP_COLOUR`].
+pub fn dithered(bits: &Grid<bool>, traps: Option<&Grid<bool>>) -> RgbImage {
     RgbImage::from_fn(bits.width as u32, bits.height as u32, |x, y| {
-        if *bits.get(x as usize, y as usize) {
+        let (x, y) = (x as usize, y as usize);
+        if traps.is_some_and(|t| *t.get(x, y)) {
+            Rgb(TRAP_COLOUR)
+        } else if *bits.get(x, y) {
             WHITE
         } else {
             BLACK
         }
     })
+}
+
+/// Paint the pixels marked in `traps` in [`TRAP_COLOUR`].
+pub fn mark_traps(img: &mut RgbImage, traps: &Grid<bool>) -> Result<(), GridError> {
+    if (img.width() as usize, img.height() as usize) != (traps.width, traps.height) {
+        return Err(GridError::Mismatch(
+            img.width() as usize,
+            img.height() as usize,
+            traps.width,
+            traps.height,
+        ));
+    }
+    for (i, _) in traps.data.iter().enumerate().filter(|(_, t)| **t) {
+        img.put_pixel(
+            (i % traps.width) as u32,
+            (i / traps.width) as u32,
+            Rgb(TRAP_COLOUR),
+        );
+    }
+    Ok(())
 }
 
 /// Fade a dithered pixel toward light grey so marks drawn over it stand out.
@@ -316,10 +343,19 @@ mod tests {
     }
 
     #[test]
-    fn dithered_is_black_and_white() {
-        let img = dithered(&bits(2, 1, &[(1, 0)]));
+    fn dithered_is_black_and_white_and_traps_have_their_own_colour() {
+        let img = dithered(&bits(3, 1, &[(1, 0), (2, 0)]), None);
         assert_eq!(img.get_pixel(0, 0).0, [0, 0, 0]);
         assert_eq!(img.get_pixel(1, 0).0, [255, 255, 255]);
+        let traps = bits(3, 1, &[(2, 0)]);
+        let img = dithered(&bits(3, 1, &[(1, 0), (2, 0)]), Some(&traps));
+        assert_eq!(img.get_pixel(1, 0).0, [255, 255, 255]);
+        assert_eq!(img.get_pixel(2, 0).0, TRAP_COLOUR);
+        let mut over = overlay(&bits(3, 1, &[]), &bits(3, 1, &[(0, 0)])).unwrap();
+        mark_traps(&mut over, &traps).unwrap();
+        assert_eq!(over.get_pixel(0, 0).0, B_WHITE_COLOUR);
+        assert_eq!(over.get_pixel(2, 0).0, TRAP_COLOUR);
+        assert!(mark_traps(&mut over, &bits(2, 1, &[])).is_err());
     }
 
     #[test]

@@ -35,6 +35,115 @@ pub struct RenderImages {
     pub bits: Grid<bool>,
     /// Shades before dithering, when the implementation exposes them.
     pub shades: Option<Grid<f64>>,
+    /// The pixels whose computation trapped (`Sys.error`, hang, out of
+    /// domain); `None` when none did. A trap is an answer, never a colour:
+    /// its bit and shade mean nothing, and it differs from every value.
+    pub traps: Option<Grid<bool>>,
+}
+
+impl RenderImages {
+    /// Whether the pixel at `(x, y)` trapped.
+    pub fn trapped(&self, x: usize, y: usize) -> bool {
+        self.traps.as_ref().is_some_and(|t| *t.get(x, y))
+    }
+
+    /// How many pixels trapped.
+    pub fn trap_count(&self) -> u64 {
+        self.traps
+            .as_ref()
+            .map_or(0, |t| t.data().iter().filter(|x| **x).count() as u64)
+    }
+
+    /// The pixels where two renders differ, row by row: a trap on one side
+    /// only, or (neither trapped) a different dithered bit.
+    pub fn differing(&self, other: &RenderImages) -> Result<Vec<(usize, usize)>> {
+        let bits = self.bits.positions_where(&other.bits, |p, q| p != q)?;
+        if self.traps.is_none() && other.traps.is_none() {
+            return Ok(bits);
+        }
+        let width = self.bits.width();
+        Ok((0..self.bits.data().len())
+            .map(|i| (i % width, i / width))
+            .filter(|&(x, y)| match (self.trapped(x, y), other.trapped(x, y)) {
+                (false, false) => self.bits.get(x, y) != other.bits.get(x, y),
+                (a, b) => a != b,
+            })
+            .collect())
+    }
+
+    /// Pixels trapped on one side and answered on the other.
+    pub fn trap_mismatches(&self, other: &RenderImages) -> u64 {
+        if self.traps.is_none() && other.traps.is_none() {
+            return 0;
+        }
+        let width = self.bits.width();
+        (0..self.bits.data().len())
+            .filter(|i| self.trapped(i % width, i / width) != other.trapped(i % width, i / width))
+            .count() as u64
+    }
+
+    /// Mean and max absolute shade difference over the pixels where
+    /// neither side trapped (`None` without shades on both sides).
+    pub fn shade_error(&self, other: &RenderImages) -> Result<Option<(f64, f64)>> {
+        let (Some(s), Some(o)) = (&self.shades, &other.shades) else {
+            return Ok(None);
+        };
+        let diff = images::abs_diff(s, o)?;
+        let width = diff.width();
+        let answered: Vec<f64> = diff
+            .data()
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| {
+                !self.trapped(i % width, i / width) && !other.trapped(i % width, i / width)
+            })
+            .map(|(_, d)| *d)
+            .collect();
+        Ok(Some(mean_max(&answered)))
+    }
+}
+
+/// What makes an image pair diverge beyond its policy.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PairGate {
+    /// Both renders must agree bit for bit: any differing pixel or shade.
+    pub bit_exact: bool,
+    /// The most dithered pixels that may flip, as a fraction, for a render
+    /// against the oracle (its number type's policy); a trap against a
+    /// value always diverges. `None`: the pair is measured, not judged (a
+    /// precision variant).
+    pub flip_limit: Option<f64>,
+}
+
+impl PairGate {
+    /// Why a pair with these counts diverges beyond the gate, if it does.
+    pub fn judge(
+        self,
+        pixels: u64,
+        differing: u64,
+        differing_shades: Option<u64>,
+        trap_mismatches: u64,
+    ) -> Option<String> {
+        if self.bit_exact {
+            let n = differing.max(differing_shades.unwrap_or(0));
+            return (n > 0).then(|| format!("{n} pixels differ between two bit-exact renders"));
+        }
+        let limit = self.flip_limit?;
+        let fraction = differing as f64 / pixels.max(1) as f64;
+        if trap_mismatches > 0 {
+            Some(format!(
+                "{trap_mismatches} pixels trapped on one side and answered on the other"
+            ))
+        } else if fraction > limit {
+            Some(format!(
+                "{differing} of {pixels} dithered pixels flip ({:.3}%), over the policy's {:.3}%",
+                100.0 * fraction,
+                100.0 * limit
+            ))
+        } else {
+            None
+        }
+    }
 }
 
 /// How the listed divergent pixels of an image pair are localized.
@@ -124,10 +233,14 @@ impl ReportBuilder {
         if let Some(s) = &images.shades {
             images.bits.same_size(s)?;
         }
+        if let Some(t) = &images.traps {
+            images.bits.same_size(t)?;
+        }
         render.image = self.write_png(
             &format!("render-{}.png", file_stem(&render.label)),
-            &images::dithered(&images.bits),
+            &images::dithered(&images.bits, images.traps.as_ref()),
         )?;
+        render.trapped = images.trap_count();
         render.has_shades = images.shades.is_some();
         self.renders.insert(render.label.clone(), images);
         self.report.renders.push(render);
@@ -160,23 +273,24 @@ impl ReportBuilder {
     /// shades) and the list of divergent pixels; `localizer` names the
     /// first divergent operation of each listed pixel or says why it
     /// cannot, `repro(x, y)` gives the command that reproduces a pixel.
-    /// `bit_exact`: the two must agree bit for bit (a differing pixel is a
-    /// divergence that fails the run, [`Report::bit_exact_image_divergences`]).
+    /// `gate` says what makes the pair diverge beyond its policy (recorded
+    /// in [`ImagePair::beyond_policy`]; such a pair fails the run).
     pub fn add_pair(
         &mut self,
         a: &str,
         b: &str,
-        bit_exact: bool,
+        gate: PairGate,
         localizer: PixelLocalizer<'_>,
         repro: impl Fn(usize, usize) -> String,
     ) -> Result<&ImagePair> {
         let (ra, rb) = (self.render_of(a)?, self.render_of(b)?);
-        let differing = ra.bits.positions_where(&rb.bits, |p, q| p != q)?;
+        let differing = ra.differing(rb)?;
         let stem = format!("{}-vs-{}", file_stem(a), file_stem(b));
-        let overlay = self.write_png(
-            &format!("overlay-{stem}.png"),
-            &images::overlay(&ra.bits, &rb.bits)?,
-        )?;
+        let mut overlay = images::overlay(&ra.bits, &rb.bits)?;
+        for traps in [&ra.traps, &rb.traps].into_iter().flatten() {
+            images::mark_traps(&mut overlay, traps)?;
+        }
+        let overlay = self.write_png(&format!("overlay-{stem}.png"), &overlay)?;
         let mut differing_shades = None;
         let mut heat = None;
         if let (Some(sa), Some(sb)) = (&ra.shades, &rb.shades) {
@@ -203,6 +317,13 @@ impl ReportBuilder {
                 });
             }
         }
+        let pixels = ra.bits.data().len() as u64;
+        let beyond_policy = gate.judge(
+            pixels,
+            differing.len() as u64,
+            differing_shades,
+            ra.trap_mismatches(rb),
+        );
         let shade = |r: &RenderImages, x: usize, y: usize| r.shades.as_ref().map(|s| *s.get(x, y));
         let listed = differing.len().min(LISTED_PIXELS);
         let (localization, mut localize) = match localizer {
@@ -232,7 +353,7 @@ impl ReportBuilder {
             b: b.into(),
             width: ra.bits.width() as u32,
             height: ra.bits.height() as u32,
-            pixels: ra.bits.data().len() as u64,
+            pixels,
             differing_pixels: differing.len() as u64,
             differing_shades,
             overlay,
@@ -240,8 +361,9 @@ impl ReportBuilder {
             divergences,
             localization,
             unlisted: differing.len().saturating_sub(LISTED_PIXELS) as u64,
-            bit_exact,
+            bit_exact: gate.bit_exact,
             explanation: None,
+            beyond_policy,
         });
         Ok(self.report.image_pairs.last().expect("just pushed"))
     }
@@ -296,12 +418,11 @@ impl ReportBuilder {
             .with_context(|| format!("no render named {label}"))?;
         let oracle_label = self.roles.oracle.as_str();
         let (r, oracle) = (self.render_of(label)?, self.render_of(oracle_label)?);
-        let flips = r.bits.positions_where(&oracle.bits, |p, q| p != q)?.len() as u64;
-        let errors = match (&r.shades, &oracle.shades) {
-            (Some(s), Some(o)) if label != oracle_label => {
-                Some(mean_max(images::abs_diff(s, o)?.data()))
-            }
-            _ => None,
+        let flips = r.differing(oracle)?.len() as u64;
+        let errors = if label == oracle_label {
+            None
+        } else {
+            r.shade_error(oracle)?
         };
         let pixels = render.pixels.max(1) as f64;
         Ok(SpeedPoint {

@@ -44,6 +44,10 @@ pub struct Report {
     /// Steps that could not run or failed, with the reason; the report is
     /// still written, these are listed at its top.
     pub problems: Vec<String>,
+    /// The night's verdict: every comparison and whether it diverged
+    /// beyond its policy, and everything that could not be compared.
+    #[serde(default)]
+    pub verdict: crate::verdict::Verdict,
 }
 
 /// When, where and how long a run took.
@@ -106,6 +110,14 @@ pub struct Comparison {
     pub cases: u64,
     /// Cases that diverge under the policy.
     pub divergences: u64,
+    /// Whether the pair diverges beyond its policy: a divergent case, or a
+    /// finding over the whole set (the flip fraction, an oracle that is not
+    /// f64). Any such row fails the night, whatever its policy.
+    #[serde(default)]
+    pub beyond_policy: bool,
+    /// The set-level findings beyond policy, one line each.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub findings: Vec<String>,
     /// Error figures, for float policies.
     pub error: Option<ErrorFigures>,
     /// A few divergent cases, in order.
@@ -225,6 +237,9 @@ pub struct Render {
     pub identical_to_spec: Option<bool>,
     /// Whether shades (values before dithering) are available.
     pub has_shades: bool,
+    /// Pixels whose computation trapped (drawn in the trap colour).
+    #[serde(default)]
+    pub trapped: u64,
 }
 
 /// The comparison of two renders.
@@ -265,6 +280,11 @@ pub struct ImagePair {
     /// bit: a differing pixel or shade is a divergence.
     #[serde(default)]
     pub bit_exact: bool,
+    /// Why the pair diverges beyond its policy (a bit-exact pair that
+    /// differs, a float render flipping more pixels than its policy allows
+    /// against the oracle), if it does.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beyond_policy: Option<String>,
 }
 
 /// A heat map image and its colour bar.
@@ -478,8 +498,12 @@ pub struct BenchRow {
     pub mean_shade_error: Option<f64>,
     /// Maximum absolute shade error against `ref-f64`.
     pub max_shade_error: Option<f64>,
-    /// Dithered pixels that differ from `ref-f64`.
+    /// Dithered pixels that differ from `ref-f64` (a trap on one side
+    /// only counts as one).
     pub pixel_flips: u64,
+    /// Pixels that trapped where `ref-f64` answered.
+    #[serde(default)]
+    pub trapped: u64,
 }
 
 impl BenchRow {
@@ -504,7 +528,7 @@ impl Report {
     }
 
     /// Divergences over every level comparison whose policy is bit-exact
-    /// (float comparisons report error figures, not divergences to fix).
+    /// (the history's trend line).
     pub fn bit_exact_divergences(&self) -> u64 {
         self.comparisons
             .iter()
@@ -513,14 +537,41 @@ impl Report {
             .sum()
     }
 
-    /// Differing pixels or shades (whichever is more) over the image pairs
-    /// that must agree bit for bit.
-    pub fn bit_exact_image_divergences(&self) -> u64 {
-        self.image_pairs
-            .iter()
-            .filter(|p| p.bit_exact)
-            .map(|p| p.differing_pixels.max(p.differing_shades.unwrap_or(0)))
-            .sum()
+    /// Record in `verdict` every comparison of the report (level rows,
+    /// image pairs, the self-test; the described scenes' rows are level
+    /// rows) with whether it
+    /// diverged beyond its policy.
+    pub fn add_comparisons_to(&self, verdict: &mut crate::verdict::Verdict) {
+        for c in &self.comparisons {
+            let beyond = c.beyond_policy.then(|| {
+                let mut why = vec![format!("{} divergences ({})", c.divergences, c.policy)];
+                why.extend(c.findings.iter().cloned());
+                why.join("; ")
+            });
+            verdict.compared(
+                format!("{} vs {} on {} ({})", c.a, c.b, c.scope, c.level),
+                c.cases,
+                beyond,
+            );
+        }
+        for p in &self.image_pairs {
+            verdict.compared(
+                format!("{} vs {} image", p.a, p.b),
+                p.pixels,
+                p.beyond_policy.clone(),
+            );
+        }
+        if let Some(s) = &self.selftest {
+            let failed: Vec<&str> = s
+                .lines
+                .iter()
+                .filter(|l| l.contains("FAIL"))
+                .map(String::as_str)
+                .collect();
+            let beyond =
+                (!s.passed).then(|| format!("the self-test failed: {}", failed.join("; ")));
+            verdict.compared("self-test", s.lines.len() as u64, beyond);
+        }
     }
 
     /// Serialise as pretty JSON.

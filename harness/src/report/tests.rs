@@ -16,6 +16,7 @@ fn images(bits: &[u8], shades: Option<&[f64]>) -> RenderImages {
     RenderImages {
         bits: Grid::new(4, 2, bits.iter().map(|b| *b == 1).collect()).unwrap(),
         shades: shades.map(|s| Grid::new(4, 2, s.to_vec()).unwrap()),
+        traps: None,
     }
 }
 
@@ -65,7 +66,7 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
         .add_pair(
             ORACLE,
             "ref-f316",
-            false,
+            PairGate::default(),
             PixelLocalizer::Traced {
                 method: "by hand".into(),
                 first_op: Box::new(|x, y| format!("op at {x},{y}")),
@@ -97,9 +98,13 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
         assert!(b.stage.path().join(rel).is_file(), "{rel} not written");
     }
     let no_shades = b
-        .add_pair("ref-f316", "jack", false, impossible(), |_, _| {
-            String::new()
-        })
+        .add_pair(
+            "ref-f316",
+            "jack",
+            PairGate::default(),
+            impossible(),
+            |_, _| String::new(),
+        )
         .unwrap();
     assert_eq!(
         (no_shades.differing_pixels, no_shades.differing_shades),
@@ -109,9 +114,13 @@ fn pairs_list_divergent_pixels_with_localization_and_images() {
     assert_eq!(no_shades.localization, "not localizable: no traces");
     assert!(no_shades.heat.is_none());
     assert!(b
-        .add_pair("ref-f316", "gpu-f32", false, impossible(), |_, _| {
-            String::new()
-        })
+        .add_pair(
+            "ref-f316",
+            "gpu-f32",
+            PairGate::default(),
+            impossible(),
+            |_, _| { String::new() }
+        )
         .is_err());
 }
 
@@ -125,7 +134,13 @@ fn identical_shades_give_no_heat_map() {
     )
     .unwrap();
     let pair = b
-        .add_pair(ORACLE, "ref-f32", false, impossible(), |_, _| String::new())
+        .add_pair(
+            ORACLE,
+            "ref-f32",
+            PairGate::default(),
+            impossible(),
+            |_, _| String::new(),
+        )
         .unwrap();
     assert_eq!((pair.differing_pixels, pair.differing_shades), (0, Some(0)));
     assert!(pair.heat.is_none() && pair.divergences.is_empty());
@@ -163,6 +178,7 @@ fn renders_must_be_unique_and_match_their_shades() {
     let bad = RenderImages {
         bits: Grid::new(4, 2, vec![false; 8]).unwrap(),
         shades: Some(Grid::new(2, 4, vec![0.0; 8]).unwrap()),
+        traps: None,
     };
     assert!(b.add_render(render("x", 1.0, 8), bad).is_err());
 }
@@ -200,9 +216,13 @@ fn finish_writes_everything_then_swaps_and_appends_history() {
     let history = history::path_for(&target);
     for run in 0..2 {
         let mut b = builder(&target);
-        b.add_pair(ORACLE, "ref-f316", false, impossible(), |x, y| {
-            format!("harness diff ref-f64 ref-f316 --vectors repro/pixel-{x}-{y}.json")
-        })
+        b.add_pair(
+            ORACLE,
+            "ref-f316",
+            PairGate::default(),
+            impossible(),
+            |x, y| format!("harness diff ref-f64 ref-f316 --vectors repro/pixel-{x}-{y}.json"),
+        )
         .unwrap();
         b.set_cost_map(&Grid::new(4, 2, vec![10, 20, 30, 40, 50, 60, 70, 80 + run]).unwrap())
             .unwrap();
@@ -267,4 +287,70 @@ fn percentiles_are_nearest_rank_values() {
     let mut shades = vec![0.0; 131_072];
     shades[..613].fill(0.25);
     assert_eq!(percentiles(&shades, [0.95, 0.999]), [0.0, 0.25]);
+}
+
+#[test]
+fn a_trap_differs_from_every_value_and_is_drawn_in_its_own_colour() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut b = builder(&dir.path().join("nightly"));
+    let mut trapped = images(&[0, 1, 0, 1, 0, 1, 0, 1], Some(&ORACLE_SHADES));
+    // Pixel 2 traps: its placeholder bit and shade equal the oracle's.
+    trapped.traps = Some(Grid::new(4, 2, (0..8).map(|i| i == 2).collect()).unwrap());
+    b.add_render(render("hang", 1.0, 8), trapped.clone())
+        .unwrap();
+    assert_eq!(b.report().renders.last().unwrap().trapped, 1);
+    let oracle = b.render_images(ORACLE).unwrap().clone();
+    assert_eq!(trapped.differing(&oracle).unwrap(), [(2, 0)]);
+    assert_eq!(trapped.trap_mismatches(&oracle), 1);
+    assert_eq!(trapped.trap_mismatches(&trapped), 0);
+    assert!(trapped.differing(&trapped).unwrap().is_empty());
+    assert_eq!(
+        trapped.shade_error(&oracle).unwrap(),
+        Some((0.0, 0.0)),
+        "the trapped pixel's placeholder is no error figure"
+    );
+    let gate = PairGate {
+        bit_exact: false,
+        flip_limit: Some(0.5),
+    };
+    let pair = b
+        .add_pair(ORACLE, "hang", gate, impossible(), |_, _| String::new())
+        .unwrap()
+        .clone();
+    assert_eq!(pair.differing_pixels, 1);
+    assert_eq!(
+        pair.beyond_policy.as_deref(),
+        Some("1 pixels trapped on one side and answered on the other")
+    );
+}
+
+#[test]
+fn the_pair_gate_judges_bit_exact_pairs_flip_fractions_and_traps() {
+    let exact = PairGate {
+        bit_exact: true,
+        flip_limit: None,
+    };
+    assert_eq!(exact.judge(100, 0, Some(0), 0), None);
+    assert_eq!(
+        exact.judge(100, 0, Some(3), 0).as_deref(),
+        Some("3 pixels differ between two bit-exact renders")
+    );
+    let float = PairGate {
+        bit_exact: false,
+        flip_limit: Some(0.01),
+    };
+    assert_eq!(float.judge(100, 1, Some(50), 0), None, "1% is within 1%");
+    assert_eq!(
+        float.judge(100, 2, None, 0).as_deref(),
+        Some("2 of 100 dithered pixels flip (2.000%), over the policy's 1.000%")
+    );
+    assert!(
+        float.judge(100, 1, None, 1).is_some(),
+        "a trap is never within policy"
+    );
+    assert_eq!(
+        PairGate::default().judge(100, 100, Some(100), 100),
+        None,
+        "measured only"
+    );
 }

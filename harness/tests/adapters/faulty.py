@@ -1,0 +1,63 @@
+"""Pipe adapters that fail in known ways, for the gate tests: each must fail
+every command that compares, with a message that names it.
+
+  hang-f32          an f32 port (sdf, pixels) that answers `hang` to every input
+  crash-after N     a Float316 port (ops, the example port's arithmetic) that
+                    answers N inputs correctly and then crashes
+  no-start          a port that exits before its handshake
+"""
+import json
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "examples", "pipe-python"))
+
+mode = sys.argv[1]
+if mode == "no-start":
+    print("faulty: cannot open its configuration", file=sys.stderr)
+    sys.exit(3)
+
+if mode == "hang-f32":
+    handshake = {"numbers": "f32", "levels": ["sdf", "pixels"]}
+else:
+    import float316  # the example port
+    handshake = {"numbers": "float316", "levels": ["ops"]}
+    crash_at = int(sys.argv[2])
+handshake.update({"protocol": 1, "name": "faulty-" + mode, "trace": False})
+out = sys.stdout
+out.write(json.dumps(handshake) + "\n")
+out.flush()
+
+
+def answer(request):
+    if mode == "hang-f32":
+        return {"id": request["id"], "outcome": "hang"}
+    args = [tuple(request["a"])] + ([tuple(request["b"])] if "b" in request else [])
+    outcome = float316.apply(request["op"], *args)
+    reply = {"id": request["id"]}
+    if outcome[0] == "value":
+        value = outcome[1]
+        reply["value"] = value if isinstance(value, bool) else list(value)
+    else:
+        reply["outcome"] = outcome[0]
+        if outcome[0] == "sys_error":
+            reply["code"] = outcome[1]
+    return reply
+
+
+answered = 0
+for header in sys.stdin:
+    batch = json.loads(header)
+    for _ in range(batch["count"]):
+        request = json.loads(sys.stdin.readline())
+        if mode == "crash-after" and answered == crash_at:
+            out.flush()
+            print("Traceback (most recent call last):", file=sys.stderr)
+            print("ZeroDivisionError: in faulty.answer", file=sys.stderr)
+            sys.stderr.flush()
+            os._exit(1)
+        out.write(json.dumps(answer(request)) + "\n")
+        answered += 1
+    out.write(json.dumps({"batch": batch["batch"], "count": batch["count"]}) + "\n")
+    out.flush()

@@ -1,0 +1,311 @@
+//! Every gate, made to fail through the binary: implementations that fail in
+//! known ways (tests/adapters/faulty.py) must fail every command that
+//! compares, with the status the verdict table gives (1 beyond policy, 3
+//! not compared) and a message that names them.
+
+mod binary;
+
+use binary::{harness_in, text};
+use std::path::Path;
+use std::process::Output;
+
+const FAULTY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/adapters/faulty.py");
+
+/// A project directory whose harness.toml declares the faulty adapters:
+/// `hang` (an f32 port answering hang to everything), `crash` (a Float316
+/// ops port that crashes after 100 answers) and `no-start`.
+fn project() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let entry = |name: &str, numbers: &str, levels: &str, args: &str| {
+        format!(
+            "[impl.{name}]\nkind = \"pipe\"\nnumbers = \"{numbers}\"\nlevels = [{levels}]\n\
+             command = \"python3\"\nargs = [\"{FAULTY}\", {args}]\n\n"
+        )
+    };
+    let toml = [
+        entry("hang", "f32", "\"sdf\", \"pixels\"", "\"hang-f32\""),
+        entry("crash", "float316", "\"ops\"", "\"crash-after\", \"100\""),
+        entry("no-start", "float316", "\"ops\"", "\"no-start\""),
+    ]
+    .concat();
+    std::fs::write(dir.path().join("harness.toml"), toml).unwrap();
+    dir
+}
+
+fn run(dir: &Path, args: &[&str]) -> Output {
+    harness_in(dir, args)
+}
+
+fn assert_status(o: &Output, code: i32, names: &[&str]) {
+    let t = text(o);
+    assert_eq!(o.status.code(), Some(code), "{t}");
+    assert!(!t.contains("panicked"), "{t}");
+    for name in names {
+        assert!(t.contains(name), "`{name}` is not named: {t}");
+    }
+}
+
+#[test]
+fn diff_says_what_diverged_and_what_was_not_compared() {
+    let p = project();
+    let o = run(p.path(), &["diff", "hang", "ref-f64", "--level", "sdf"]);
+    assert_status(&o, 1, &["diverged: hang vs ref-f64 on sdf-small"]);
+    let o = run(p.path(), &["diff", "ref-f316", "crash", "--level", "ops"]);
+    assert_status(&o, 3, &["failed: crash on ops-small", "ZeroDivisionError"]);
+    assert!(
+        text(&o).contains("no divergence on 100 vectors"),
+        "{}",
+        text(&o)
+    );
+    let o = run(
+        p.path(),
+        &["diff", "ref-f316", "no-start", "--level", "ops"],
+    );
+    assert_status(&o, 3, &["no-start (open)", "nothing was compared"]);
+}
+
+/// `diff A B C` runs every implementation that opens, and names the ones
+/// that did not.
+#[test]
+fn diff_with_several_implementations_runs_every_one_that_opens() {
+    let p = project();
+    let o = run(
+        p.path(),
+        &["diff", "ref-f316", "no-start", "jack", "--level", "ops"],
+    );
+    assert_status(&o, 3, &["failed: no-start (open)", "ref-f316 vs jack"]);
+    assert!(
+        text(&o).contains("no divergence on 435 vectors"),
+        "{}",
+        text(&o)
+    );
+    let o = run(
+        p.path(),
+        &[
+            "diff",
+            "ref-f316",
+            "no-start",
+            "ref-f316+mul-keep-low",
+            "--level",
+            "ops",
+        ],
+    );
+    assert_status(
+        &o,
+        1,
+        &[
+            "no-start (open)",
+            "diverged: ref-f316 vs ref-f316+mul-keep-low",
+        ],
+    );
+}
+
+/// A level asked for that an implementation does not answer is not
+/// agreement.
+#[test]
+fn an_unsupported_level_asked_for_is_not_compared() {
+    let p = project();
+    let o = run(p.path(), &["diff", "ref-f316", "crash", "--level", "sdf"]);
+    assert_status(&o, 3, &["unsupported: crash on sdf-small"]);
+}
+
+/// A built-in that cannot run here is skipped, and fails the run unless
+/// the user allows it.
+#[test]
+fn an_unavailable_builtin_fails_unless_allowed() {
+    let p = project();
+    let no_gpu = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_harness"))
+            .args(args)
+            .current_dir(p.path())
+            .env("WGPU_BACKEND", "dx12")
+            .output()
+            .unwrap()
+    };
+    let o = no_gpu(&["diff", "ref-f316", "gpu-f316", "jack", "--level", "ops"]);
+    assert_status(&o, 3, &["skipped: gpu-f316 (open)", "lavapipe"]);
+    let o = no_gpu(&[
+        "diff",
+        "ref-f316",
+        "gpu-f316",
+        "jack",
+        "--level",
+        "ops",
+        "--allow-unavailable",
+    ]);
+    assert_status(
+        &o,
+        0,
+        &["skipped: gpu-f316 (open)", "allowed by --allow-unavailable"],
+    );
+}
+
+#[test]
+fn the_nightly_fails_on_a_float_port_beyond_policy_and_on_one_that_crashes() {
+    let p = project();
+    let out = p.path().join("reports/nightly");
+    let out = out.to_str().unwrap();
+    let o = run(
+        p.path(),
+        &[
+            "nightly", "--out", out, "--impls", "hang", "--steps", "levels",
+        ],
+    );
+    assert_status(&o, 1, &["DIVERGED", "hang vs ref-f64 on sdf-nightly"]);
+    // The image alone: a render that traps everywhere fails its pair with
+    // the oracle, in the trap colour on the overlay.
+    let o = run(
+        p.path(),
+        &[
+            "nightly",
+            "--out",
+            out,
+            "--impls",
+            "hang",
+            "--steps",
+            "renders,pairs",
+        ],
+    );
+    assert_status(
+        &o,
+        1,
+        &["diverged: ref-f64 vs hang image: 131072 pixels trapped on one side"],
+    );
+    let report = std::fs::read_to_string(Path::new(out).join("report.json")).unwrap();
+    let report: serde_json::Value = serde_json::from_str(&report).unwrap();
+    let pair = report["image_pairs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["a"] == "ref-f64" && p["b"] == "hang")
+        .expect("the pair with the oracle");
+    let overlay = image::open(Path::new(out).join(pair["overlay"].as_str().unwrap()))
+        .unwrap()
+        .to_rgb8();
+    assert_eq!(
+        overlay.get_pixel(5, 5).0,
+        harness::report::images::TRAP_COLOUR
+    );
+    for (name, why) in [
+        ("crash", "ZeroDivisionError"),
+        ("no-start", "no-start (open)"),
+    ] {
+        let o = run(
+            p.path(),
+            &[
+                "nightly", "--out", out, "--impls", name, "--steps", "levels",
+            ],
+        );
+        assert_status(&o, 3, &["INCOMPLETE", why]);
+        let report = std::fs::read_to_string(Path::new(out).join("report.json")).unwrap();
+        let report: serde_json::Value = serde_json::from_str(&report).unwrap();
+        let missing = &report["verdict"]["not_compared"];
+        assert!(
+            missing.as_array().is_some_and(|m| m
+                .iter()
+                .any(|n| n["what"].as_str().unwrap().starts_with(name))),
+            "{missing}"
+        );
+    }
+}
+
+/// Two shards of a crashing adapter: each `diff` fails, and so does the
+/// merge, which counts only what was compared.
+#[test]
+fn merge_carries_every_shards_failure_and_counts_what_was_compared() {
+    let p = project();
+    let mut compared = 0;
+    for k in 0..2 {
+        let shard = format!("{k}/2");
+        let dir = format!("shards/{k}");
+        let o = run(
+            p.path(),
+            &[
+                "diff",
+                "ref-f316",
+                "crash",
+                "--vectors",
+                &set("ops-nightly"),
+                "--shard",
+                &shard,
+                "--report",
+                &dir,
+            ],
+        );
+        assert_status(&o, 3, &["failed: crash"]);
+        compared += vectors_compared(&text(&o));
+    }
+    assert_eq!(compared, 200, "each shard's adapter answers 100");
+    let o = run(
+        p.path(),
+        &["merge", "shards/0", "shards/1", "--out", "merged"],
+    );
+    assert_status(
+        &o,
+        3,
+        &[
+            "crash on ops-nightly (shard 0/2)",
+            "crash on ops-nightly (shard 1/2)",
+        ],
+    );
+    assert!(text(&o).contains("on 200 cases"), "{}", text(&o));
+    let o = run(p.path(), &["merge", "shards/0"]);
+    assert_status(&o, 3, &["missing: shard 1/2"]);
+}
+
+/// The committed set `name`'s file.
+fn set(name: &str) -> String {
+    format!("{}/../vectors/sets/{name}.json", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The vectors a `diff` compared, from its "no divergence on N vectors".
+fn vectors_compared(text: &str) -> usize {
+    text.lines()
+        .find_map(|l| {
+            l.trim()
+                .strip_prefix("no divergence on ")?
+                .split(' ')
+                .next()?
+                .parse()
+                .ok()
+        })
+        .unwrap_or_else(|| panic!("no count in {text}"))
+}
+
+/// Every pixel trapped: render and bench fail and say how many; check's
+/// error bound does not hold.
+#[test]
+fn traps_are_answers_in_render_bench_and_check() {
+    let p = project();
+    let o = run(p.path(), &["render", "--impl", "hang", "--out", "hang.png"]);
+    assert_status(&o, 1, &["131072 of 131072 pixels trapped (131072 hang)"]);
+    let img = image::open(p.path().join("hang.png")).unwrap().to_rgb8();
+    assert_eq!(img.get_pixel(0, 0).0, harness::report::images::TRAP_COLOUR);
+    let o = run(p.path(), &["bench", "hang"]);
+    assert_status(
+        &o,
+        1,
+        &["diverged: hang vs ref-f64 image", "131072 pixels trapped"],
+    );
+    let o = run(
+        p.path(),
+        &["check", "--max-error", "hang", "0", "--metric", "max"],
+    );
+    assert_status(&o, 1, &["bad: hang: 131072 of 131072 pixels trapped"]);
+}
+
+/// An implementation that cannot render fails render and bench with 3.
+#[test]
+fn a_render_that_fails_is_not_compared() {
+    let p = project();
+    let o = run(
+        p.path(),
+        &["render", "--impl", "no-start", "--out", "x.png"],
+    );
+    assert_status(&o, 3, &["no-start", "gave no image"]);
+    assert!(!p.path().join("x.png").exists());
+    let o = run(p.path(), &["bench", "ref-f32", "no-start"]);
+    assert_status(&o, 3, &["failed: no-start", "ref-f32"]);
+    let o = run(p.path(), &["bench", "ref-f32"]);
+    assert_status(&o, 0, &["verdict: agreed"]);
+}
