@@ -309,3 +309,56 @@ fn a_render_that_fails_is_not_compared() {
     let o = run(p.path(), &["bench", "ref-f32"]);
     assert_status(&o, 0, &["verdict: agreed"]);
 }
+
+/// A shader with an endless loop: every pixel is a hang, never a white
+/// pixel, in every command.
+#[test]
+fn a_shader_that_loops_for_ever_fails_every_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let seed = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/shaders/seed.glsl"
+    ))
+    .unwrap();
+    let body = seed.find("void mainImage").unwrap();
+    let open = body + seed[body..].find('{').unwrap() + 1;
+    let looping = format!(
+        "{}\n    float spin = 0.0;\n    while (spin >= 0.0) {{ spin += 1.0; }}\n{}",
+        &seed[..open],
+        &seed[open..]
+    );
+    std::fs::write(dir.path().join("loop.glsl"), looping).unwrap();
+    std::fs::write(
+        dir.path().join("harness.toml"),
+        "[impl.loop]\nkind = \"shader\"\npath = \"loop.glsl\"\nshade = \"red\"\n",
+    )
+    .unwrap();
+    let p = dir.path();
+    let o = run(p, &["render", "--impl", "loop", "--out", "loop.png"]);
+    assert_status(
+        &o,
+        1,
+        &["loop: 131072 of 131072 pixels trapped (131072 hang)"],
+    );
+    let o = run(p, &["bench", "loop"]);
+    assert_status(&o, 1, &["diverged: loop vs ref-f64 image"]);
+    let o = run(
+        p,
+        &["check", "--max-error", "loop", "1", "--metric", "mean"],
+    );
+    assert_status(&o, 1, &["bad: loop: 131072 of 131072 pixels trapped"]);
+    let out = p.join("reports/nightly");
+    let o = run(
+        p,
+        &[
+            "nightly",
+            "--out",
+            out.to_str().unwrap(),
+            "--impls",
+            "loop",
+            "--steps",
+            "levels",
+        ],
+    );
+    assert_status(&o, 1, &["diverged: loop vs ref-f64 on pixels-nightly"]);
+}
