@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Mutation testing of the numeric core: every mutant cargo-mutants makes of
-# impls/reference/src/float316.rs and harness/src/compare.rs, each judged by
-# its own package's tests (reference: all of them; harness: its library
-# tests, as the integration tests rebuild the whole harness per mutant).
-#   scripts/mutants.sh [float316|compare] [K/N]    (default: both files, whole)
+# Mutation testing of the numeric core and of the gates: every mutant
+# cargo-mutants makes of impls/reference/src/float316.rs and
+# harness/src/compare.rs, each judged by its own package's tests (reference:
+# all of them; harness: its library tests, as the integration tests rebuild
+# the whole harness per mutant), and of the code that decides a verdict
+# (`gates`: the verdict type, merge, measure, check, the report model's
+# comparisons and the nightly's summary), judged by the library tests and
+# tests/gates.rs, which runs the binary on faulty implementations.
+#   scripts/mutants.sh [float316|compare|gates] [K/N]    (default: all, whole)
 # K/N runs every N-th mutant from the K-th (K counts from 0), so N machines
 # share a file. Installs cargo-mutants from crates.io when missing. Results go
 # to mutants.out/FILE[-K-N]/mutants.out/{caught,missed,timeout,unviable}.txt;
@@ -42,5 +46,13 @@ fi
 if [ "$which" = all ] || [ "$which" = compare ]; then
     run compare -p harness --file harness/src/compare.rs \
         --timeout 90 --build-timeout 1500 --cargo-test-arg=--lib || status=$?
+fi
+if [ "$which" = all ] || [ "$which" = gates ]; then
+    run gates -p harness \
+        --file harness/src/verdict.rs --file harness/src/merge.rs \
+        --file harness/src/measure.rs --file harness/src/commands/check.rs \
+        --file harness/src/report/model.rs --file harness/src/nightly/mod.rs \
+        --timeout 300 --build-timeout 1500 \
+        --cargo-test-arg=--lib --cargo-test-arg=--test --cargo-test-arg=gates || status=$?
 fi
 exit "$status"
