@@ -16,6 +16,7 @@ use crate::cast::{Cast, CastError, OpenError};
 use crate::localize::{localize, Localization};
 use crate::runner::{diff_set, LevelReport, RunOptions};
 use crate::text;
+use crate::verdict::Status;
 use std::fmt::Write;
 use std::path::Path;
 use vectors::{Level, SetError, VectorSet};
@@ -50,10 +51,18 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// The status the command line's `harness diff` would exit with
+    /// ([`crate::verdict`]): agreed, diverged, or not all compared.
+    pub fn status(&self) -> Status {
+        let mut verdict = crate::verdict::Verdict::new(false);
+        verdict.add_level(&self.report, true);
+        verdict.status()
+    }
+
     /// Whether both implementations answered every vector and agree under
     /// the policy.
     pub fn agrees(&self) -> bool {
-        !self.report.diverged() && self.report.failures().next().is_none()
+        self.status() == Status::Agreed
     }
 
     /// The report as text: runs that failed, the comparison, and the

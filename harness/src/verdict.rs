@@ -54,7 +54,7 @@ impl Status {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Missing {
-    /// It cannot run on this machine (no Vulkan adapter, no interpreter):
+    /// It cannot run on this machine (no Vulkan adapter for a GPU or shader entry):
     /// skipped, a failure unless the user allows it.
     Unavailable,
     /// It ran and failed: a crash, a hang of a batch, a broken protocol, a

@@ -362,3 +362,73 @@ fn a_shader_that_loops_for_ever_fails_every_command() {
     );
     assert_status(&o, 1, &["diverged: loop vs ref-f64 on pixels-nightly"]);
 }
+
+/// `examples/jack-port` copied into a project, with `while (true) { }`
+/// put first in the body of `function Num NAME` of Num.jack.
+fn jack_port_looping_in(name: &str) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let port = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/jack-port");
+    for entry in std::fs::read_dir(&port).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, dir.path().join(path.file_name().unwrap())).unwrap();
+    }
+    let num = dir.path().join("Num.jack");
+    let text = std::fs::read_to_string(&num).unwrap();
+    let head = text.find(&format!("function Num {name}(")).unwrap();
+    let body = head + text[head..].find("let ").unwrap();
+    let looping = format!(
+        "{}while (true) {{ }}\n        {}",
+        &text[..body],
+        &text[body..]
+    );
+    std::fs::write(&num, looping).unwrap();
+    std::fs::write(
+        dir.path().join("harness.toml"),
+        "[impl.port]\nkind = \"jack\"\nprogram = \".\"\nbindings = \"bindings.toml\"\n",
+    )
+    .unwrap();
+    dir
+}
+
+/// A Jack port whose `Num.mod2` never returns: each call is a hang at its
+/// budget, an answer that diverges; one whose `Num.add` never returns
+/// cannot reach its bindings' ready point, and is a failure of the port
+/// (never an unavailable one, which --allow-unavailable would pass).
+#[test]
+fn a_jack_port_that_loops_fails_with_its_call_stack() {
+    let p = jack_port_looping_in("mod2");
+    let o = run(p.path(), &["diff", "ref-f316", "port", "--level", "ops"]);
+    assert_status(&o, 1, &["diverged: ref-f316 vs port on ops-small"]);
+    assert!(text(&o).contains("port: hang"), "{}", text(&o));
+    let p = jack_port_looping_in("add");
+    for args in [
+        &[
+            "diff",
+            "ref-f316",
+            "port",
+            "--level",
+            "ops",
+            "--allow-unavailable",
+        ][..],
+        &["render", "--impl", "port", "--out", "x.png"],
+        &["bench", "port", "--allow-unavailable"],
+    ] {
+        let o = run(p.path(), args);
+        assert_status(&o, 3, &["port", "Num.add", "budget"]);
+    }
+    let out = p.path().join("reports/nightly");
+    let o = run(
+        p.path(),
+        &[
+            "nightly",
+            "--out",
+            out.to_str().unwrap(),
+            "--impls",
+            "port",
+            "--steps",
+            "levels",
+            "--allow-unavailable",
+        ],
+    );
+    assert_status(&o, 3, &["failed: port (open)", "Num.add"]);
+}

@@ -69,7 +69,7 @@ pub struct DiffArgs {
     #[arg(long)]
     pub shard: Option<Shard>,
     /// An implementation that cannot run on this machine (no Vulkan
-    /// adapter, no interpreter) is reported as skipped without failing the
+    /// adapter) is reported as skipped without failing the
     /// run.
     #[arg(long)]
     pub allow_unavailable: bool,

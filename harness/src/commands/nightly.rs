@@ -51,7 +51,7 @@ pub struct NightlyArgs {
     #[arg(long)]
     pub shard: Option<Shard>,
     /// An implementation that cannot run on this machine (no Vulkan
-    /// adapter, no interpreter) is reported as skipped without failing the
+    /// adapter) is reported as skipped without failing the
     /// night.
     #[arg(long)]
     pub allow_unavailable: bool,

@@ -202,9 +202,11 @@ impl Opener for JackOpener {
             Source::Seed => JackProgram::from_jack(&jack::sources::SOURCES, profile),
             Source::Folder(dir) => JackProgram::from_dir(dir, profile),
         }
-        .map_err(|e| ImplError::Unavailable(e.to_string()))?;
+        .map_err(|e| ImplError::Failed(e.to_string()))?;
+        // A program that does not compile, or never reaches its bindings'
+        // ready point, is a failure of the port, not of this machine.
         let bound = BoundProgram::open(&program, &self.bindings, Budgets::default())
-            .map_err(|e| ImplError::Unavailable(e.to_string()))?;
+            .map_err(|e| ImplError::Failed(e.to_string()))?;
         Ok(Box::new(JackAdapter {
             bound,
             label: request.label.to_string(),

@@ -83,7 +83,9 @@ impl Pipe {
             config.handshake,
         )
         .map_err(|e| match e {
-            StartError::Spawn(why) => ImplError::Unavailable(why),
+            // A declared adapter that cannot be started is the port's
+            // failure (a wrong command or folder), never skipped.
+            StartError::Spawn(why) => ImplError::Failed(why),
             StartError::Failed {
                 kind,
                 message,
