@@ -12,10 +12,10 @@ pub const PRINTED: usize = 12;
 fn divergence(out: &mut String, c: &Comparison, d: &Divergence) -> fmt::Result {
     // A tolerated difference (a flip, a shade) is judged with the others,
     // by the set's flip fraction: within policy only when that holds.
-    let tolerated = match (d.tolerated, c.findings.is_empty()) {
+    let tolerated = match (d.tolerated, flip_fraction_beyond(c)) {
         (false, _) => ", beyond policy",
-        (true, true) => ", within policy (judged by the flip fraction)",
-        (true, false) => ", counted in the flip fraction, which is beyond policy",
+        (true, false) => ", within policy (judged by the flip fraction)",
+        (true, true) => ", counted in the flip fraction, which is beyond policy",
     };
     writeln!(
         out,
@@ -52,6 +52,17 @@ fn divergence(out: &mut String, c: &Comparison, d: &Divergence) -> fmt::Result {
         )?;
     }
     Ok(())
+}
+
+/// Whether the comparison's dithered pixels flip more than its policy
+/// allows.
+fn flip_fraction_beyond(c: &Comparison) -> bool {
+    match (&c.policy, &c.stats) {
+        (Policy::Error { thresholds }, Some(s)) if s.pixels > 0 => {
+            s.flips as f64 / s.pixels as f64 > thresholds.max_flip_fraction
+        }
+        _ => false,
+    }
 }
 
 /// One comparison, as text.
@@ -157,4 +168,81 @@ pub fn level_report(r: &LevelReport) -> String {
         out += &comparison(c);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compare::{compare, Sides};
+    use crate::implementation::{Answer, Num, Numbers};
+    use common::Outcome;
+    use vectors::{Level, PixelVector, Vector, VectorSet};
+
+    fn pixels(n: usize) -> VectorSet {
+        let vectors = (0..n)
+            .map(|x| {
+                Vector::Pixel(PixelVector {
+                    category: "c".into(),
+                    x: x as u16,
+                    y: 0,
+                })
+            })
+            .collect();
+        VectorSet::new("p", Level::Pixels, "", None, vectors)
+    }
+
+    fn pixel(shade: f64, white: bool) -> Outcome<Answer> {
+        Outcome::Value(Answer::Pixel {
+            shade: Num::F64(shade),
+            white,
+        })
+    }
+
+    fn text_of(subject: &[Outcome<Answer>], oracle: &[Outcome<Answer>]) -> String {
+        comparison(&compare(
+            &pixels(subject.len()),
+            &Sides {
+                a_label: "f32-port",
+                a_numbers: Numbers::F32,
+                a: subject,
+                b_label: "ref-f64",
+                b_numbers: Numbers::F64,
+                b: oracle,
+            },
+        ))
+    }
+
+    #[test]
+    fn a_flip_is_within_policy_only_while_the_flip_fraction_is() {
+        // 0.1 is no f32 value: the oracle is seen to be f64.
+        let oracle: Vec<_> = (0..200).map(|_| pixel(0.1, true)).collect();
+        let mut subject = oracle.clone();
+        subject[3] = pixel(0.1, false);
+        let one = text_of(&subject, &oracle);
+        assert!(
+            one.contains("within policy (judged by the flip fraction)"),
+            "{one}"
+        );
+        assert!(!one.contains("beyond policy"), "{one}");
+        subject[4] = pixel(0.1, false);
+        subject[5] = pixel(0.1, false);
+        let three = text_of(&subject, &oracle);
+        assert!(
+            three.contains("counted in the flip fraction, which is beyond policy"),
+            "{three}"
+        );
+        assert!(
+            three
+                .contains("DIVERGENCE: 0 differences beyond policy, 3 judged by the flip fraction"),
+            "{three}"
+        );
+    }
+
+    #[test]
+    fn figures_over_no_values_are_not_zeros() {
+        let hang = [Outcome::Hang, Outcome::Hang];
+        let t = text_of(&hang, &[pixel(0.1, true), pixel(0.1, true)]);
+        assert!(t.contains("figures: 0 values (error figures n/a)"), "{t}");
+        assert!(t.contains("hang, beyond policy"), "{t}");
+    }
 }

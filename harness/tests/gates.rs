@@ -432,3 +432,14 @@ fn a_jack_port_that_loops_fails_with_its_call_stack() {
     );
     assert_status(&o, 3, &["failed: port (open)", "Num.add"]);
 }
+
+/// `explain` judges a pixel by its dithered bit: at (0,0) both bits are
+/// black and only the shade differs (by 3.9e-5), at (106,93) the bit flips.
+#[test]
+fn explain_exits_1_only_where_the_dithered_bit_differs() {
+    let p = project();
+    let o = run(p.path(), &["explain", "ref-f316", "--pixel", "0,0"]);
+    assert_status(&o, 0, &["ref-f316 black", "ref-f64 black"]);
+    let o = run(p.path(), &["explain", "ref-f316", "--pixel", "106,93"]);
+    assert_status(&o, 1, &["pixel(106,93)"]);
+}
