@@ -35,6 +35,7 @@ run() {
         out=$out-${shard/\//-}
         shard_args=(--shard "$shard")
     fi
+    mkdir -p "$(dirname "$out")"
     cargo mutants --in-place --output "$out" "${shard_args[@]}" "$@"
 }
 
