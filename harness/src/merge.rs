@@ -59,6 +59,19 @@ pub enum MergeError {
     Duplicate(Shard),
     #[error("the shards ran different sets or implementations ({0})")]
     Mismatch(String),
+    #[error("report {0} names shard {1}, which no campaign has (K/N needs N >= 1 and K < N)")]
+    BadShard(usize, Shard),
+    #[error("the shards' {0} add up to more than {max}", max = usize::MAX)]
+    Overflow(&'static str),
+}
+
+/// The sum of shard counts, refused when it does not fit (a hand-edited
+/// report must not wrap to a small number).
+fn total(what: &'static str, counts: impl IntoIterator<Item = usize>) -> Result<usize, MergeError> {
+    counts
+        .into_iter()
+        .try_fold(0usize, usize::checked_add)
+        .ok_or(MergeError::Overflow(what))
 }
 
 /// Shard reports joined into one.
@@ -97,6 +110,9 @@ pub fn merge(parts: &[Vec<LevelReport>]) -> Result<Merged, MergeError> {
             .ok_or(MergeError::NotSharded(i))?;
         if part.iter().any(|r| r.shard != Some(shard)) {
             return Err(MergeError::NotSharded(i));
+        }
+        if shard.count == 0 || shard.index >= shard.count {
+            return Err(MergeError::BadShard(i, shard));
         }
         match count {
             Some(n) if n != shard.count => return Err(MergeError::Counts(n, shard.count)),
@@ -148,7 +164,7 @@ fn merge_set<'a>(parts: impl Iterator<Item = &'a LevelReport>) -> Result<LevelRe
     let parts: Vec<&LevelReport> = parts.collect();
     let mut out = parts[0].clone();
     out.shard = None;
-    out.vectors = parts.iter().map(|p| p.vectors).sum();
+    out.vectors = total("vectors", parts.iter().map(|p| p.vectors))?;
     for (i, run) in out.runs.iter_mut().enumerate() {
         run.seconds = parts.iter().map(|p| p.runs[i].seconds).sum();
         run.error = parts.iter().find_map(|p| p.runs[i].error.clone());
@@ -172,18 +188,23 @@ fn merge_set<'a>(parts: impl Iterator<Item = &'a LevelReport>) -> Result<LevelRe
                     .filter(|c| (&c.a, &c.b) == (a, b)),
             )
         })
-        .collect();
+        .collect::<Result<_, _>>()?;
     Ok(out)
 }
 
 /// One pair's comparisons in several shards as one: the vectors each
 /// actually compared are summed (a shard whose implementation stopped early
 /// compared fewer than it holds).
-fn merge_comparison<'a>(parts: impl Iterator<Item = &'a Comparison>) -> Comparison {
+fn merge_comparison<'a>(
+    parts: impl Iterator<Item = &'a Comparison>,
+) -> Result<Comparison, MergeError> {
     let parts: Vec<&Comparison> = parts.collect();
     let mut out = parts[0].clone();
-    out.vectors = parts.iter().map(|c| c.vectors).sum();
-    let found: usize = parts.iter().map(|c| c.divergences.len() + c.omitted).sum();
+    out.vectors = total("compared vectors", parts.iter().map(|c| c.vectors))?;
+    let found = total(
+        "divergences",
+        parts.iter().flat_map(|c| [c.divergences.len(), c.omitted]),
+    )?;
     let mut divergences: Vec<_> = parts.iter().flat_map(|c| c.divergences.clone()).collect();
     divergences.sort_by_key(|d| d.index);
     divergences.truncate(MAX_KEPT);
@@ -192,20 +213,22 @@ fn merge_comparison<'a>(parts: impl Iterator<Item = &'a Comparison>) -> Comparis
     let mut groups: BTreeMap<_, Group> = BTreeMap::new();
     for g in parts.iter().flat_map(|c| &c.groups) {
         let key = (g.op, g.category.clone(), g.kind, g.tolerated);
-        groups
-            .entry(key)
-            .and_modify(|m| {
-                m.count += g.count;
+        match groups.get_mut(&key) {
+            Some(m) => {
+                m.count = total("group counts", [m.count, g.count])?;
                 m.first = m.first.min(g.first);
-            })
-            .or_insert_with(|| g.clone());
+            }
+            None => {
+                groups.insert(key, g.clone());
+            }
+        }
     }
     out.groups = groups.into_values().collect();
-    out.stats = out.stats.map(|mut s| {
+    if let Some(s) = &mut out.stats {
         let stats: Vec<_> = parts.iter().filter_map(|c| c.stats.as_ref()).collect();
-        s.values = stats.iter().map(|t| t.values).sum();
-        s.pixels = stats.iter().map(|t| t.pixels).sum();
-        s.flips = stats.iter().map(|t| t.flips).sum();
+        s.values = total("values", stats.iter().map(|t| t.values))?;
+        s.pixels = total("pixels", stats.iter().map(|t| t.pixels))?;
+        s.flips = total("flips", stats.iter().map(|t| t.flips))?;
         s.max_abs = stats.iter().map(|t| t.max_abs).fold(0.0, f64::max);
         s.max_rel = stats.iter().map(|t| t.max_rel).fold(0.0, f64::max);
         s.max_ulps_f32 = stats.iter().filter_map(|t| t.max_ulps_f32).reduce(f64::max);
@@ -218,11 +241,10 @@ fn merge_comparison<'a>(parts: impl Iterator<Item = &'a Comparison>) -> Comparis
                 .sum::<f64>()
                 / s.values as f64
         };
-        s
-    });
+    }
     let mut findings: Vec<String> = parts.iter().flat_map(|c| c.findings.clone()).collect();
     findings.dedup();
     out.findings = findings;
     out.diverged = parts.iter().any(|c| c.diverged);
-    out
+    Ok(out)
 }

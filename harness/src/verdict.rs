@@ -201,11 +201,12 @@ impl Verdict {
     }
 
     /// The status: diverged if anything compared diverged, else incomplete
-    /// if anything asked for is missing or nothing was compared at all.
+    /// if anything asked for is missing or nothing was compared at all (no
+    /// comparison, or comparisons of no case: an empty shard).
     pub fn status(&self) -> Status {
         if self.compared.iter().any(|c| c.beyond_policy.is_some()) {
             Status::Diverged
-        } else if self.compared.is_empty() || self.not_compared.iter().any(|n| self.counts(n)) {
+        } else if self.cases() == 0 || self.not_compared.iter().any(|n| self.counts(n)) {
             Status::Incomplete
         } else {
             Status::Agreed
@@ -261,7 +262,7 @@ impl Verdict {
         lines.push(match self.status() {
             Status::Agreed => format!("verdict: agreed ({summary})"),
             Status::Diverged => format!("verdict: DIVERGED ({summary})"),
-            Status::Incomplete if self.compared.is_empty() => red(format!(
+            Status::Incomplete if self.cases() == 0 => red(format!(
                 "verdict: INCOMPLETE, nothing was compared ({summary})"
             )),
             Status::Incomplete => red(format!("verdict: INCOMPLETE ({summary})")),
@@ -321,6 +322,9 @@ mod tests {
         assert_eq!(Verdict::new(true).status(), Status::Incomplete);
         assert_eq!(agreed().status(), Status::Agreed);
         assert_eq!(agreed().status().code(), 0);
+        let mut empty = Verdict::new(false);
+        empty.compared("a vs b on shard 0/4294967295", 0, None);
+        assert_eq!(empty.status(), Status::Incomplete, "0 cases compared");
     }
 
     #[test]

@@ -251,6 +251,26 @@ fn merge_carries_every_shards_failure_and_counts_what_was_compared() {
     assert!(text(&o).contains("on 200 cases"), "{}", text(&o));
     let o = run(p.path(), &["merge", "shards/0"]);
     assert_status(&o, 3, &["missing: shard 1/2"]);
+    let o = run(
+        p.path(),
+        &["merge", "shards/0", "shards/1", "--out", "shards/1"],
+    );
+    assert_status(&o, 2, &["is one of the shard reports being merged"]);
+    assert!(p.path().join("shards/1/report.json").exists());
+    // A shard of no vector compared nothing.
+    let o = run(
+        p.path(),
+        &[
+            "diff",
+            "ref-f316",
+            "jack",
+            "--level",
+            "ops",
+            "--shard",
+            "0/4294967295",
+        ],
+    );
+    assert_status(&o, 3, &["nothing was compared"]);
 }
 
 /// The committed set `name`'s file.

@@ -59,4 +59,23 @@ fn four_shards_merge_into_the_unsharded_report() {
         merge(&[vec![whole]]).unwrap_err(),
         MergeError::NotSharded(0)
     );
+    // Hand-edited reports: a campaign of no shard, a shard past the end,
+    // and counts that would wrap are refused, never merged.
+    let edited = |f: &dyn Fn(&mut LevelReport)| {
+        let mut part = parts[0].clone();
+        f(&mut part[0]);
+        vec![part]
+    };
+    for shard in [Shard { index: 0, count: 0 }, Shard { index: 4, count: 4 }] {
+        assert_eq!(
+            merge(&edited(&|r| r.shard = Some(shard))).unwrap_err(),
+            MergeError::BadShard(0, shard)
+        );
+    }
+    let mut huge = edited(&|r| r.comparisons[0].vectors = usize::MAX);
+    huge.push(parts[1].clone());
+    assert_eq!(
+        merge(&huge).unwrap_err(),
+        MergeError::Overflow("compared vectors")
+    );
 }

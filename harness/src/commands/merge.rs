@@ -35,6 +35,15 @@ pub struct MergeArgs {
 pub fn run(args: MergeArgs) -> anyhow::Result<ExitCode> {
     if let Some(dir) = &args.out {
         crate::output::check_dir(dir, "--out")?;
+        // Writing the merged report over a shard's would lose that shard.
+        let same = |a: &std::path::Path, b: &std::path::Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y);
+        if let Some(input) = args.dirs.iter().find(|d| same(d, dir)) {
+            anyhow::bail!(
+                "--out {} is one of the shard reports being merged ({}); give another folder",
+                dir.display(),
+                input.display()
+            );
+        }
     }
     let parts = args
         .dirs
