@@ -386,6 +386,12 @@ fn a_shader_that_loops_for_ever_fails_every_command() {
 /// `examples/jack-port` copied into a project, with `while (true) { }`
 /// put first in the body of `function Num NAME` of Num.jack.
 fn jack_port_looping_in(name: &str) -> tempfile::TempDir {
+    jack_port_with(name, "while (true) { }")
+}
+
+/// `examples/jack-port` copied into a project, with `statement` put first
+/// in the body of `function Num NAME` of Num.jack.
+fn jack_port_with(name: &str, statement: &str) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let port = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/jack-port");
     for entry in std::fs::read_dir(&port).unwrap() {
@@ -396,12 +402,8 @@ fn jack_port_looping_in(name: &str) -> tempfile::TempDir {
     let text = std::fs::read_to_string(&num).unwrap();
     let head = text.find(&format!("function Num {name}(")).unwrap();
     let body = head + text[head..].find("let ").unwrap();
-    let looping = format!(
-        "{}while (true) {{ }}\n        {}",
-        &text[..body],
-        &text[body..]
-    );
-    std::fs::write(&num, looping).unwrap();
+    let changed = format!("{}{statement}\n        {}", &text[..body], &text[body..]);
+    std::fs::write(&num, changed).unwrap();
     std::fs::write(
         dir.path().join("harness.toml"),
         "[impl.port]\nkind = \"jack\"\nprogram = \".\"\nbindings = \"bindings.toml\"\n",
@@ -462,4 +464,35 @@ fn explain_exits_1_only_where_the_dithered_bit_differs() {
     assert_status(&o, 0, &["ref-f316 black", "ref-f64 black"]);
     let o = run(p.path(), &["explain", "ref-f316", "--pixel", "106,93"]);
     assert_status(&o, 1, &["pixel(106,93)"]);
+}
+
+/// A bound operation that halts the program crashes on its input: `diff`
+/// names it and keeps the answers before it, and `check` says bad, never
+/// skip, so `git bisect run` blames the commit.
+#[test]
+fn a_jack_operation_that_halts_is_a_crash_on_its_input() {
+    let p = jack_port_with("mod2", "do Sys.halt();");
+    let o = run(p.path(), &["diff", "ref-f316", "port", "--level", "ops"]);
+    assert_status(
+        &o,
+        3,
+        &["failed: port on ops-small", "crashed", "mod2(", "halted"],
+    );
+    assert!(
+        vectors_compared(&text(&o)) > 0,
+        "the answers before it are compared: {}",
+        text(&o)
+    );
+    let o = run(
+        p.path(),
+        &[
+            "check",
+            "--no-divergence",
+            "ref-f316",
+            "port",
+            "--level",
+            "ops",
+        ],
+    );
+    assert_status(&o, 1, &["bad: ", "halted"]);
 }

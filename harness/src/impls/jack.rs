@@ -12,6 +12,7 @@
 
 use crate::cast::file::{FieldError, Fields};
 use crate::cast::{Entry, Kind, Opener, Request, VariantInfo, VariantRole};
+use crate::contain::{Failure, FailureKind};
 use crate::implementation::{
     Answer, Bitmap, ImageAnswers, ImplError, Implementation, Num, Numbers,
 };
@@ -331,8 +332,24 @@ impl Implementation for JackAdapter {
         }
     }
 
+    /// Each input in turn. A run that ends where an answer was due (the
+    /// program halts, overflows its stack, or the VM stops it with an error)
+    /// is the port crashing on that input: contained, naming it, with the
+    /// answers before it kept.
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
-        batch.iter().map(|v| self.answer(v)).collect()
+        let mut answers = Vec::with_capacity(batch.len());
+        for v in batch {
+            match self.answer(v) {
+                Ok(a) => answers.push(a),
+                Err(ImplError::Failed(why)) => {
+                    return Err(Failure::new(&self.label, FailureKind::Crash, why, batch)
+                        .after(answers, batch)
+                        .into())
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        Ok(answers)
     }
 
     /// Every pixel through the pixel statements, with the VM instructions
