@@ -136,6 +136,21 @@ fn diff_report_leaves_no_stale_repro_files() {
     ]);
     assert_eq!(bad.status.code(), Some(1), "{}", text(&bad));
     assert!(!entries(&dir.join("repro")).is_empty());
+    // Every repro the report names is there: report.json and repro/ are
+    // replaced together, in one exchange of the directory.
+    let json = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    let links: Vec<&str> = json
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("\"repro\": \""))
+        .map(|l| l.trim_end_matches(['"', ',']))
+        .collect();
+    assert!(!links.is_empty(), "{json}");
+    for link in links {
+        assert!(Path::new(link).is_file(), "{link} is missing");
+    }
+    // A staging directory that a killed run left beside it is removed.
+    let stale = report.path().join(".r.staging-4000000");
+    std::fs::create_dir(&stale).unwrap();
     let good = harness(&[
         "diff",
         "ref-f316",
@@ -148,6 +163,7 @@ fn diff_report_leaves_no_stale_repro_files() {
     assert_eq!(good.status.code(), Some(0), "{}", text(&good));
     assert_eq!(entries(&dir), vec!["report.json", "repro"]);
     assert!(entries(&dir.join("repro")).is_empty(), "stale repro files");
+    assert_eq!(entries(report.path()), vec!["r"], "no staging left behind");
     let file = report.path().join("file");
     std::fs::write(&file, "x").unwrap();
     let o = harness(&["diff", "ref-f316", "ref-f316", "--report", s(&file)]);

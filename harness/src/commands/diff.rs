@@ -11,7 +11,7 @@
 
 use crate::cast::{Cast, OpenError};
 use crate::merge::run_shard;
-use crate::report::atomic::{write_file, StagingDir};
+use crate::report::atomic::StagingDir;
 use crate::runner::{LevelReport, RunOptions};
 use crate::text;
 use crate::verdict::Verdict;
@@ -104,13 +104,16 @@ pub fn sets_for(level: Option<LevelArg>, file: Option<&Path>) -> anyhow::Result<
 }
 
 /// Write `report.json` and a one-line repro file per kept divergence,
-/// recording the repro paths in the report. `repro/` is replaced whole
-/// (files of an earlier run must not linger beside this report), and
-/// `report.json` atomically.
+/// recording the repro paths in the report. The directory is replaced
+/// whole, in one step: both are written into a staging directory beside it
+/// that is then exchanged with it, so a run killed at any point leaves the
+/// previous report and its repro files, or the new ones, never a mix.
 pub fn write_report(dir: &Path, reports: &mut [LevelReport]) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let stage = StagingDir::new(dir)?;
     let repro_dir = dir.join("repro");
-    let stage = StagingDir::new(&repro_dir)?;
+    let staged_repro = stage.path().join("repro");
+    std::fs::create_dir(&staged_repro)
+        .with_context(|| format!("creating {}", staged_repro.display()))?;
     for report in reports.iter_mut() {
         for c in &mut report.comparisons {
             for d in &mut c.divergences {
@@ -118,14 +121,16 @@ pub fn write_report(dir: &Path, reports: &mut [LevelReport]) -> anyhow::Result<(
                     continue;
                 }
                 let name = format!("{}.json", d.input.slug());
-                VectorSet::repro(d.input.clone()).save(&stage.path().join(&name))?;
+                VectorSet::repro(d.input.clone()).save(&staged_repro.join(&name))?;
                 d.repro = Some(repro_dir.join(name).display().to_string());
             }
         }
     }
     let json = serde_json::to_string_pretty(reports).context("serialising the report")?;
+    std::fs::write(stage.path().join("report.json"), json)
+        .with_context(|| format!("writing {}", stage.path().join("report.json").display()))?;
     stage.commit()?;
-    write_file(&dir.join("report.json"), json.as_bytes())
+    Ok(())
 }
 
 /// Run `harness diff`.
