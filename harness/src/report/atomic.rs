@@ -101,6 +101,11 @@ impl StagingDir {
         &self.staging
     }
 
+    /// The directory the commit replaces.
+    pub fn target(&self) -> &Path {
+        &self.target
+    }
+
     /// Replace `target` by the staging directory in one step; the previous
     /// contents of `target` are then removed.
     pub fn commit(mut self) -> Result<PathBuf> {

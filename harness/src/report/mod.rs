@@ -476,6 +476,22 @@ impl ReportBuilder {
         }
         let entry = history::HistoryEntry::from_report(&self.report);
         let mut past = history::read(history_path)?;
+        // A run killed after its report was swapped in and before its line
+        // was appended left a report the history lacks: its line first.
+        let previous = std::fs::read_to_string(self.stage.target().join("report.json"))
+            .ok()
+            .and_then(|text| Report::from_json(&text).ok());
+        if let Some(previous) = previous {
+            let line = history::HistoryEntry::from_report(&previous);
+            let known = past
+                .entries
+                .iter()
+                .any(|e| (&e.date, &e.commit) == (&line.date, &line.commit));
+            if !known {
+                history::append(history_path, &line)?;
+                past.entries.push(line);
+            }
+        }
         past.entries.push(entry.clone());
         let dir = self.stage.path();
         std::fs::write(dir.join("report.json"), self.report.to_json()?)

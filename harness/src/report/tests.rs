@@ -354,3 +354,38 @@ fn the_pair_gate_judges_bit_exact_pairs_flip_fractions_and_traps() {
         "measured only"
     );
 }
+
+/// A run killed after its report was swapped in, before its history line
+/// was appended: the next run appends the missing line before its own.
+#[test]
+fn a_report_the_history_lacks_gets_its_line_at_the_next_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("nightly");
+    let history = history::path_for(&target);
+    let run = |started_at: &str| {
+        let mut b = builder(&target);
+        b.report_mut().meta.started_at = started_at.into();
+        b.finish(&history).unwrap();
+    };
+    run("2026-11-21T01:00:00Z");
+    run("2026-11-22T01:00:00Z");
+    // The kill: the second run's line never reached the history.
+    let text = std::fs::read_to_string(&history).unwrap();
+    let first_line = text.lines().next().unwrap();
+    std::fs::write(&history, format!("{first_line}\n")).unwrap();
+    run("2026-11-23T01:00:00Z");
+    let dates: Vec<String> = history::read(&history)
+        .unwrap()
+        .entries
+        .into_iter()
+        .map(|e| e.date)
+        .collect();
+    assert_eq!(
+        dates,
+        [
+            "2026-11-21T01:00:00Z",
+            "2026-11-22T01:00:00Z",
+            "2026-11-23T01:00:00Z"
+        ]
+    );
+}
