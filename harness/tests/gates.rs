@@ -328,6 +328,8 @@ fn a_render_that_fails_is_not_compared() {
     assert_status(&o, 3, &["failed: no-start", "ref-f32"]);
     let o = run(p.path(), &["bench", "ref-f32"]);
     assert_status(&o, 0, &["verdict: agreed"]);
+    let o = run(p.path(), &["bench", "ref-f3"]);
+    assert_status(&o, 2, &["unknown implementation `ref-f3`"]);
 }
 
 /// A shader with an endless loop: every pixel is a hang, never a white

@@ -28,6 +28,10 @@ pub enum SceneError {
     /// The file is not a JSON object (`[]`, a number, ...).
     #[error("scene file {path}: a scene is a JSON object of fields")]
     NotAnObject { path: String },
+    /// The object sets no field: almost surely not the file meant (the
+    /// seed scene needs no file).
+    #[error("scene file {path}: the object sets no field (leave out --scene for the seed scene)")]
+    Empty { path: String },
     /// Evaluating the camera basis (done once per image) trapped.
     #[error("the camera basis cannot be computed: {0}")]
     Camera(String),
@@ -193,6 +197,18 @@ impl Scene {
         if !text.trim_start().starts_with('{') {
             return Err(SceneError::NotAnObject { path: shown });
         }
+        // The JSON itself first, so that a syntax error (a NaN, a file cut
+        // short) is reported at its line, not as the first field the
+        // parameters do not know.
+        let value: serde_json::Value =
+            serde_json::from_str(&text).map_err(|source| SceneError::Parse {
+                path: shown.clone(),
+                source,
+            })?;
+        if value.as_object().is_some_and(|o| o.is_empty()) {
+            return Err(SceneError::Empty { path: shown });
+        }
+        // Parsed again from the text, so that a field's error has its line.
         let scene: Scene = serde_json::from_str(&text).map_err(|source| SceneError::Parse {
             path: shown,
             source,

@@ -35,6 +35,20 @@ fn a_file_that_is_not_an_object_is_refused() {
     }
 }
 
+/// `{}` sets nothing (the seed scene needs no file); a NaN or a file cut
+/// short is a JSON error at its line, not the first field the parameters
+/// do not know.
+#[test]
+fn an_empty_object_and_broken_json_are_refused_where_they_are() {
+    let e = load("g", "{}").unwrap_err();
+    assert!(e.contains("sets no field"), "{e}");
+    let e = load("h", "{\"version\": 1,\n \"radius\": NaN}").unwrap_err();
+    assert!(e.contains("line 2"), "{e}");
+    assert!(!e.contains("unknown field"), "{e}");
+    let e = load("i", "{\"version\": 1, \"nodes\": [").unwrap_err();
+    assert!(e.contains("EOF") && !e.contains("unknown field"), "{e}");
+}
+
 #[test]
 fn a_camera_without_direction_is_refused() {
     let e = load("f", r#"{"camera":{"position":[0,0,0],"look_at":[0,0,0]}}"#).unwrap_err();
