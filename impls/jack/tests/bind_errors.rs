@@ -93,3 +93,46 @@ fn an_unbound_operation_is_unsupported() {
         other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn an_integer_outside_16_bits_is_called_one() {
+    let e = bind_error(open_edited(
+        "sqrt = \"result = Num.sqrt(a)\"",
+        "sqrt = \"result = Num.sqrt(99999999)\"",
+    ));
+    assert_eq!(e.field, "ops.sqrt");
+    assert!(e.message.contains("outside Jack's 16-bit range"), "{e}");
+}
+
+/// `ready` is told apart by its fields, and a wrong one is named (an
+/// untagged enum could only say that no variant matched).
+#[test]
+fn a_ready_table_names_what_is_wrong() {
+    let text = std::fs::read_to_string(format!("{DIR}/bindings.toml")).unwrap();
+    let ready =
+        "ready = { run = \"Main.main\", keys = \"SPACE\", until_call = \"Picture.render\" }";
+    assert!(text.contains(ready));
+    for (bad, says) in [
+        ("ready = { run = \"Main.main\" }", "`until_call` is missing"),
+        (
+            "ready = { init = [], keys = \"A\" }",
+            "`keys` belongs to `run`",
+        ),
+        (
+            "ready = { init = [], run = \"Main.main\" }",
+            "exclude each other",
+        ),
+        ("ready = { }", "give `init`"),
+        (
+            "ready = { run = \"Main.main\", until_call = \"X.y\", speed = 3 }",
+            "unknown field `speed`",
+        ),
+    ] {
+        let e = toml::from_str::<Bindings>(&text.replace(ready, bad))
+            .err()
+            .unwrap_or_else(|| panic!("{bad} was accepted"))
+            .to_string();
+        assert!(e.contains(says), "{bad}: {e}");
+        assert!(!e.contains("untagged"), "{e}");
+    }
+}

@@ -79,7 +79,7 @@ impl Statements {
 /// Where the program is ready: after init statements, or after running the
 /// program's entry with scripted keys up to the first call of a function.
 #[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
-#[serde(untagged, deny_unknown_fields)]
+#[serde(try_from = "ReadyFields")]
 pub enum Ready {
     /// Call these statements in order from a fresh machine.
     Init {
@@ -104,6 +104,52 @@ pub enum Ready {
         #[serde(default)]
         budget: Option<u64>,
     },
+}
+
+/// `ready`'s table as written, before it is told apart: an error then
+/// names the field that is missing or does not belong (an untagged enum
+/// could only say that no variant matched).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ReadyFields {
+    init: Option<Vec<String>>,
+    run: Option<String>,
+    keys: Option<String>,
+    hold: Option<u64>,
+    until_call: Option<String>,
+    budget: Option<u64>,
+}
+
+impl TryFrom<ReadyFields> for Ready {
+    type Error = String;
+
+    fn try_from(f: ReadyFields) -> Result<Ready, String> {
+        match (f.init, f.run) {
+            (Some(_), Some(_)) => Err("`init` and `run` exclude each other: give one".into()),
+            (Some(init), None) => {
+                let extra = [
+                    ("keys", f.keys.is_some()),
+                    ("hold", f.hold.is_some()),
+                    ("until_call", f.until_call.is_some()),
+                    ("budget", f.budget.is_some()),
+                ];
+                match extra.iter().find(|(_, given)| *given) {
+                    Some((name, _)) => Err(format!("`{name}` belongs to `run`, not to `init`")),
+                    None => Ok(Ready::Init { init }),
+                }
+            }
+            (None, Some(run)) => Ok(Ready::Run {
+                run,
+                keys: f.keys.unwrap_or_default(),
+                hold: f.hold,
+                until_call: f.until_call.ok_or(
+                    "`until_call` is missing: the function whose first call is the ready point",
+                )?,
+                budget: f.budget,
+            }),
+            (None, None) => Err("give `init` (statements) or `run` (the entry to run)".into()),
+        }
+    }
 }
 
 impl Default for Ready {

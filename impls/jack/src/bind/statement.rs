@@ -214,6 +214,12 @@ fn slot(text: &str, context: &Context) -> Result<Slot, String> {
     if let Ok(n) = text.parse::<i16>() {
         return Ok(Slot::Lit(n));
     }
+    let digits = text.strip_prefix('-').unwrap_or(text);
+    if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(format!(
+            "argument `{text}` is an integer outside Jack's 16-bit range (-32768..=32767)"
+        ));
+    }
     context.var(text).map(Slot::Var).ok_or_else(|| {
         format!(
             "argument `{text}` is not a variable here (expected one of {}, or an integer)",
