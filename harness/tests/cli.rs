@@ -309,11 +309,11 @@ fn jack_run_sets_words_before_and_prints_ram_ranges_after() {
     let t = text(&o);
     assert!(t.contains("RAM[16..16]: 77\n"), "{t}");
     // The desktop start-up: the hidden call's frame at 256 (RET 11: six
-    // command lines and five invisible ones), the OS inits' zeros, Main.main's
-    // frame at 266, where its return value 0 landed; 7 steps in all.
+    // command lines and five invisible ones), Main.main's frame right above
+    // it at 261, where its return value 0 landed; 7 steps in all.
     assert!(t.contains("instructions: 7\n"), "{t}");
     assert!(
-        t.contains("RAM[256..271]: 11 0 0 0 0 0 0 0 0 0 0 261 256 0 0 0\n"),
+        t.contains("RAM[256..271]: 11 0 0 0 0 0 261 256 0 0 0 0 0 0 0 0\n"),
         "{t}"
     );
     assert!(t.contains("RAM[272..272]: "), "{t}");
@@ -323,6 +323,24 @@ fn jack_run_sets_words_before_and_prints_ram_ranges_after() {
     let o = jack("run", dir.path(), &["--set", "24577=1"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("outside RAM"), "{}", text(&o));
+}
+
+#[test]
+fn jack_run_honours_a_preset_stack_pointer_under_both_profiles() {
+    let src = jack_main("class Main { function void main() { do Sys.halt(); return; } }\n");
+    // Desktop: the start-up frames at 300 and 305, Sys.halt's frame at 310,
+    // so SP is 315 at the halt (the desktop VM emulator's figure).
+    let o = jack("run", src.path(), &["--set", "0=300", "--ram", "0..0"]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("RAM[0..0]: 315\n"), "{}", text(&o));
+    // Web: seven 0s and Main.main's frame from 300, then Sys.halt's 0.
+    let o = jack(
+        "run",
+        src.path(),
+        &["--set", "0=300", "--ram", "0..0", "--profile", "web"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("RAM[0..0]: 313\n"), "{}", text(&o));
 }
 
 #[test]

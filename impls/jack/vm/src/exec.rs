@@ -86,6 +86,12 @@ enum Halt {
     Exit(Exit),
     Error(String),
     Os(Stop),
+    /// Desktop: a built-in with this many arguments ended the run; its
+    /// arguments are popped and its frame is still to be written.
+    OsInFrame(Stop, u8),
+    /// Desktop: a built-in call at an SP where its frame and result do
+    /// not fit below the end of the stack segment (arguments not popped).
+    BuiltinOverflow(Builtin, u8),
     /// A fused instruction's fast-path conditions do not hold: run the
     /// plain commands from the same index.
     Deopt,
@@ -167,6 +173,11 @@ const LOCAL_OOB: &str = "Local offset out of bounds";
 const THIS_UNINIT: &str = "The this segment cannot be accessed since it was not initialized";
 const THAT_UNINIT: &str = "The that segment cannot be accessed since it was not initialized";
 const STACK_OVERFLOW: &str = "Stack overflow";
+
+/// Desktop: the highest SP at a built-in call (its arguments pushed) that
+/// leaves room for the call's 5-word frame and the pushed result, each
+/// push keeping SP <= 2047.
+const BUILTIN_LAST_BASE: u16 = STACK_LAST - 6;
 
 impl Machine {
     /// Run instructions of `code` (its fused array if `fused`, else its plain
@@ -310,6 +321,10 @@ impl Machine {
                     let b: Builtin = $b;
                     let mut args = [0i16; 8];
                     let n = usize::from($n).min(args.len());
+                    if stack_check && sp > BUILTIN_LAST_BASE {
+                        // Desktop: no room for the built-in's frame.
+                        break 'run Some(Halt::BuiltinOverflow(b, n as u8));
+                    }
                     for i in (0..n).rev() {
                         args[i] = pop!();
                     }
@@ -322,10 +337,16 @@ impl Machine {
                         clock + u64::from(timing.handover_step && b.blocks() && c.stop.is_none());
                     w = words(ram);
                     Regs { sp, base: seg } = Regs::load(w);
-                    push!(c.value);
                     if let Some(stop) = c.stop {
+                        if function_step {
+                            // Desktop: the run ends inside the built-in,
+                            // above its frame (pushed after the return).
+                            break 'run Some(Halt::OsInFrame(stop, n as u8));
+                        }
+                        push!(c.value);
                         break 'run Some(Halt::Os(stop));
                     }
+                    push!(c.value);
                 }};
             }
 
@@ -906,9 +927,22 @@ impl Machine {
         self.nargs = nargs;
         self.flags = flags;
         self.profile_mark = profile_mark;
-        let Some(halt) = halt else { return Flow::Limit };
+        let Some(mut halt) = halt else {
+            return Flow::Limit;
+        };
+        match halt {
+            Halt::OsInFrame(stop, n) => {
+                self.desktop_builtin_frame(u16::from(n));
+                halt = Halt::Os(stop);
+            }
+            Halt::BuiltinOverflow(b, n) => {
+                halt = self.desktop_builtin_overflow(b, u16::from(n));
+            }
+            _ => {}
+        }
         Flow::End(match halt {
             Halt::Deopt => return Flow::Deopt,
+            Halt::OsInFrame(..) | Halt::BuiltinOverflow(..) => unreachable!("resolved above"),
             Halt::Exit(e) => e,
             Halt::Error(message) => Exit::RuntimeError {
                 message,
@@ -942,4 +976,72 @@ fn resume_pc(program: &Program, caller: u32, ret: i16) -> Option<u32> {
     let idx = usize::try_from(i32::from(ret) + 1).ok()?;
     let pc = *f.resume.get(idx).or(f.resume.last())?;
     (pc != u32::MAX).then_some(pc)
+}
+
+impl Machine {
+    /// The desktop's RET word for the built-in call just run (`self.pc`
+    /// is the instruction after it).
+    fn desktop_ret_word(&self) -> i16 {
+        let f = &self.program.functions[self.cur as usize];
+        f.desktop_return_address(self.pc.wrapping_sub(1))
+            .map_or(-1, |a| a as i16)
+    }
+
+    /// Desktop: a built-in with `nargs` arguments (popped) ended the run
+    /// (halt, error): the VM emulator had pushed the call's frame above
+    /// the arguments (RET, LCL, ARG, THIS, THAT) and pointed ARG at them
+    /// and LCL and SP above the frame, and the run stops there.
+    #[cold]
+    fn desktop_builtin_frame(&mut self, nargs: u16) {
+        let ret = self.desktop_ret_word();
+        let r = &mut self.ram;
+        let base = r.read(0).wrapping_add(nargs as i16);
+        let saved = [ret, r.read(1), r.read(2), r.read(3), r.read(4)];
+        for (a, v) in (i32::from(base)..).zip(saved) {
+            r.write(a, v);
+        }
+        r.write(2, base.wrapping_sub(nargs as i16));
+        r.write(1, base.wrapping_add(5));
+        r.write(0, base.wrapping_add(5));
+    }
+
+    /// Desktop: a built-in call at SP `base` > [`BUILTIN_LAST_BASE`]. Each
+    /// push of the call's frame writes its word and then fails if SP would
+    /// pass 2047, so from a base of 2043 on the frame stops at RAM[2047]
+    /// and the built-in never runs; at 2042 the frame fits, the built-in
+    /// runs, and the push of its result at 2047 fails.
+    #[cold]
+    fn desktop_builtin_overflow(&mut self, b: Builtin, nargs: u16) -> Halt {
+        let base = self.ram.read(0);
+        let ret = self.desktop_ret_word();
+        let saved = [0, 1, 2, 3, 4].map(|a| self.ram.read(a));
+        let frame = [ret, saved[1], saved[2], saved[3], saved[4]];
+        let last = STACK_LAST as i16;
+        if base > last - 5 {
+            for (a, v) in (base..=last).zip(frame) {
+                self.ram.write(i32::from(a), v);
+            }
+            self.ram.write(0, last);
+            return Halt::Error(STACK_OVERFLOW.into());
+        }
+        let args: Vec<i16> = (0..nargs)
+            .map(|k| {
+                self.ram
+                    .read(i32::from(base) - i32::from(nargs) + i32::from(k))
+            })
+            .collect();
+        for (a, v) in (i32::from(base)..).zip(frame) {
+            self.ram.write(a, v);
+        }
+        let lcl = base.wrapping_add(5);
+        self.ram.write(2, base.wrapping_sub(nargs as i16));
+        self.ram.write(1, lcl);
+        self.ram.write(0, lcl);
+        let c = self.os.call(b, &args, &mut self.ram, &mut self.steps);
+        if let Some(stop) = c.stop {
+            return Halt::Os(stop);
+        }
+        self.ram.write(i32::from(lcl), c.value);
+        Halt::Error(STACK_OVERFLOW.into())
+    }
 }

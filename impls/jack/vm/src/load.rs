@@ -235,6 +235,18 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
     // and the desktop's static addresses: (instruction, desktop instruction).
     let mut desktop_ops: Vec<(usize, Op)> = Vec::new();
     let static_base = desktop_static_bases(&raw);
+    // The desktop's address of each function's command 0 (its invisible
+    // start-up code follows the program's own lines).
+    let mut addresses = Vec::with_capacity(raw.len());
+    let mut next_address = 0u32;
+    for (i, f) in raw.iter().enumerate() {
+        if synthetic_entry && i == raw.len() - 1 {
+            addresses.push(command_lines as u32 + 3);
+        } else {
+            addresses.push(next_address);
+            next_address += u32::from(f.has_header) + f.body.len() as u32;
+        }
+    }
 
     for (id, f) in raw.iter().enumerate() {
         let id = id as FnId;
@@ -424,6 +436,7 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
             arg_reach,
             start,
             resume,
+            address: addresses[id as usize],
         });
     }
     if plain.len() >= u32::MAX as usize / 2 {

@@ -181,8 +181,9 @@ impl Machine {
     fn desktop_startup(&mut self, watch: &mut Option<(&[bool], &mut dyn Watcher)>) {
         let p = Arc::clone(&self.program);
         let size = i16::try_from(p.command_lines + 5).unwrap_or(i16::MAX);
-        let (words, regs) = timing::desktop_startup(size);
-        for (a, v) in (i32::from(timing::STACK_BASE)..).zip(words) {
+        let before = [0, 1, 2, 3, 4].map(|a| self.ram.read(a));
+        let (words, regs) = timing::desktop_startup(size, before);
+        for (a, v) in (i32::from(before[0])..).zip(words) {
             self.ram.write(a, v);
         }
         for (a, v) in (0..).zip(regs) {
@@ -517,6 +518,18 @@ impl Machine {
                 };
             }
         };
+        if exit == Exit::Halted
+            && self.program.synthetic_entry
+            && self.frames.is_empty()
+            && self.cur == self.program.entry
+            && Timing::of(self.os.profile()).hidden_sys_init
+        {
+            // Desktop: `Main.main` returned into the built-in `Sys.init`,
+            // which takes its value off the stack (SP back to its frame's
+            // base) and halts.
+            let sp = self.ram.read(0);
+            self.ram.write(0, sp.wrapping_sub(1));
+        }
         self.charge_profile();
         self.tier_credit();
         if !matches!(exit, Exit::Budget { .. } | Exit::Returned(_)) {

@@ -263,6 +263,27 @@ pub struct Function {
     /// Command index (as stored in a frame's RET, counting the `function`
     /// line and labels) to the instruction that runs it.
     pub(crate) resume: Vec<u32>,
+    /// The desktop VM emulator's address of the function's command 0 (its
+    /// `function` line): files in load order, every non-blank line one
+    /// address, labels included. A RET word of the desktop is such an
+    /// address.
+    pub(crate) address: u32,
+}
+
+impl Function {
+    /// The desktop's RET word for a call whose instruction is at `call_pc`:
+    /// the address of the first command after the call that is not a label.
+    pub(crate) fn desktop_return_address(&self, call_pc: u32) -> Option<u32> {
+        let r = &self.resume;
+        // Labels share the index of the command after them: the call is
+        // the last command index resuming at its own instruction.
+        let call = r.iter().rposition(|&p| p == call_pc)?;
+        let mut next = call + 1;
+        while next + 1 < r.len() && r[next] == r[next + 1] {
+            next += 1;
+        }
+        Some(self.address + next as u32)
+    }
 }
 
 impl Function {

@@ -1,0 +1,136 @@
+//! The desktop profile's memory, as the desktop VM emulator of suite 2.5
+//! lays it out (issue 28): the start-up frames, the stack at a built-in
+//! that ends the run, the stack after `Main.main` returns, and registers a
+//! user preset before the run.
+
+use hack_vm::{Config, Exit, Machine, Profile, Program};
+use std::sync::Arc;
+
+fn compile(main: &str) -> Arc<Program> {
+    let classes =
+        jack_compiler::compile_sources(&[("Main.jack", main)], jack_compiler::Profile::Desktop)
+            .unwrap_or_else(|e| panic!("compiles: {e}"));
+    let files: Vec<(String, String)> = classes
+        .into_iter()
+        .map(jack_compiler::VmClass::into_file)
+        .collect();
+    Program::from_sources(&files).expect("loads")
+}
+
+fn desktop(program: Arc<Program>) -> Machine {
+    Machine::new(
+        program,
+        Config {
+            profile: Profile::Desktop,
+            ..Config::default()
+        },
+    )
+}
+
+fn vm(text: &str) -> Machine {
+    desktop(Program::from_sources(&[("Main.vm", text)]).unwrap())
+}
+
+fn words(m: &Machine, from: i32, to: i32) -> Vec<i16> {
+    (from..to).map(|a| m.ram().read(a)).collect()
+}
+
+#[test]
+fn main_main_runs_in_a_frame_at_261_with_lcl_266_and_sp_is_261_after_it_returns() {
+    let mut m = desktop(compile(
+        "class Main { function void main() { var int x; let x = 5; return; } }",
+    ));
+    // The hidden call of Sys.init and `function Main.main 1`.
+    assert!(matches!(m.run(Some(2)), Exit::Budget { .. }));
+    assert_eq!(words(&m, 261, 266)[1..], [261, 256, 0, 0]);
+    assert_eq!(words(&m, 0, 3), [267, 266, 261], "SP, LCL, ARG");
+    assert_eq!(m.run(None), Exit::Halted);
+    // The return value (0) lands at ARG = 261, and the built-in Sys.init
+    // takes it off the stack.
+    assert_eq!(m.ram().read(0), 261);
+    assert_eq!(m.ram().read(261), 0);
+    assert_eq!(m.ram().read(266), 5, "the local stays where it was");
+}
+
+#[test]
+fn at_sys_halt_the_desktop_stack_ends_above_the_built_ins_frame_at_271() {
+    let mut m = vm("function Main.main 0\ncall Sys.halt 0\npop temp 0\npush constant 0\nreturn\n");
+    assert_eq!(m.run(None), Exit::Halted);
+    // Sys.halt's frame at 266: RET is the desktop address of `pop temp 0`
+    // (line 2 of the program), then Main.main's LCL, ARG, THIS, THAT.
+    assert_eq!(words(&m, 266, 271), [2, 266, 261, 0, 0]);
+    assert_eq!(words(&m, 0, 3), [271, 271, 266], "SP, LCL, ARG");
+    // The same from Jack, where Main.main has no locals.
+    let mut m = desktop(compile(
+        "class Main { function void main() { do Sys.halt(); return; } }",
+    ));
+    assert_eq!(m.run(None), Exit::Halted);
+    assert_eq!(m.ram().read(0), 271);
+}
+
+#[test]
+fn a_built_in_error_ends_above_its_frame_with_the_arguments_below_it() {
+    let mut m = vm(
+        "function Main.main 0\nlabel A\nlabel B\npush constant 7\npush constant 0\ncall Math.divide 2\nlabel C\nreturn\n",
+    );
+    let e = m.run(None);
+    assert!(matches!(e, Exit::SysError { code: 3, .. }), "{e}");
+    // The two arguments at 266, 267; the frame at 268 with RET the address
+    // of `return` (line 7: the label after the call is skipped).
+    assert_eq!(words(&m, 266, 273), [7, 0, 7, 266, 261, 0, 0]);
+    assert_eq!(words(&m, 0, 3), [273, 273, 266], "SP, LCL, ARG");
+}
+
+#[test]
+fn a_preset_stack_pointer_moves_the_start_up_frames_and_sys_halt_ends_at_315() {
+    let mut m = desktop(compile(
+        "class Main { function void main() { do Sys.halt(); return; } }",
+    ));
+    m.ram_mut().write(0, 300);
+    assert_eq!(m.run(None), Exit::Halted);
+    // The built-in Sys.init's frame at 300, Main.main's at 305 (LCL 310),
+    // Sys.halt's at 310.
+    assert_eq!(m.ram().read(0), 315);
+    assert_eq!(words(&m, 305, 310), [-1, 305, 300, 0, 0]);
+    assert_eq!(words(&m, 311, 315), [310, 305, 0, 0]);
+}
+
+#[test]
+fn a_printing_recursion_overflows_at_the_built_in_call_that_finds_no_room() {
+    let mut m = vm("function Main.main 0\npush constant 1\ncall Output.printInt 1\npop temp 0\ncall Main.main 0\nreturn\n");
+    let e = m.run(Some(1_000_000));
+    let Exit::RuntimeError { message, stack } = e else {
+        panic!("{e}")
+    };
+    assert!(message.starts_with("Stack overflow"), "{message}");
+    // Level k of Main.main has LCL = 266 + 5k. At k = 355 the argument
+    // sits at 2041, the built-in's frame fills 2042..2046, printInt runs
+    // and the push of its result at 2047 fails: 356 levels, each printing
+    // a 1.
+    assert_eq!(stack.to_string(), "Sys.init > Main.main x 356");
+    // The start-up, 355 levels of 5 steps, and the function line, push and
+    // call of the last.
+    assert_eq!(m.steps(), 1 + 355 * 5 + 3);
+    assert_eq!(m.os().cursor(), (5, 36), "356 characters printed");
+    assert_eq!(words(&m, 0, 3), [2047, 2047, 2041], "SP, LCL, ARG");
+    assert_eq!(
+        m.ram().read(2047),
+        0,
+        "the result was written, then SP failed"
+    );
+}
+
+#[test]
+fn the_web_profile_keeps_its_own_start_up_and_halt() {
+    let mut m = Machine::new(
+        compile("class Main { function void main() { do Sys.halt(); return; } }"),
+        Config {
+            profile: Profile::Web,
+            ..Config::default()
+        },
+    );
+    assert_eq!(m.run(None), Exit::Halted);
+    // Seven 0s at 256..262, Main.main's frame at 263, LCL 268; Sys.halt
+    // pops nothing and pushes its 0.
+    assert_eq!(m.ram().read(0), 269);
+}
