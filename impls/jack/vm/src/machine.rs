@@ -162,6 +162,12 @@ impl Machine {
                 .then(|| Tier::new(config.auto_threshold.unwrap_or(AUTO_THRESHOLD))),
         };
         machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
+        if timing.hidden_sys_init && !machine.program.synthetic_entry {
+            // The desktop writes the heap header only in its built-in
+            // Memory.init, which a program with its own entry may never call.
+            machine.ram.write(2048, 0);
+            machine.ram.write(2049, 0);
+        }
         machine
     }
 
@@ -181,6 +187,11 @@ impl Machine {
     fn desktop_startup(&mut self, watch: &mut Option<(&[bool], &mut dyn Watcher)>) {
         let p = Arc::clone(&self.program);
         let size = i16::try_from(p.command_lines + 5).unwrap_or(i16::MAX);
+        // The built-in Sys.init's Memory.init writes the heap header (the
+        // other OS inits change no RAM).
+        let mut clock = self.steps;
+        self.os
+            .call(Builtin::MemoryInit, &[], &mut self.ram, &mut clock);
         let before = [0, 1, 2, 3, 4].map(|a| self.ram.read(a));
         let (words, regs) = timing::desktop_startup(size, before);
         for (a, v) in (i32::from(before[0])..).zip(words) {

@@ -134,3 +134,56 @@ fn the_web_profile_keeps_its_own_start_up_and_halt() {
     // pops nothing and pushes its 0.
     assert_eq!(m.ram().read(0), 269);
 }
+
+#[test]
+fn the_desktop_heap_starts_14334_16384_and_a_two_char_string_costs_six_words() {
+    let mut m = desktop(compile(
+        "class Main { function void main() { var String s; var Array a;
+           let s = \"ab\"; let a = Array.new(1); do Output.printInt(a); return; } }",
+    ));
+    assert!(matches!(m.run(Some(1)), Exit::Budget { .. }));
+    assert_eq!(words(&m, 2048, 2050), [14334, 16384]);
+    assert_eq!(m.run(None), Exit::Halted);
+    // s = 2050 (maxLength 2, length 2, 'a', 'b'), a = 2056: what the
+    // desktop prints.
+    assert_eq!(words(&m, 266, 268), [2050, 2056]);
+    assert_eq!(words(&m, 2048, 2054), [0, 2054, 2, 2, 97, 98]);
+    assert_eq!(words(&m, 2054, 2058), [0, 2057, 0, 14325]);
+}
+
+#[test]
+fn with_a_vm_sys_init_the_desktop_leaves_the_heap_header_zero() {
+    let sys = "function Sys.init 0\nlabel L\ngoto L\n";
+    for (profile, header) in [(Profile::Desktop, [0, 0]), (Profile::Web, [0, 14334])] {
+        let mut m = Machine::new(
+            Program::from_sources(&[("Sys.vm", sys)]).unwrap(),
+            Config {
+                profile,
+                ..Config::default()
+            },
+        );
+        m.run(Some(10));
+        assert_eq!(words(&m, 2048, 2050), header, "{profile}");
+    }
+    // Its own call of the built-in Memory.init writes it.
+    let mut m = vm("function Main.f 0\ncall Memory.init 0\nlabel L\ngoto L\n");
+    m.run(Some(10));
+    assert_eq!(words(&m, 2048, 2050), [14334, 16384]);
+}
+
+#[test]
+fn a_desktop_built_in_reading_outside_the_heap_and_screen_is_an_error_at_its_call() {
+    let mut m = desktop(compile(
+        "class Main { function void main() { do Output.printInt(Memory.peek(1)); return; } }",
+    ));
+    let e = m.run(None);
+    let Exit::RuntimeError { message, .. } = e else {
+        panic!("{e}")
+    };
+    assert_eq!(
+        message,
+        "A built-in function tried to access memory outside the Heap or Screen range"
+    );
+    // The hidden call, `function Main.main`, `push constant 1`, the call.
+    assert_eq!(m.steps(), 4);
+}
