@@ -110,7 +110,13 @@ fn print_ram(ram: &Ram, ranges: &[(i32, i32)]) {
 
 /// A machine for `args` under `profile`, with the `--set` words written.
 fn machine(args: &RunArgs, profile: Profile, config: Config) -> anyhow::Result<Machine> {
-    let mut m = Machine::new(load(&args.dir, profile)?, config);
+    let program = load(&args.dir, profile)?;
+    // The checks only one profile's tool makes at load (a web static index
+    // past 239).
+    program
+        .check_profile(profile)
+        .with_context(|| format!("loading {} under --profile {profile}", args.dir.display()))?;
+    let mut m = Machine::new(program, config);
     for &(a, v) in &args.set {
         m.ram_mut().write(a, v);
     }

@@ -592,7 +592,11 @@ impl Machine {
                 Op::Fail(m) => break Some(Halt::Error(program.messages[m as usize].clone())),
                 Op::EntryAccess { local, push, index } => {
                     let entry_invocation = frames.is_empty();
-                    let ok = if entry_invocation {
+                    let ok = if entry_invocation && function_step {
+                        // Desktop: the entry runs without a frame, and its
+                        // segments are not checked for it.
+                        true
+                    } else if entry_invocation {
                         flags & if local { LOCAL_OK } else { ARG_OK } != 0
                     } else if local {
                         index < functions[cur as usize].n_vars
@@ -945,7 +949,11 @@ impl Machine {
             Halt::OsInFrame(..) | Halt::BuiltinOverflow(..) => unreachable!("resolved above"),
             Halt::Exit(e) => e,
             Halt::Error(message) => Exit::RuntimeError {
-                message,
+                message: if function_step {
+                    self.desktop_message(&message)
+                } else {
+                    message
+                },
                 stack: self.call_stack(),
             },
             Halt::Os(Stop::Halt) => Exit::Halted,
@@ -1043,5 +1051,30 @@ impl Machine {
         }
         self.ram.write(i32::from(lcl), c.value);
         Halt::Error(STACK_OVERFLOW.into())
+    }
+
+    /// A runtime error's message as the desktop VM emulator words it: its
+    /// own text for the checks it shares, then " in F.i", the function on
+    /// top of its call stack and the failing command's index in it (the
+    /// `function` line is 0; labels do not count). At a `function` line
+    /// the callee is not on its call stack yet: the caller is named.
+    #[cold]
+    fn desktop_message(&self, web: &str) -> String {
+        let text = match web {
+            ARG_OOB | LOCAL_OOB => "Out of segment space",
+            other => other,
+        };
+        let p = &self.program;
+        let at = self.pc.wrapping_sub(1);
+        let f = &p.functions[self.cur as usize];
+        let at_function_line = at == f.start.wrapping_sub(1);
+        let (name, index) = if at_function_line {
+            let caller = self.frames.last().map_or(self.cur, |fr| fr.caller);
+            (p.function_name(caller), 0)
+        } else {
+            let index = at.wrapping_sub(f.start) + u32::from(f.headed);
+            (f.name.as_str(), index)
+        };
+        format!("{text} in {name}.{index}")
     }
 }

@@ -234,6 +234,8 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
     // Desktop jump targets that differ from the web ones: (instruction, target).
     // and the desktop's static addresses: (instruction, desktop instruction).
     let mut desktop_ops: Vec<(usize, Op)> = Vec::new();
+    // The first command the web IDE refuses at load but the desktop runs.
+    let mut web_refusal: Option<(String, usize, String)> = None;
     let static_base = desktop_static_bases(&raw);
     // The desktop's address of each function's command 0 (its invisible
     // start-up code follows the program's own lines).
@@ -387,11 +389,12 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
                         Segment::Static => {
                             let address =
                                 16 + u32::from(static_base[f.file.as_str()]) + u32::from(i);
-                            let desktop = if address > 255 {
-                                fail(
-                                    &mut messages,
-                                    format!("Out of segment space: {}'s static {i} would be RAM[{address}]", f.file),
-                                )
+                            // The desktop's static segment of a file ends at
+                            // its largest index: any index fits, whatever
+                            // RAM word it reaches (RAM[256] for `static 240`
+                            // of a lone class).
+                            let desktop = if address > jack_os::KBD as u32 {
+                                fail(&mut messages, "Out of segment space".into())
                             } else if push {
                                 Op::PushAbs(address as u16)
                             } else {
@@ -400,7 +403,15 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
                             desktop_ops.push((plain.len(), desktop));
                             let next = statics.len();
                             let slot = *statics.entry((class.clone(), i)).or_insert(next);
-                            if slot >= STATIC_SLOTS {
+                            if i >= STATIC_SLOTS as u16 {
+                                let m = format!(
+                                    "Illegal static index {i} (must be between 0 and {})",
+                                    STATIC_SLOTS - 1
+                                );
+                                web_refusal
+                                    .get_or_insert_with(|| (f.file.clone(), l.line, m.clone()));
+                                fail(&mut messages, m)
+                            } else if slot >= STATIC_SLOTS {
                                 fail(
                                     &mut messages,
                                     format!("Too many static variables: {class}'s static {i} needs slot {slot} of {STATIC_SLOTS}"),
@@ -465,6 +476,7 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
         messages,
         entry,
         synthetic_entry,
+        web_refusal,
         command_lines,
         statics,
         native: Default::default(),

@@ -324,6 +324,9 @@ pub struct Program {
     pub(crate) entry: FnId,
     /// The entry is the synthetic `Sys.init` (no VM `Sys.init`, a `Main.main`).
     pub(crate) synthetic_entry: bool,
+    /// A command the web IDE refuses at load and the desktop runs (file,
+    /// line, message): see [`Program::check_profile`].
+    pub(crate) web_refusal: Option<(String, usize, String)>,
     /// Number of command lines of all files (function and label lines
     /// included): the desktop VM emulator's program size before its
     /// invisible start-up code.
@@ -357,6 +360,20 @@ impl Program {
     /// `__implicit` or the sole function.
     pub fn entry(&self) -> FnId {
         self.entry
+    }
+
+    /// The load-time checks that only one profile's tool makes: the web
+    /// IDE refuses a static index past 239, which the desktop runs. Call it
+    /// with the profile a program is about to run under; a machine of that
+    /// profile that runs the program anyway stops at the refused command
+    /// with the same message.
+    pub fn check_profile(&self, profile: Profile) -> Result<(), crate::LoadError> {
+        match (&self.web_refusal, profile) {
+            (Some((file, line, message)), Profile::Web) => {
+                Err(crate::LoadError::at(file, *line, message.clone()))
+            }
+            _ => Ok(()),
+        }
     }
 
     /// Number of distinct static variables (RAM 16.. holds them).

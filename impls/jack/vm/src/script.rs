@@ -76,7 +76,11 @@ pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptE
         message: format!("cannot read the script: {e}"),
     })?;
     let commands = parse(&name, &text)?;
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    // `NAME.tst` run from its own folder has an empty parent: that folder.
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => Path::new(".").to_path_buf(),
+    };
     let mut run = Run {
         file: name,
         dir,
@@ -525,6 +529,7 @@ impl Run {
                         }
                     }
                 }
+                .and_then(|p| p.check_profile(self.profile).map(|()| p))
                 .map_err(|e| e.to_string())?;
                 let config = Config {
                     profile: self.profile,

@@ -187,3 +187,94 @@ fn a_desktop_built_in_reading_outside_the_heap_and_screen_is_an_error_at_its_cal
     // The hidden call, `function Main.main`, `push constant 1`, the call.
     assert_eq!(m.steps(), 4);
 }
+
+#[test]
+fn a_lone_function_file_runs_from_its_function_line_without_the_web_ides_segment_check() {
+    let f = "function Foo.bar 2\npush local 1\npush constant 3\nadd\npop temp 0\n\
+             push constant 7\npop temp 1\npush argument 0\npop temp 2\n";
+    let mut m = vm(f);
+    assert_eq!(m.run(None), Exit::Halted);
+    // The function line and 8 commands; local 1 is RAM[LCL + 1] = RAM[1]
+    // (LCL = 0), argument 0 is RAM[0], SP.
+    assert_eq!(m.steps(), 9);
+    assert_eq!(words(&m, 5, 8), [3, 7, 258]);
+    let mut web = Machine::new(
+        Program::from_sources(&[("Foo.vm", f)]).unwrap(),
+        Config {
+            profile: Profile::Web,
+            ..Config::default()
+        },
+    );
+    let e = web.run(None);
+    assert!(matches!(e, Exit::RuntimeError { .. }), "{e}");
+    assert_eq!(web.steps(), 1);
+}
+
+#[test]
+fn desktop_runtime_errors_read_as_the_desktop_words_them() {
+    let mut m = vm("function Main.main 0\npush argument 1\nreturn\n");
+    let e = m.run(None);
+    let Exit::RuntimeError { message, .. } = e else {
+        panic!("{e}")
+    };
+    assert_eq!(message, "Out of segment space in Main.main.1");
+    // Labels are not commands of the desktop's index.
+    let mut m =
+        vm("function Main.main 0\nlabel A\npush constant 1\nlabel B\npop argument 0\nreturn\n");
+    let Exit::RuntimeError { message, .. } = m.run(None) else {
+        panic!()
+    };
+    assert_eq!(message, "Out of segment space in Main.main.2");
+    // A `function` line that overflows the stack is charged to its caller.
+    let mut m = vm("function Main.main 0\ncall Main.g 0\nreturn\nfunction Main.g 30000\npush constant 0\nreturn\n");
+    let Exit::RuntimeError { message, stack } = m.run(None) else {
+        panic!()
+    };
+    assert_eq!(message, "Stack overflow in Main.main.0");
+    assert_eq!(stack.to_string(), "Sys.init > Main.main > Main.g");
+    // The web IDE keeps its own words.
+    let mut web = Machine::new(
+        Program::from_sources(&[("Main.vm", "function Main.main 0\npush argument 1\nreturn\n")])
+            .unwrap(),
+        Config {
+            profile: Profile::Web,
+            ..Config::default()
+        },
+    );
+    let Exit::RuntimeError { message, .. } = web.run(None) else {
+        panic!()
+    };
+    assert_eq!(message, "Argument offset out of bounds");
+}
+
+#[test]
+fn a_static_index_past_239_runs_on_the_desktop_and_is_refused_by_the_web_ide() {
+    let src = "function Main.main 0\npush constant 9\npop static 240\npush static 240\npop temp 0\npush constant 0\nreturn\n";
+    let p = Program::from_sources(&[("Main.vm", src)]).unwrap();
+    // The desktop's segment for Main is 16..=256: static 240 is RAM[256].
+    assert!(p.check_profile(Profile::Desktop).is_ok());
+    let mut m = desktop(Arc::clone(&p));
+    m.run(Some(4));
+    assert_eq!(m.ram().read(256), 9);
+    assert_eq!(m.run(None), Exit::Halted);
+    assert_eq!(m.ram().read(5), 9);
+    let e = p.check_profile(Profile::Web).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "Main.vm:3: Illegal static index 240 (must be between 0 and 239)"
+    );
+    let mut web = Machine::new(
+        p,
+        Config {
+            profile: Profile::Web,
+            ..Config::default()
+        },
+    );
+    let Exit::RuntimeError { message, .. } = web.run(None) else {
+        panic!()
+    };
+    assert_eq!(
+        message,
+        "Illegal static index 240 (must be between 0 and 239)"
+    );
+}

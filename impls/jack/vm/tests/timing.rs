@@ -198,7 +198,9 @@ fn deep_recursion_is_a_desktop_stack_overflow_with_a_collapsed_call_stack() {
     let mut m = load(RECURSE, Profile::Desktop);
     match m.run(Some(60_000_000)) {
         Exit::RuntimeError { message, stack } => {
-            assert_eq!(message, "Stack overflow");
+            // The desktop names the function and the failing command:
+            // Main.main's command 1, its `call`.
+            assert_eq!(message, "Stack overflow in Main.main.1");
             // Main.main's frame at 261, LCL 266; each call pushes 5 words;
             // the 357th call fails at its 2nd word, SP leaving 2047.
             assert_eq!(stack.to_string(), "Sys.init > Main.main x 357");
@@ -233,7 +235,10 @@ fn thirty_thousand_locals_overflow_the_desktop_stack_at_the_function_line() {
     let Exit::RuntimeError { message, stack } = e else {
         panic!("{e}")
     };
-    assert_eq!(message, "Stack overflow");
+    assert_eq!(
+        message, "Stack overflow in Main.main.0",
+        "charged to the caller"
+    );
     assert_eq!(stack.to_string(), "Sys.init > Main.main > Main.g");
     // Start-up, function Main.main, call Main.g, function Main.g.
     assert_eq!(m.steps(), 4);
