@@ -123,6 +123,30 @@ impl Os {
     }
 }
 
+impl Os {
+    /// What a blocking built-in (`f.blocks()`) shows before its wait: the
+    /// cursor of a keyboard read (after `readLine`'s and `readInt`'s
+    /// prompt); nothing for `Sys.wait`. A VM whose run stops while the
+    /// official tool is still waiting shows this state; the call itself is
+    /// then made from the state before it.
+    pub fn start_blocking(&mut self, f: Builtin, args: &[i16], ram: &mut Ram, clock: &mut u64) {
+        let mut ctx = Ctx {
+            os: &mut self.state,
+            ram,
+            clock,
+            stop: None,
+        };
+        match f {
+            Builtin::KeyboardReadChar => ctx.draw_cursor(),
+            Builtin::KeyboardReadLine | Builtin::KeyboardReadInt => {
+                ctx.print_string(arg(args, 0));
+                ctx.draw_cursor();
+            }
+            _ => {}
+        }
+    }
+}
+
 /// Argument `i` as an unwrapped number (the arity is checked by the caller).
 fn arg(args: &[i16], i: usize) -> i32 {
     args.get(i).copied().map_or(0, i32::from)

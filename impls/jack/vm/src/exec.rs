@@ -92,6 +92,9 @@ enum Halt {
     /// Desktop: a built-in call at an SP where its frame and result do
     /// not fit below the end of the stack segment (arguments not popped).
     BuiltinOverflow(Builtin, u8),
+    /// Web: a blocking built-in with this many arguments (on the stack),
+    /// its call step counted (see `Machine::web_blocking_call`).
+    Blocking(Builtin, u8),
     /// A fused instruction's fast-path conditions do not hold: run the
     /// plain commands from the same index.
     Deopt,
@@ -324,6 +327,10 @@ impl Machine {
                     if stack_check && sp > BUILTIN_LAST_BASE {
                         // Desktop: no room for the built-in's frame.
                         break 'run Some(Halt::BuiltinOverflow(b, n as u8));
+                    }
+                    if timing.handover_step && b.blocks() {
+                        // Web: its wait and hand-over, which a budget may cut.
+                        break 'run Some(Halt::Blocking(b, n as u8));
                     }
                     for i in (0..n).rev() {
                         args[i] = pop!();
@@ -942,11 +949,17 @@ impl Machine {
             Halt::BuiltinOverflow(b, n) => {
                 halt = self.desktop_builtin_overflow(b, u16::from(n));
             }
+            Halt::Blocking(b, n) => match self.web_blocking_call(b, u16::from(n), self.steps) {
+                None => return Flow::Limit,
+                Some(exit) => return Flow::End(exit),
+            },
             _ => {}
         }
         Flow::End(match halt {
             Halt::Deopt => return Flow::Deopt,
-            Halt::OsInFrame(..) | Halt::BuiltinOverflow(..) => unreachable!("resolved above"),
+            Halt::OsInFrame(..) | Halt::BuiltinOverflow(..) | Halt::Blocking(..) => {
+                unreachable!("resolved above")
+            }
             Halt::Exit(e) => e,
             Halt::Error(message) => Exit::RuntimeError {
                 message: if function_step {

@@ -262,3 +262,60 @@ fn thirty_thousand_web_locals_zero_what_ram_holds_and_drop_the_rest() {
     assert!(matches!(m.run(Some(100_000)), Exit::Budget { .. }));
     assert_eq!(m.steps(), 100_012);
 }
+
+fn web_machine(main: &str, keys: &str, hold: u64) -> Machine {
+    Machine::new(
+        compile(main, Profile::Web),
+        Config {
+            profile: Profile::Web,
+            keys: KeyScript::parse(keys, hold).unwrap(),
+            ..Config::default()
+        },
+    )
+}
+
+#[test]
+fn a_web_budget_that_ends_at_a_blocking_call_stops_there_with_the_argument_on_the_stack() {
+    // Step 17 is the first `call Sys.wait 1`: the web IDE stops at 17 with
+    // the argument 10 still on the stack (SP 270: Main.main's local at 268).
+    let mut m = web_machine(WAITS, "", 1000);
+    assert!(matches!(m.run(Some(17)), Exit::Budget { .. }));
+    assert_eq!(m.steps(), 17);
+    assert_eq!((m.ram().read(0), m.ram().read(269)), (270, 10));
+    // Going on hands the result back (the step of 18) and ends as an
+    // uninterrupted run does.
+    assert!(matches!(m.run(Some(1)), Exit::Budget { .. }));
+    assert_eq!(
+        (m.steps(), m.ram().read(0), m.ram().read(269)),
+        (18, 270, 0)
+    );
+    assert_eq!(m.run(None), Exit::Halted);
+    assert_eq!(m.steps(), 123);
+}
+
+#[test]
+fn a_web_budget_inside_a_key_wait_shows_the_cursor_and_not_the_echo() {
+    let (whole, _) = both(KEYS, "A", 100);
+    for budget in [9, 50, 100] {
+        let mut m = web_machine(KEYS, "A", 100);
+        assert!(
+            matches!(m.run(Some(budget)), Exit::Budget { .. }),
+            "{budget}"
+        );
+        assert_eq!(m.steps(), budget);
+        // readChar's cursor box at cell (0, 0): x 2..=6, y 2..=9.
+        let black: Vec<(usize, usize)> = (0..256)
+            .flat_map(|y| (0..512).map(move |x| (x, y)))
+            .filter(|&(x, y)| m.ram().pixel(x, y))
+            .collect();
+        assert_eq!(black.len(), 5 * 8, "{budget}: the cursor only");
+        assert!(black
+            .iter()
+            .all(|&(x, y)| (2..=6).contains(&x) && (2..=9).contains(&y)));
+        // Going on takes the key at its release (100), hands it back (101)
+        // and ends as the uninterrupted run.
+        assert_eq!(m.run(None), Exit::Halted);
+        assert_eq!(m.steps(), 111);
+        assert!(m.ram() == whole.ram(), "{budget}");
+    }
+}
