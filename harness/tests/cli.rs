@@ -344,6 +344,32 @@ fn jack_run_honours_a_preset_stack_pointer_under_both_profiles() {
 }
 
 #[test]
+fn jack_run_takes_a_vm_file_and_stops_an_unbudgeted_run_in_an_idle_loop() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("Main.vm");
+    std::fs::write(
+        &file,
+        "function Main.main 0\ncall Main.halt 0\nreturn\nfunction Main.halt 0\nlabel WHILE_EXP0\n\
+         push constant 0\nnot\nnot\nif-goto WHILE_END0\ngoto WHILE_EXP0\nlabel WHILE_END0\n\
+         push constant 0\nreturn\n",
+    )
+    .unwrap();
+    let o = jack("run", &file, &[]);
+    assert!(o.status.success(), "{}", text(&o));
+    let t = text(&o);
+    assert!(t.contains("idle: desktop stopped at instruction 1000000 in an idle loop in Sys.init > Main.main > Main.halt"), "{t}");
+    assert!(t.contains("end: halted"), "{t}");
+    // With a budget, the budget ends the run as before.
+    let o = jack(
+        "run",
+        &file,
+        &["--max-instructions", "100", "--profile", "web"],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("instructions: 100\n"), "{}", text(&o));
+}
+
+#[test]
 fn jack_run_stops_a_runaway_program_at_its_budget_with_the_call_stack() {
     let src = jack_main("class Main {\n  function void main() { do Main.spin(); return; }\n  function void spin() { while (true) { } return; }\n}\n");
     let o = jack("run", src.path(), &["--max-instructions", "1000"]);

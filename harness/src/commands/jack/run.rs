@@ -12,7 +12,8 @@ use std::sync::Arc;
 /// Arguments of `harness jack run`.
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
-    /// Directory holding the program's .vm files (or .jack files).
+    /// Directory holding the program's .vm files (or .jack files), or one
+    /// .vm file.
     pub dir: PathBuf,
     /// Keys pressed one after another, comma-separated (e.g. "SPACE,A,ENTER").
     #[arg(long, default_value = "")]
@@ -258,6 +259,20 @@ fn screen_paths(path: &Path, per_profile: bool) -> Vec<PathBuf> {
 /// The program of `dir`: its .jack files compiled under `profile` if it has
 /// any, else its .vm files.
 fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
+    if dir.is_file() {
+        // One .vm file, as the official tools load it.
+        let text =
+            common::input::read_text(dir).with_context(|| format!("reading {}", dir.display()))?;
+        let name = dir
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if !name.ends_with(".vm") {
+            anyhow::bail!("{} is neither a folder nor a .vm file", dir.display());
+        }
+        return Program::from_sources(&[(name, text)])
+            .with_context(|| format!("loading {}", dir.display()));
+    }
     let has_jack = std::fs::read_dir(dir)
         .with_context(|| format!("reading {}", dir.display()))?
         .filter_map(Result::ok)
@@ -298,15 +313,46 @@ const PROGRESS_EVERY: u64 = 50_000_000;
 
 /// Run `machine` on for at most `budget` more instructions, counting them
 /// on a progress line when standard error is a terminal.
+///
+/// Without a budget, the run is checked every [`IDLE_CHECK_EVERY`]
+/// instructions for an idle loop (`Machine::idle`: a `goto` to its own
+/// label, the OS's `while (true) {}` in `Sys.halt`), where the official
+/// tools spin for ever: the run stops at the first check that finds one,
+/// says so, and counts as halted.
 fn finish(machine: &mut Machine, budget: Option<u64>, label: Profile) -> Exit {
     let bar = progress::show(
         progress::instructions(budget.map(|b| machine.steps() + b), label.name()),
         progress::wanted(),
     );
-    let exit = machine.run_observed(budget, PROGRESS_EVERY, &mut |n| bar.set_position(n));
+    let exit = if budget.is_some() {
+        machine.run_observed(budget, PROGRESS_EVERY, &mut |n| bar.set_position(n))
+    } else {
+        loop {
+            let exit = machine.run_observed(Some(IDLE_CHECK_EVERY), PROGRESS_EVERY, &mut |n| {
+                bar.set_position(n)
+            });
+            match exit {
+                Exit::Budget { stack } if machine.idle() => {
+                    bar.finish_and_clear();
+                    println!(
+                        "idle: {label} stopped at instruction {} in an idle loop in {stack} \
+                         (the official tools spin there for ever)",
+                        machine.steps()
+                    );
+                    return Exit::Halted;
+                }
+                Exit::Budget { .. } => {}
+                other => break other,
+            }
+        }
+    };
     bar.finish_and_clear();
     exit
 }
+
+/// Instructions between two checks for an idle loop in a run without a
+/// budget.
+const IDLE_CHECK_EVERY: u64 = 1_000_000;
 
 /// Whether screen `desktop` is screen `web` one pixel row lower.
 fn one_row_lower(desktop: &Ram, web: &Ram) -> bool {

@@ -650,6 +650,46 @@ impl Machine {
         })
     }
 
+    /// Whether the machine stands in an idle loop: within the next 64
+    /// steps its whole state (position, call stack, registers, RAM, OS)
+    /// comes back to what it is now, and no scripted key change is still
+    /// to come, so running on changes nothing but the step count (a `goto`
+    /// to its own label, or the OS's compiled `while (true) {}` of
+    /// `Sys.halt`). The official tools spin there for ever; a run without
+    /// a budget may stop there instead. Costs a snapshot and 64 steps.
+    pub fn idle(&self) -> bool {
+        if self.ended.is_some() || self.pending.is_some() || self.startup_pending {
+            return false;
+        }
+        if self.os.keys().next_change(self.steps).is_some() {
+            return false;
+        }
+        let mut m = self.clone();
+        m.native = None;
+        m.tier = None;
+        m.profile = None;
+        for _ in 0..64 {
+            if !matches!(m.run(Some(1)), Exit::Budget { .. }) {
+                return false;
+            }
+            let same_frames = m.frames.len() == self.frames.len()
+                && m.frames.iter().zip(&self.frames).all(|(a, b)| {
+                    (a.caller, a.ret_pc, a.ret, a.nargs, a.flags)
+                        == (b.caller, b.ret_pc, b.ret, b.nargs, b.flags)
+                });
+            if m.pc == self.pc
+                && m.cur == self.cur
+                && (m.nargs, m.flags) == (self.nargs, self.flags)
+                && same_frames
+                && m.ram == self.ram
+                && m.os == self.os
+            {
+                return true;
+            }
+        }
+        false
+    }
+
     /// Set the keyboard word from the key script if a key change is due.
     fn sync_keyboard(&mut self) {
         if self.steps >= self.next_key_sync {

@@ -4,7 +4,8 @@
 //! `clear-echo`. [`run_script`] runs one on a [`Machine`], writes the
 //! `.out` file and compares each output line with the `.cmp` file as it is
 //! written, the way the official tools do: the first differing line ends
-//! the script.
+//! the script. The web IDE compares lines with their spaces trimmed, the
+//! desktop compares them exactly (`--profile` decides).
 
 use crate::{Config, Machine, Profile, Program, Register};
 use std::fmt;
@@ -546,7 +547,7 @@ impl Run {
                 let path = self.dir.join(&words[1]);
                 let text = std::fs::read_to_string(&path)
                     .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-                let lines = text.lines().map(|l| l.trim().to_string()).collect();
+                let lines = text.lines().map(str::to_string).collect();
                 self.compare = Some((path, lines));
             }
             "output-list" => {
@@ -659,7 +660,13 @@ impl Run {
         let n = self.written.len();
         if let Some((_, expected)) = &self.compare {
             let want = expected.get(n).cloned().unwrap_or_default();
-            if want != line.trim() {
+            // The web IDE compares trimmed lines; the desktop compares
+            // them as they are, so a line that differs only in spaces fails.
+            let same = match self.profile {
+                Profile::Web => want.trim() == line.trim(),
+                Profile::Desktop => want == line,
+            };
+            if !same {
                 self.mismatch = Some(Mismatch {
                     line: n + 1,
                     expected: want,

@@ -278,3 +278,45 @@ fn a_static_index_past_239_runs_on_the_desktop_and_is_refused_by_the_web_ide() {
         "Illegal static index 240 (must be between 0 and 239)"
     );
 }
+
+#[test]
+fn a_goto_to_its_own_label_and_a_compiled_while_true_are_idle_loops() {
+    for profile in Profile::ALL {
+        let sys = "function Sys.init 0\npush constant 1\npop temp 0\nlabel L\ngoto L\n";
+        let mut m = Machine::new(
+            Program::from_sources(&[("Sys.vm", sys)]).unwrap(),
+            Config {
+                profile,
+                ..Config::default()
+            },
+        );
+        assert!(!m.idle(), "{profile}: at the start");
+        m.run(Some(5));
+        assert!(m.idle(), "{profile}");
+        // The OS's Sys.halt: `while (true) {}` as the course's compiler
+        // writes it.
+        let halt = "function Sys.init 0\ncall Sys.halt 0\nreturn\nfunction Sys.halt 0\nlabel WHILE_EXP0\n\
+                    push constant 0\nnot\nnot\nif-goto WHILE_END0\ngoto WHILE_EXP0\nlabel WHILE_END0\n\
+                    push constant 0\nreturn\n";
+        let mut m = Machine::new(
+            Program::from_sources(&[("Sys.vm", halt)]).unwrap(),
+            Config {
+                profile,
+                ..Config::default()
+            },
+        );
+        m.run(Some(1000));
+        assert!(m.idle(), "{profile}");
+        // A loop that counts is not idle.
+        let count = "function Sys.init 0\nlabel L\npush static 0\npush constant 1\nadd\npop static 0\ngoto L\n";
+        let mut m = Machine::new(
+            Program::from_sources(&[("Sys.vm", count)]).unwrap(),
+            Config {
+                profile,
+                ..Config::default()
+            },
+        );
+        m.run(Some(1000));
+        assert!(!m.idle(), "{profile}");
+    }
+}

@@ -147,3 +147,30 @@ fn a_broken_script_names_its_line_and_column() {
         assert!(e.contains(message), "{e}");
     }
 }
+
+#[test]
+fn a_compare_line_that_differs_only_in_spaces_fails_on_the_desktop_only() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Add.vm"),
+        "push constant 7\npush constant 8\nadd\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("AddVME.tst"),
+        "load Add.vm,\noutput-file Add.out,\ncompare-to Add.cmp,\noutput-list RAM[256]%D1.6.1;\n\
+         set sp 256,\nrepeat 3 { vmstep; }\noutput;\n",
+    )
+    .unwrap();
+    let tst = dir.path().join("AddVME.tst");
+    // The header line with a space more at its end.
+    std::fs::write(dir.path().join("Add.cmp"), "|RAM[256]| \n|     15 |\n").unwrap();
+    let web = run_script(&tst, Profile::Web).unwrap();
+    assert!(web.mismatch.is_none(), "trailing space: {:?}", web.mismatch);
+    let desktop = run_script(&tst, Profile::Desktop).unwrap();
+    let m = desktop.mismatch.expect("strict on the desktop");
+    assert_eq!(m.line, 1);
+    std::fs::write(dir.path().join("Add.cmp"), "|RAM[256]|\n|     15 |\n").unwrap();
+    let desktop = run_script(&tst, Profile::Desktop).unwrap();
+    assert!(desktop.mismatch.is_none(), "{:?}", desktop.mismatch);
+}
