@@ -111,6 +111,11 @@ pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptE
     })
 }
 
+/// Whether a block is the single command `vmstep`.
+fn is_vmstep(body: &[Command]) -> bool {
+    matches!(body, [Command { kind: Kind::Words(w), .. }] if w.len() == 1 && w[0] == "vmstep")
+}
+
 /// One parsed command, with the position of its first word.
 #[derive(Debug, Clone)]
 struct Command {
@@ -472,6 +477,15 @@ impl Run {
             };
             match &c.kind {
                 Kind::Words(words) => self.simple(words).map_err(fail)?,
+                Kind::Repeat(count, body) if is_vmstep(body) => {
+                    // `repeat N { vmstep; }`: N steps in one run, at the
+                    // emulator's own speed (a run of N steps is N runs of
+                    // one, step for step).
+                    let n = count.unwrap_or(MAX_OPEN_LOOP);
+                    if n > 0 && self.mismatch.is_none() {
+                        self.machine().map_err(fail)?.run(Some(n));
+                    }
+                }
                 Kind::Repeat(count, body) => {
                     let n = count.unwrap_or(MAX_OPEN_LOOP);
                     for _ in 0..n {

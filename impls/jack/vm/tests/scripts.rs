@@ -174,3 +174,34 @@ fn a_compare_line_that_differs_only_in_spaces_fails_on_the_desktop_only() {
     let desktop = run_script(&tst, Profile::Desktop).unwrap();
     assert!(desktop.mismatch.is_none(), "{:?}", desktop.mismatch);
 }
+
+#[test]
+fn a_repeat_of_vmstep_is_the_same_run_as_its_steps_one_by_one() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Sys.vm"),
+        "function Sys.init 1\nlabel L\nlabel M\npush local 0\npush constant 3\nadd\npop local 0\n\
+         push local 0\npush constant 60\ngt\nif-goto E\ngoto L\nlabel E\ncall Sys.halt 0\n",
+    )
+    .unwrap();
+    let out = |name: &str, body: &str, profile: Profile| {
+        let tst = dir.path().join(format!("{name}.tst"));
+        std::fs::write(
+            &tst,
+            format!("load Sys.vm,\noutput-file {name}.out,\noutput-list RAM[0]%D1.6.1 RAM[257]%D1.6.1;\n{body}\noutput;\n"),
+        )
+        .unwrap();
+        let r = run_script(&tst, profile).unwrap();
+        (
+            r.steps,
+            std::fs::read_to_string(dir.path().join(format!("{name}.out"))).unwrap(),
+        )
+    };
+    for profile in Profile::ALL {
+        for n in [1, 7, 50, 200] {
+            let one_by_one = out("A", &"vmstep;\n".repeat(n), profile);
+            let repeated = out("B", &format!("repeat {n} {{ vmstep; }}"), profile);
+            assert_eq!(one_by_one, repeated, "{profile} {n}");
+        }
+    }
+}
