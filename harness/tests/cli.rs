@@ -370,6 +370,27 @@ fn jack_run_takes_a_vm_file_and_stops_an_unbudgeted_run_in_an_idle_loop() {
 }
 
 #[test]
+fn jack_run_loads_files_in_a_stated_order_for_the_statics() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("A.vm"),
+        "function A.f 0\npush constant 11\npop static 0\npush constant 0\nreturn\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("Main.vm"),
+        "function Main.main 0\ncall A.f 0\npop temp 0\npush constant 22\npop static 0\npush constant 0\nreturn\n",
+    )
+    .unwrap();
+    let o = jack("run", dir.path(), &["--ram", "16..17"]);
+    assert!(text(&o).contains("RAM[16..17]: 11 22\n"), "{}", text(&o));
+    let o = jack("run", dir.path(), &["--ram", "16..17", "--static-order", "Main,A"]);
+    assert!(text(&o).contains("RAM[16..17]: 22 11\n"), "{}", text(&o));
+    let o = jack("run", dir.path(), &["--static-order", "B"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+}
+
+#[test]
 fn jack_run_stops_a_runaway_program_at_its_budget_with_the_call_stack() {
     let src = jack_main("class Main {\n  function void main() { do Main.spin(); return; }\n  function void spin() { while (true) { } return; }\n}\n");
     let o = jack("run", src.path(), &["--max-instructions", "1000"]);

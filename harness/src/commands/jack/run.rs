@@ -39,6 +39,12 @@ pub struct RunArgs {
     /// Print RAM[A] through RAM[B] (inclusive) at the end; repeatable.
     #[arg(long = "ram", value_name = "A..B", value_parser = parse_range)]
     pub ram: Vec<(i32, i32)>,
+    /// The load order of the program's files, as comma-separated base
+    /// names (e.g. `Main,Ball`): these first, then the others by name. It
+    /// decides where each file's statics go; the official tools load in
+    /// their directory listing's order, which need not be sorted.
+    #[arg(long = "static-order", value_name = "A,B,...", value_delimiter = ',')]
+    pub static_order: Vec<String>,
     /// Set RAM[A] to V before the run; repeatable.
     #[arg(long = "set", value_name = "A=V", value_parser = parse_set)]
     pub set: Vec<(i32, i16)>,
@@ -111,7 +117,7 @@ fn print_ram(ram: &Ram, ranges: &[(i32, i32)]) {
 
 /// A machine for `args` under `profile`, with the `--set` words written.
 fn machine(args: &RunArgs, profile: Profile, config: Config) -> anyhow::Result<Machine> {
-    let program = load(&args.dir, profile)?;
+    let program = load(&args.dir, profile, &args.static_order)?;
     // The checks only one profile's tool makes at load (a web static index
     // past 239).
     program
@@ -258,7 +264,7 @@ fn screen_paths(path: &Path, per_profile: bool) -> Vec<PathBuf> {
 
 /// The program of `dir`: its .jack files compiled under `profile` if it has
 /// any, else its .vm files.
-fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
+fn load(dir: &Path, profile: Profile, order: &[String]) -> anyhow::Result<Arc<Program>> {
     if dir.is_file() {
         // One .vm file, as the official tools load it.
         let text =
@@ -278,15 +284,17 @@ fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
         .filter_map(Result::ok)
         .any(|e| e.path().extension().is_some_and(|x| x == "jack"));
     if !has_jack {
-        return Program::load_dir(dir).with_context(|| format!("loading {}", dir.display()));
+        return Program::load_dir_in_order(dir, order)
+            .with_context(|| format!("loading {}", dir.display()));
     }
     let compiler_profile: jack_compiler::Profile = profile.name().parse()?;
     let classes = jack_compiler::compile_dir(dir, compiler_profile)
         .with_context(|| format!("compiling {}", dir.display()))?;
-    let sources: Vec<(String, String)> = classes
+    let mut sources: Vec<(String, String)> = classes
         .iter()
         .map(|c| (c.file_name(), c.code.clone()))
         .collect();
+    hack_vm::in_load_order(&mut sources, order)?;
     Program::from_sources(&sources).map_err(|e| {
         let context = format!("loading the VM code compiled from {}", dir.display());
         match jack_position(&classes, &e) {

@@ -42,6 +42,16 @@ struct RawFunction {
 impl Program {
     /// Load every `.vm` file of `dir`, in file-name order.
     pub fn load_dir(dir: &Path) -> Result<Arc<Program>, LoadError> {
+        Program::load_dir_in_order(dir, &[])
+    }
+
+    /// Load every `.vm` file of `dir`: the files named in `order` (base
+    /// names, `Main` for `Main.vm`) first, in that order, then the others
+    /// in file-name order. The load order decides where each file's
+    /// statics go (the desktop's segments follow it, the web IDE numbers
+    /// statics by first appearance in it): the official tools take the
+    /// order their directory listing gives, which need not be sorted.
+    pub fn load_dir_in_order(dir: &Path, order: &[String]) -> Result<Arc<Program>, LoadError> {
         let io = |source| LoadError::Io {
             path: dir.to_path_buf(),
             source,
@@ -69,6 +79,7 @@ impl Program {
                 dir.display()
             )));
         }
+        in_load_order(&mut sources, order)?;
         Program::from_sources(&sources)
     }
 
@@ -90,6 +101,29 @@ impl Program {
         let raw = dedupe(raw)?;
         build(raw, command_lines).map(Arc::new)
     }
+}
+
+/// Put `(file name, text)` sources in the load order `order` (base names:
+/// `Main` for `Main.vm`): the named files first, in that order, then the
+/// others as they were. A name that is not among the files, or is named
+/// twice, is an error.
+pub fn in_load_order<T>(sources: &mut Vec<(String, T)>, order: &[String]) -> Result<(), LoadError> {
+    let base = |f: &str| f.strip_suffix(".vm").unwrap_or(f).to_string();
+    let mut rest: Vec<(String, T)> = std::mem::take(sources);
+    for name in order {
+        let name = base(name.trim());
+        let at = rest
+            .iter()
+            .position(|(f, _)| base(f) == name)
+            .ok_or_else(|| {
+                LoadError::Program(format!(
+                "the load order names {name}, which is not one of the files (or is named twice)"
+            ))
+            })?;
+        sources.push(rest.remove(at));
+    }
+    sources.extend(rest);
+    Ok(())
 }
 
 /// Group a file's commands into functions and check the file-name rule.

@@ -320,3 +320,36 @@ fn a_goto_to_its_own_label_and_a_compiled_while_true_are_idle_loops() {
         assert!(!m.idle(), "{profile}");
     }
 }
+
+#[test]
+fn a_stated_load_order_places_each_files_statics() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = "function A.f 0\npush constant 11\npop static 1\npush constant 0\nreturn\n";
+    let b = "function B.f 0\npush constant 22\npop static 0\npush constant 0\nreturn\n";
+    let main = "function Main.main 0\ncall A.f 0\npop temp 0\ncall B.f 0\npop temp 0\npush constant 0\nreturn\n";
+    for (f, t) in [("A.vm", a), ("B.vm", b), ("Main.vm", main)] {
+        std::fs::write(dir.path().join(f), t).unwrap();
+    }
+    let run = |order: &[&str], profile: Profile| {
+        let order: Vec<String> = order.iter().map(|s| s.to_string()).collect();
+        let p = Program::load_dir_in_order(dir.path(), &order).unwrap();
+        let mut m = Machine::new(
+            p,
+            Config {
+                profile,
+                ..Config::default()
+            },
+        );
+        assert_eq!(m.run(None), Exit::Halted);
+        words(&m, 16, 19)
+    };
+    // Sorted (A, B, Main): A's segment is RAM[16..=17], B's RAM[18].
+    assert_eq!(run(&[], Profile::Desktop), [0, 11, 22]);
+    // B first: B's static 0 is RAM[16], A's segment RAM[17..=18].
+    assert_eq!(run(&["B", "Main.vm"], Profile::Desktop), [22, 0, 11]);
+    // The web IDE numbers statics by first appearance in the load order.
+    assert_eq!(run(&[], Profile::Web), [11, 22, 0]);
+    assert_eq!(run(&["B"], Profile::Web), [22, 11, 0]);
+    let bad = Program::load_dir_in_order(dir.path(), &["C".to_string()]).unwrap_err();
+    assert!(bad.to_string().contains("names C"), "{bad}");
+}
