@@ -384,7 +384,11 @@ fn jack_run_loads_files_in_a_stated_order_for_the_statics() {
     .unwrap();
     let o = jack("run", dir.path(), &["--ram", "16..17"]);
     assert!(text(&o).contains("RAM[16..17]: 11 22\n"), "{}", text(&o));
-    let o = jack("run", dir.path(), &["--ram", "16..17", "--static-order", "Main,A"]);
+    let o = jack(
+        "run",
+        dir.path(),
+        &["--ram", "16..17", "--static-order", "Main,A"],
+    );
     assert!(text(&o).contains("RAM[16..17]: 22 11\n"), "{}", text(&o));
     let o = jack("run", dir.path(), &["--static-order", "B"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));

@@ -321,6 +321,21 @@ impl Machine {
         stack
     }
 
+    /// The function a test script's `currentFunction` names: the running
+    /// one, except where the machine stands at a called function's
+    /// `function` line under the desktop profile, whose call stack takes
+    /// the callee on only when that line runs (the caller is named then).
+    pub fn current_function(&self) -> &str {
+        let f = &self.program.functions[self.cur as usize];
+        let at_function_line = f.headed && self.pc + 1 == f.start;
+        match self.frames.last() {
+            Some(fr) if at_function_line && Timing::of(self.os.profile()).function_step => {
+                self.program.function_name(fr.caller)
+            }
+            _ => &f.name,
+        }
+    }
+
     /// How the run ended, if it has.
     pub fn exit(&self) -> Option<&Exit> {
         self.ended.as_ref()

@@ -1,7 +1,8 @@
 //! The course's VM emulator test scripts (`.tst`, spec §5.1): `load`,
 //! `output-file`, `compare-to`, `output-list` with formats, `output`, `set`
 //! on RAM, registers and segments, `vmstep`, `repeat`, `while`, `echo` and
-//! `clear-echo`. [`run_script`] runs one on a [`Machine`], writes the
+//! `clear-echo`; `currentFunction` as an output column. (`line` and
+//! `breakpoint` are not supported.) [`run_script`] runs one on a [`Machine`], writes the
 //! `.out` file and compares each output line with the `.cmp` file as it is
 //! written, the way the official tools do: the first differing line ends
 //! the script. The web IDE compares lines with their spaces trimmed, the
@@ -365,6 +366,17 @@ impl Column {
         format!("{}{name}{}", " ".repeat(left), " ".repeat(total - n - left))
     }
 
+    /// A text value (`currentFunction`): left-aligned, cut to the width.
+    fn text_cell(&self, text: &str) -> String {
+        let text: String = text.chars().take(self.width).collect();
+        format!(
+            "{}{text:<w$}{}",
+            " ".repeat(self.left),
+            " ".repeat(self.right),
+            w = self.width
+        )
+    }
+
     fn cell(&self, v: i16) -> String {
         let text = match self.format {
             'D' | 'S' => v.to_string(),
@@ -569,7 +581,7 @@ impl Run {
                     .iter()
                     .map(|w| Column::parse(w))
                     .collect::<Result<_, _>>()?;
-                for c in &self.columns {
+                for c in self.columns.iter().filter(|c| c.var != "currentFunction") {
                     var(&c.var)?;
                 }
                 let line = format!(
@@ -586,6 +598,11 @@ impl Run {
                 arity(0)?;
                 let mut cells = Vec::new();
                 for c in self.columns.clone() {
+                    if c.var == "currentFunction" {
+                        let name = self.machine()?.current_function().to_string();
+                        cells.push(c.text_cell(&name));
+                        continue;
+                    }
                     let v = self.read(&c.var)?;
                     cells.push(c.cell(v));
                 }

@@ -205,3 +205,35 @@ fn a_repeat_of_vmstep_is_the_same_run_as_its_steps_one_by_one() {
         }
     }
 }
+
+#[test]
+fn current_function_names_the_running_function_and_the_caller_at_a_desktop_function_line() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Sys.vm"),
+        "function Sys.init 0\ncall Sys.f 0\nlabel L\ngoto L\nfunction Sys.f 0\npush constant 0\nreturn\n",
+    )
+    .unwrap();
+    let tst = dir.path().join("FVME.tst");
+    std::fs::write(
+        &tst,
+        "load Sys.vm,\noutput-file F.out,\noutput-list currentFunction%S1.10.1;\n\
+         repeat 6 { vmstep; output; }\n",
+    )
+    .unwrap();
+    let out = |profile| {
+        run_script(&tst, profile).unwrap();
+        std::fs::read_to_string(dir.path().join("F.out")).unwrap()
+    };
+    // Desktop: function Sys.init, call (still Sys.init at Sys.f's function
+    // line), function Sys.f, push, return, goto.
+    assert_eq!(
+        out(Profile::Desktop),
+        "|currentFunct|\n| Sys.init   |\n| Sys.init   |\n| Sys.f      |\n| Sys.f      |\n| Sys.init   |\n| Sys.init   |\n"
+    );
+    // Web: the call enters Sys.f at once.
+    assert_eq!(
+        out(Profile::Web),
+        "|currentFunct|\n| Sys.f      |\n| Sys.f      |\n| Sys.init   |\n| Sys.init   |\n| Sys.init   |\n| Sys.init   |\n"
+    );
+}
