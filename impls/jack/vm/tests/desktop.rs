@@ -353,3 +353,22 @@ fn a_stated_load_order_places_each_files_statics() {
     let bad = Program::load_dir_in_order(dir.path(), &["C".to_string()]).unwrap_err();
     assert!(bad.to_string().contains("names C"), "{bad}");
 }
+
+#[test]
+fn a_printing_recursion_overflows_the_desktop_stack_at_step_3252() {
+    // The issue's printing recursion: the desktop VM emulator stops it
+    // with a stack overflow at step 3,252.
+    let mut m = desktop(compile(
+        "class Main { function void main() { do Main.f(0); return; }
+           function void f(int n) { do Output.printInt(n); do Output.printChar(32); do Main.f(n + 1); return; } }",
+    ));
+    let e = m.run(Some(10_000_000));
+    let Exit::RuntimeError { message, stack } = e else {
+        panic!("{e}")
+    };
+    assert_eq!(m.steps(), 3252);
+    // At Main.f's command 2, its `call Output.printInt 1`: no room for the
+    // built-in's frame and result.
+    assert_eq!(message, "Stack overflow in Main.f.2");
+    assert_eq!(stack.to_string(), "Sys.init > Main.main > Main.f x 296");
+}
