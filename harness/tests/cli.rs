@@ -309,11 +309,11 @@ fn jack_run_sets_words_before_and_prints_ram_ranges_after() {
     let t = text(&o);
     assert!(t.contains("RAM[16..16]: 77\n"), "{t}");
     // The desktop start-up: the hidden call's frame at 256 (RET 11: six
-    // command lines and five invisible ones), the OS inits' zeros, Main.main's
-    // frame at 266, where its return value 0 landed; 7 steps in all.
+    // command lines and five invisible ones), Main.main's frame right above
+    // it at 261, where its return value 0 landed; 7 steps in all.
     assert!(t.contains("instructions: 7\n"), "{t}");
     assert!(
-        t.contains("RAM[256..271]: 11 0 0 0 0 0 0 0 0 0 0 261 256 0 0 0\n"),
+        t.contains("RAM[256..271]: 11 0 0 0 0 0 261 256 0 0 0 0 0 0 0 0\n"),
         "{t}"
     );
     assert!(t.contains("RAM[272..272]: "), "{t}");
@@ -323,6 +323,75 @@ fn jack_run_sets_words_before_and_prints_ram_ranges_after() {
     let o = jack("run", dir.path(), &["--set", "24577=1"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("outside RAM"), "{}", text(&o));
+}
+
+#[test]
+fn jack_run_honours_a_preset_stack_pointer_under_both_profiles() {
+    let src = jack_main("class Main { function void main() { do Sys.halt(); return; } }\n");
+    // Desktop: the start-up frames at 300 and 305, Sys.halt's frame at 310,
+    // so SP is 315 at the halt (the desktop VM emulator's figure).
+    let o = jack("run", src.path(), &["--set", "0=300", "--ram", "0..0"]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("RAM[0..0]: 315\n"), "{}", text(&o));
+    // Web: seven 0s and Main.main's frame from 300, then Sys.halt's 0.
+    let o = jack(
+        "run",
+        src.path(),
+        &["--set", "0=300", "--ram", "0..0", "--profile", "web"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("RAM[0..0]: 313\n"), "{}", text(&o));
+}
+
+#[test]
+fn jack_run_takes_a_vm_file_and_stops_an_unbudgeted_run_in_an_idle_loop() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("Main.vm");
+    std::fs::write(
+        &file,
+        "function Main.main 0\ncall Main.halt 0\nreturn\nfunction Main.halt 0\nlabel WHILE_EXP0\n\
+         push constant 0\nnot\nnot\nif-goto WHILE_END0\ngoto WHILE_EXP0\nlabel WHILE_END0\n\
+         push constant 0\nreturn\n",
+    )
+    .unwrap();
+    let o = jack("run", &file, &[]);
+    assert!(o.status.success(), "{}", text(&o));
+    let t = text(&o);
+    assert!(t.contains("idle: desktop stopped at instruction 1000000 in an idle loop in Sys.init > Main.main > Main.halt"), "{t}");
+    assert!(t.contains("end: halted"), "{t}");
+    // With a budget, the budget ends the run as before.
+    let o = jack(
+        "run",
+        &file,
+        &["--max-instructions", "100", "--profile", "web"],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    assert!(text(&o).contains("instructions: 100\n"), "{}", text(&o));
+}
+
+#[test]
+fn jack_run_loads_files_in_a_stated_order_for_the_statics() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("A.vm"),
+        "function A.f 0\npush constant 11\npop static 0\npush constant 0\nreturn\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("Main.vm"),
+        "function Main.main 0\ncall A.f 0\npop temp 0\npush constant 22\npop static 0\npush constant 0\nreturn\n",
+    )
+    .unwrap();
+    let o = jack("run", dir.path(), &["--ram", "16..17"]);
+    assert!(text(&o).contains("RAM[16..17]: 11 22\n"), "{}", text(&o));
+    let o = jack(
+        "run",
+        dir.path(),
+        &["--ram", "16..17", "--static-order", "Main,A"],
+    );
+    assert!(text(&o).contains("RAM[16..17]: 22 11\n"), "{}", text(&o));
+    let o = jack("run", dir.path(), &["--static-order", "B"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
 }
 
 #[test]

@@ -12,7 +12,8 @@ use std::sync::Arc;
 /// Arguments of `harness jack run`.
 #[derive(Debug, clap::Args)]
 pub struct RunArgs {
-    /// Directory holding the program's .vm files (or .jack files).
+    /// Directory holding the program's .vm files (or .jack files), or one
+    /// .vm file.
     pub dir: PathBuf,
     /// Keys pressed one after another, comma-separated (e.g. "SPACE,A,ENTER").
     #[arg(long, default_value = "")]
@@ -38,6 +39,12 @@ pub struct RunArgs {
     /// Print RAM[A] through RAM[B] (inclusive) at the end; repeatable.
     #[arg(long = "ram", value_name = "A..B", value_parser = parse_range)]
     pub ram: Vec<(i32, i32)>,
+    /// The load order of the program's files, as comma-separated base
+    /// names (e.g. `Main,Ball`): these first, then the others by name. It
+    /// decides where each file's statics go; the official tools load in
+    /// their directory listing's order, which need not be sorted.
+    #[arg(long = "static-order", value_name = "A,B,...", value_delimiter = ',')]
+    pub static_order: Vec<String>,
     /// Set RAM[A] to V before the run; repeatable.
     #[arg(long = "set", value_name = "A=V", value_parser = parse_set)]
     pub set: Vec<(i32, i16)>,
@@ -110,7 +117,13 @@ fn print_ram(ram: &Ram, ranges: &[(i32, i32)]) {
 
 /// A machine for `args` under `profile`, with the `--set` words written.
 fn machine(args: &RunArgs, profile: Profile, config: Config) -> anyhow::Result<Machine> {
-    let mut m = Machine::new(load(&args.dir, profile)?, config);
+    let program = load(&args.dir, profile, &args.static_order)?;
+    // The checks only one profile's tool makes at load (a web static index
+    // past 239).
+    program
+        .check_profile(profile)
+        .with_context(|| format!("loading {} under --profile {profile}", args.dir.display()))?;
+    let mut m = Machine::new(program, config);
     for &(a, v) in &args.set {
         m.ram_mut().write(a, v);
     }
@@ -251,21 +264,37 @@ fn screen_paths(path: &Path, per_profile: bool) -> Vec<PathBuf> {
 
 /// The program of `dir`: its .jack files compiled under `profile` if it has
 /// any, else its .vm files.
-fn load(dir: &Path, profile: Profile) -> anyhow::Result<Arc<Program>> {
+fn load(dir: &Path, profile: Profile, order: &[String]) -> anyhow::Result<Arc<Program>> {
+    if dir.is_file() {
+        // One .vm file, as the official tools load it.
+        let text =
+            common::input::read_text(dir).with_context(|| format!("reading {}", dir.display()))?;
+        let name = dir
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        if !name.ends_with(".vm") {
+            anyhow::bail!("{} is neither a folder nor a .vm file", dir.display());
+        }
+        return Program::from_sources(&[(name, text)])
+            .with_context(|| format!("loading {}", dir.display()));
+    }
     let has_jack = std::fs::read_dir(dir)
         .with_context(|| format!("reading {}", dir.display()))?
         .filter_map(Result::ok)
         .any(|e| e.path().extension().is_some_and(|x| x == "jack"));
     if !has_jack {
-        return Program::load_dir(dir).with_context(|| format!("loading {}", dir.display()));
+        return Program::load_dir_in_order(dir, order)
+            .with_context(|| format!("loading {}", dir.display()));
     }
     let compiler_profile: jack_compiler::Profile = profile.name().parse()?;
     let classes = jack_compiler::compile_dir(dir, compiler_profile)
         .with_context(|| format!("compiling {}", dir.display()))?;
-    let sources: Vec<(String, String)> = classes
+    let mut sources: Vec<(String, String)> = classes
         .iter()
         .map(|c| (c.file_name(), c.code.clone()))
         .collect();
+    hack_vm::in_load_order(&mut sources, order)?;
     Program::from_sources(&sources).map_err(|e| {
         let context = format!("loading the VM code compiled from {}", dir.display());
         match jack_position(&classes, &e) {
@@ -292,15 +321,46 @@ const PROGRESS_EVERY: u64 = 50_000_000;
 
 /// Run `machine` on for at most `budget` more instructions, counting them
 /// on a progress line when standard error is a terminal.
+///
+/// Without a budget, the run is checked every [`IDLE_CHECK_EVERY`]
+/// instructions for an idle loop (`Machine::idle`: a `goto` to its own
+/// label, the OS's `while (true) {}` in `Sys.halt`), where the official
+/// tools spin for ever: the run stops at the first check that finds one,
+/// says so, and counts as halted.
 fn finish(machine: &mut Machine, budget: Option<u64>, label: Profile) -> Exit {
     let bar = progress::show(
         progress::instructions(budget.map(|b| machine.steps() + b), label.name()),
         progress::wanted(),
     );
-    let exit = machine.run_observed(budget, PROGRESS_EVERY, &mut |n| bar.set_position(n));
+    let exit = if budget.is_some() {
+        machine.run_observed(budget, PROGRESS_EVERY, &mut |n| bar.set_position(n))
+    } else {
+        loop {
+            let exit = machine.run_observed(Some(IDLE_CHECK_EVERY), PROGRESS_EVERY, &mut |n| {
+                bar.set_position(n)
+            });
+            match exit {
+                Exit::Budget { stack } if machine.idle() => {
+                    bar.finish_and_clear();
+                    println!(
+                        "idle: {label} stopped at instruction {} in an idle loop in {stack} \
+                         (the official tools spin there for ever)",
+                        machine.steps()
+                    );
+                    return Exit::Halted;
+                }
+                Exit::Budget { .. } => {}
+                other => break other,
+            }
+        }
+    };
     bar.finish_and_clear();
     exit
 }
+
+/// Instructions between two checks for an idle loop in a run without a
+/// budget.
+const IDLE_CHECK_EVERY: u64 = 1_000_000;
 
 /// Whether screen `desktop` is screen `web` one pixel row lower.
 fn one_row_lower(desktop: &Ram, web: &Ram) -> bool {

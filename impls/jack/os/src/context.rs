@@ -19,6 +19,8 @@ pub(crate) struct OsState {
     pub col: i32,
     /// Screen colour: true = black.
     pub color: bool,
+    /// Desktop: `Sys.error` is building its "ERR" string.
+    pub in_error: bool,
 }
 
 impl OsState {
@@ -30,9 +32,14 @@ impl OsState {
             row: 0,
             col: 0,
             color: true,
+            in_error: false,
         }
     }
 }
+
+/// The desktop's error for a built-in's access outside the heap and screen.
+pub(crate) const OUTSIDE_HEAP_OR_SCREEN: &str =
+    "A built-in function tried to access memory outside the Heap or Screen range";
 
 /// One built-in call in progress.
 pub(crate) struct Ctx<'a> {
@@ -58,6 +65,38 @@ impl Ctx<'_> {
         self.ram.write(addr, v as i16);
     }
 
+    /// The desktop's check on a built-in's memory access: the word must be
+    /// in the heap or the screen (2048..=24576, the keyboard included) or
+    /// be word 0; else the run stops with the desktop's message. The
+    /// address is a 16-bit word, as the desktop's Java `short`.
+    fn checked(&mut self, addr: i32) -> Option<i32> {
+        let addr = i32::from(addr as i16);
+        if (2048..=crate::KBD as i32).contains(&addr) || addr == 0 {
+            Some(addr)
+        } else {
+            self.fatal(Stop::RuntimeError(OUTSIDE_HEAP_OR_SCREEN.into()));
+            None
+        }
+    }
+
+    /// A word read the desktop's way (see [`Ctx::checked`]); 0 once refused.
+    pub fn checked_get(&mut self, addr: i32) -> i32 {
+        if self.halted() {
+            return 0;
+        }
+        self.checked(addr).map_or(0, |a| self.get(a))
+    }
+
+    /// A word written the desktop's way (see [`Ctx::checked`]).
+    pub fn checked_set(&mut self, addr: i32, v: i32) {
+        if self.halted() {
+            return;
+        }
+        if let Some(a) = self.checked(addr) {
+            self.set(a, v);
+        }
+    }
+
     pub fn profile(&self) -> crate::Profile {
         self.os.profile
     }
@@ -71,6 +110,20 @@ impl Ctx<'_> {
     /// exit code. The caller carries on to the end of its built-in. As in the
     /// web IDE, a later error in the same call replaces the exit code.
     pub fn error(&mut self, code: i16) {
+        if self.profile() == crate::Profile::Desktop && !self.os.in_error && !self.halted() {
+            // The desktop's built-in Sys.error prints through a Jack string
+            // "ERR" that it builds with String.new(3) and appendChar: a
+            // 5-word heap block (an error inside that is printed alone).
+            self.os.in_error = true;
+            let s = self.string_new(3);
+            for c in b"ERR" {
+                if self.halted() {
+                    break;
+                }
+                self.string_append_char(s, i32::from(*c));
+            }
+            self.os.in_error = false;
+        }
         for c in b"ERR" {
             self.print_char(i32::from(*c));
         }

@@ -46,17 +46,26 @@ impl Os {
         }
     }
 
-    /// Section 1 reset: RAM all 0, SP = 256, heap header `RAM[2048] = 0`,
-    /// `RAM[2049] = 14334`; free-list head 2048, cursor (0,0), colour black.
+    /// Section 1 reset: RAM all 0, SP = 256, the heap header (web: `RAM[2048]
+    /// = 0`, `RAM[2049] = 14334`; desktop: 14334 and 16384, as its
+    /// `Memory.init` writes them); free-list head 2048, cursor (0,0),
+    /// colour black.
     pub fn reset(&mut self, ram: &mut Ram) {
         self.state = OsState::new(self.state.profile, self.state.keys.clone());
         ram.words_mut().fill(0);
         ram.write(0, 256);
-        ram.write(crate::memory::HEAP_BASE, 0);
-        ram.write(
-            crate::memory::HEAP_BASE + 1,
-            crate::memory::HEAP_SIZE as i16,
-        );
+        match self.state.profile {
+            Profile::Web => {
+                ram.write(crate::memory::HEAP_BASE, 0);
+                ram.write(
+                    crate::memory::HEAP_BASE + 1,
+                    crate::memory::HEAP_SIZE as i16,
+                );
+            }
+            // As the desktop's built-in Memory.init writes it (a VM that
+            // never calls Memory.init clears it again).
+            Profile::Desktop => crate::memory::desktop_header(ram),
+        }
     }
 
     /// The profile chosen at construction.
@@ -114,6 +123,30 @@ impl Os {
     }
 }
 
+impl Os {
+    /// What a blocking built-in (`f.blocks()`) shows before its wait: the
+    /// cursor of a keyboard read (after `readLine`'s and `readInt`'s
+    /// prompt); nothing for `Sys.wait`. A VM whose run stops while the
+    /// official tool is still waiting shows this state; the call itself is
+    /// then made from the state before it.
+    pub fn start_blocking(&mut self, f: Builtin, args: &[i16], ram: &mut Ram, clock: &mut u64) {
+        let mut ctx = Ctx {
+            os: &mut self.state,
+            ram,
+            clock,
+            stop: None,
+        };
+        match f {
+            Builtin::KeyboardReadChar => ctx.draw_cursor(),
+            Builtin::KeyboardReadLine | Builtin::KeyboardReadInt => {
+                ctx.print_string(arg(args, 0));
+                ctx.draw_cursor();
+            }
+            _ => {}
+        }
+    }
+}
+
 /// Argument `i` as an unwrapped number (the arity is checked by the caller).
 fn arg(args: &[i16], i: usize) -> i32 {
     args.get(i).copied().map_or(0, i32::from)
@@ -125,6 +158,10 @@ fn dispatch(ctx: &mut Ctx, f: Builtin, args: &[i16]) -> i32 {
     let a = |i| arg(args, i);
     let w = |i| args.get(i).copied().unwrap_or(0);
     match f {
+        MemoryInit if ctx.profile() == Profile::Desktop => {
+            crate::memory::desktop_header(ctx.ram);
+            0
+        }
         MathInit | MemoryInit | ArrayInit | StringInit | OutputInit | ScreenInit | KeyboardInit => {
             0
         }
@@ -146,6 +183,11 @@ fn dispatch(ctx: &mut Ctx, f: Builtin, args: &[i16]) -> i32 {
                 0
             }
         },
+        MemoryPeek if ctx.profile() == Profile::Desktop => ctx.checked_get(a(0)),
+        MemoryPoke if ctx.profile() == Profile::Desktop => {
+            ctx.checked_set(a(0), a(1));
+            0
+        }
         MemoryPeek => ctx.get(a(0)),
         MemoryPoke => {
             ctx.set(a(0), a(1));

@@ -114,6 +114,9 @@ impl Ctx<'_> {
     pub fn print_string(&mut self, s: i32) {
         let mut i = 0;
         while i < self.string_length(s) {
+            if self.profile() == crate::Profile::Desktop && self.halted() {
+                break;
+            }
             let c = self.string_char_at(s, i);
             self.print_char(c);
             i += 1;

@@ -1,6 +1,9 @@
-//! `String` (spec section 3.4). Layout: `s = alloc(n+3)`; `RAM[s]` =
+//! `String` (spec section 3.4). Web layout: `s = alloc(n+3)`; `RAM[s]` =
 //! maxLength, `RAM[s+1]` = length, `RAM[s+2]` = the char array `alloc(n)`:
-//! 2n+7 heap words.
+//! 2n+7 heap words. Desktop layout (its built-in `String`): one block
+//! `s = alloc(n+2)` holding maxLength, length and the n chars from `s+2`;
+//! with the desktop's 2-word block headers, n+4 heap words. The desktop's
+//! functions stop at their first error (its `Sys.error` ends the built-in).
 
 use crate::context::{decimal, Ctx};
 use crate::Profile;
@@ -30,6 +33,19 @@ impl Ctx<'_> {
     /// header allocation then succeeds). `web`: n = 0 raises ERR2 from
     /// alloc(0); `desktop`: n = 0 is allowed and has no char array (0).
     pub fn string_new(&mut self, n: i32) -> i32 {
+        if self.profile() == Profile::Desktop {
+            if n < 0 {
+                self.error(14);
+                return 0;
+            }
+            let s = self.alloc(n + 2);
+            if self.halted() {
+                return 0;
+            }
+            self.checked_set(s, n);
+            self.checked_set(s + 1, 0);
+            return s;
+        }
         if n < 0 {
             self.error(14);
         }
@@ -48,17 +64,67 @@ impl Ctx<'_> {
         s
     }
 
-    fn string_max_length(&self, s: i32) -> i32 {
+    fn string_max_length(&mut self, s: i32) -> i32 {
+        if self.profile() == Profile::Desktop {
+            return self.checked_get(s);
+        }
         self.get(s)
     }
 
     /// `s.length()`.
-    pub fn string_length(&self, s: i32) -> i32 {
+    pub fn string_length(&mut self, s: i32) -> i32 {
+        if self.profile() == Profile::Desktop {
+            return self.checked_get(s + 1);
+        }
         self.get(s + 1)
     }
 
+    /// Address of char 0: web, the char array `RAM[s+2]`; desktop, `s+2`.
     fn string_chars(&self, s: i32) -> i32 {
+        if self.profile() == Profile::Desktop {
+            return s + 2;
+        }
         self.get(s + 2)
+    }
+
+    fn char_get(&mut self, a: i32) -> i32 {
+        if self.profile() == Profile::Desktop {
+            return self.checked_get(a);
+        }
+        self.get(a)
+    }
+
+    fn char_set(&mut self, a: i32, c: i32) {
+        if self.profile() == Profile::Desktop {
+            self.checked_set(a, c);
+        } else {
+            self.set(a, c);
+        }
+    }
+
+    /// Desktop `s.intValue()`: the chars as Java text; an optional '-',
+    /// then digits up to the first non-digit, accumulated in a wrapping
+    /// 32-bit int and cut to 16 bits. An empty string is 0 (no error).
+    fn desktop_int_value(&mut self, s: i32) -> i32 {
+        let len = self.string_length(s);
+        let chars: Vec<u16> = (0..len.max(0))
+            .map(|i| self.checked_get(s + 2 + i) as u16)
+            .collect();
+        let negative = chars.first() == Some(&u16::from(b'-'));
+        let mut value: i32 = 0;
+        for &c in &chars[usize::from(negative)..] {
+            if !(u16::from(b'0')..=u16::from(b'9')).contains(&c) {
+                break;
+            }
+            value = value
+                .wrapping_mul(10)
+                .wrapping_add(i32::from(c - u16::from(b'0')));
+        }
+        i32::from(if negative {
+            value.wrapping_neg()
+        } else {
+            value
+        } as i16)
     }
 
     /// `s.charAt(i)`: ERR15 (and 0) unless 0 <= i < length.
@@ -67,7 +133,8 @@ impl Ctx<'_> {
             self.error(15);
             return 0;
         }
-        self.get(self.string_chars(s) + i)
+        let a = self.string_chars(s) + i;
+        self.char_get(a)
     }
 
     /// `s.setCharAt(i, c)`: ERR16 unless 0 <= i < length.
@@ -76,11 +143,23 @@ impl Ctx<'_> {
             self.error(16);
             return;
         }
-        self.set(self.string_chars(s) + i, c);
+        let a = self.string_chars(s) + i;
+        self.char_set(a, c);
     }
 
     /// `s.appendChar(c)`: ERR17 (and 0) on a full string, else returns s.
     pub fn string_append_char(&mut self, s: i32, c: i32) -> i32 {
+        if self.profile() == Profile::Desktop {
+            let capacity = self.string_max_length(s);
+            let len = self.string_length(s);
+            if len == capacity {
+                self.error(17);
+                return 0;
+            }
+            self.checked_set(s + 2 + len, c);
+            self.checked_set(s + 1, len + 1);
+            return s;
+        }
         let len = self.string_length(s);
         if len == self.string_max_length(s) {
             self.error(17);
@@ -98,13 +177,20 @@ impl Ctx<'_> {
             self.error(18);
             return;
         }
-        self.set(s + 1, len - 1);
+        if self.profile() == Profile::Desktop {
+            self.checked_set(s + 1, len - 1);
+        } else {
+            self.set(s + 1, len - 1);
+        }
     }
 
     /// `s.intValue()`: optional '-', then digits up to the first non-digit,
     /// accumulated as a JavaScript number and then wrapped ("40000" gives
     /// -25536). An empty string raises ERR15 from charAt(0).
     pub fn string_int_value(&mut self, s: i32) -> i32 {
+        if self.profile() == Profile::Desktop {
+            return self.desktop_int_value(s);
+        }
         let negative = self.string_char_at(s, 0) == i32::from(b'-');
         let mut i = i32::from(negative);
         let mut value = 0f64;
@@ -125,6 +211,13 @@ impl Ctx<'_> {
         let len = decimal(v).count() as i32;
         if len > self.string_max_length(s) {
             self.error(19);
+            return;
+        }
+        if self.profile() == Profile::Desktop {
+            self.checked_set(s + 1, len);
+            for (i, c) in (0..).zip(decimal(v)) {
+                self.checked_set(s + 2 + i, c);
+            }
             return;
         }
         self.set(s + 1, 0);

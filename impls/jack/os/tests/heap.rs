@@ -1,4 +1,5 @@
-//! Memory and Array: the web IDE's free list, bugs included (spec 3.2, 3.3).
+//! Memory and Array: the web IDE's free list, bugs included (spec 3.2,
+//! 3.3), and the desktop VM emulator's built-in heap (issue 28).
 
 mod support;
 
@@ -8,7 +9,7 @@ use support::Machine;
 
 #[test]
 fn reset_lays_out_the_heap_header() {
-    let m = Machine::new(Profile::Desktop);
+    let m = Machine::new(Profile::Web);
     assert_eq!(m.ram.read(0), 256);
     assert_eq!(m.ram.read(2048), 0);
     assert_eq!(m.ram.read(2049), 14334);
@@ -19,7 +20,7 @@ fn reset_lays_out_the_heap_header() {
 
 #[test]
 fn first_alloc_returns_2050_and_blocks_are_contiguous() {
-    let mut m = Machine::new(Profile::Desktop);
+    let mut m = Machine::new(Profile::Web);
     assert_eq!(m.ok("Memory.alloc", &[3]), 2050);
     // The used block keeps its stale next pointer; its size word is n.
     assert_eq!((m.ram.read(2048), m.ram.read(2049)), (0, 3));
@@ -41,12 +42,12 @@ fn the_largest_allocation_is_14332() {
 }
 
 #[test]
-fn non_positive_sizes_are_err2() {
-    for profile in Profile::ALL {
+fn non_positive_sizes_are_err2_for_arrays_and_alloc_err2_web_err5_desktop() {
+    for (profile, alloc_code) in [(Profile::Web, 2), (Profile::Desktop, 5)] {
         let mut m = Machine::new(profile);
-        assert_eq!(m.err("Memory.alloc", &[0], 2), 0);
-        assert!(m.shows_text(0, 0, "ERR2"));
-        assert_eq!(m.err("Memory.alloc", &[-5], 2), 0);
+        assert_eq!(m.err("Memory.alloc", &[0], alloc_code), 0);
+        assert!(m.shows_text(0, 0, &format!("ERR{alloc_code}")));
+        assert_eq!(m.err("Memory.alloc", &[-5], alloc_code), 0);
         assert_eq!(m.err("Array.new", &[0], 2), 0);
         assert_eq!(m.err("Array.new", &[-32768], 2), 0);
         assert_eq!(m.os.heap_head(), 2048, "nothing was allocated");
@@ -54,8 +55,71 @@ fn non_positive_sizes_are_err2() {
 }
 
 #[test]
-fn dealloc_appends_to_the_tail_and_reuses_only_when_the_head_is_too_small() {
+fn the_desktop_heap_header_is_14334_16384_and_blocks_cost_two_words() {
     let mut m = Machine::new(Profile::Desktop);
+    assert_eq!((m.ram.read(2048), m.ram.read(2049)), (14334, 16384));
+    // The used block's capacity word is 0 and it links to the rest, a new
+    // block of 14334 - 3 - 2 words after its 3 data words.
+    assert_eq!(m.ok("Memory.alloc", &[3]), 2050);
+    assert_eq!((m.ram.read(2048), m.ram.read(2049)), (0, 2053));
+    assert_eq!((m.ram.read(2053), m.ram.read(2054)), (14329, 16384));
+    assert_eq!(m.ok("Array.new", &[1]), 2055);
+    // Freeing a block merges the free block after it.
+    m.ok("Memory.deAlloc", &[2055]);
+    assert_eq!((m.ram.read(2053), m.ram.read(2054)), (14329, 16384));
+    m.ok("Memory.deAlloc", &[2050]);
+    assert_eq!((m.ram.read(2048), m.ram.read(2049)), (14334, 16384));
+    // A freed block before a used one gets its own size back only.
+    let a = m.ok("Memory.alloc", &[10]);
+    let b = m.ok("Memory.alloc", &[10]);
+    assert_eq!((a, b), (2050, 2062));
+    m.ok("Memory.deAlloc", &[a]);
+    assert_eq!((m.ram.read(2048), m.ram.read(2049)), (10, 2060));
+    assert_eq!(m.ok("Memory.alloc", &[4]), 2050, "first fit, split");
+    assert_eq!((m.ram.read(2054), m.ram.read(2055)), (4, 2060));
+    assert_eq!(m.ram.read(2049), 2054);
+}
+
+#[test]
+fn the_desktop_heap_overflows_with_err6_and_its_largest_block_is_14334() {
+    let mut m = Machine::new(Profile::Desktop);
+    assert_eq!(m.ok("Memory.alloc", &[14334]), 2050);
+    assert_eq!(m.err("Memory.alloc", &[1], 6), 0);
+}
+
+#[test]
+fn a_desktop_built_in_may_touch_only_the_heap_the_screen_and_word_0() {
+    let outside = "A built-in function tried to access memory outside the Heap or Screen range";
+    for (name, args) in [
+        ("Memory.peek", &[1][..]),
+        ("Memory.peek", &[2047]),
+        ("Memory.poke", &[100, 5]),
+        ("Memory.peek", &[-1]),
+        ("String.length", &[5]),
+    ] {
+        let mut m = Machine::new(Profile::Desktop);
+        let c = m.call(name, args);
+        assert_eq!(
+            c.stop,
+            Some(Stop::RuntimeError(outside.into())),
+            "{name}{args:?}"
+        );
+    }
+    let mut m = Machine::new(Profile::Desktop);
+    assert_eq!(m.ok("Memory.peek", &[0]), 256);
+    m.ok("Memory.poke", &[2048, 7]);
+    assert_eq!(m.ok("Memory.peek", &[2048]), 7);
+    assert_eq!(m.ok("Memory.peek", &[24576]), 0);
+    m.ok("Memory.poke", &[16384, -1]);
+    assert_eq!(m.ram.read(16384), -1);
+    // The web IDE checks nothing.
+    let mut m = Machine::new(Profile::Web);
+    assert_eq!(m.ok("Memory.peek", &[1]), 0);
+}
+
+#[test]
+fn dealloc_appends_to_the_tail_and_reuses_only_when_the_head_is_too_small() {
+    let mut m = Machine::new(Profile::Web);
     let a = m.ok("Memory.alloc", &[10]);
     let b = m.ok("Array.new", &[10]);
     assert_eq!((a, b), (2050, 2062));
@@ -100,7 +164,7 @@ fn using_a_non_head_block_does_not_relink_its_predecessor() {
 
 #[test]
 fn a_double_free_makes_a_later_dealloc_hang_and_it_is_detected() {
-    let mut m = Machine::new(Profile::Desktop);
+    let mut m = Machine::new(Profile::Web);
     let a = m.ok("Memory.alloc", &[3]);
     let b = m.ok("Memory.alloc", &[3]);
     m.ok("Memory.deAlloc", &[a]);
@@ -111,7 +175,7 @@ fn a_double_free_makes_a_later_dealloc_hang_and_it_is_detected() {
 
 #[test]
 fn peek_and_poke() {
-    let mut m = Machine::new(Profile::Desktop);
+    let mut m = Machine::new(Profile::Web);
     m.ok("Memory.poke", &[100, -7]);
     assert_eq!(m.ok("Memory.peek", &[100]), -7);
     assert_eq!(m.ok("Memory.peek", &[-1]), -1);

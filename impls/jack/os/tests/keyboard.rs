@@ -57,7 +57,7 @@ fn read_line_collects_until_enter() {
 
 #[test]
 fn backspace_on_an_empty_line_is_err18_and_input_goes_on() {
-    let mut m = machine(Profile::Desktop, "BACKSPACE,A,ENTER");
+    let mut m = machine(Profile::Web, "BACKSPACE,A,ENTER");
     let prompt = m.string(">");
     let c = m.call("Keyboard.readLine", &[prompt]);
     // The next ordinary key ends the read with 0 (halted), after echoing it.
@@ -71,7 +71,7 @@ fn backspace_on_an_empty_line_is_err18_and_input_goes_on() {
     assert_eq!(m.clock, 30);
     assert!(m.shows_text(0, 1, "ERR18A"));
 
-    let mut m = machine(Profile::Desktop, "BACKSPACE,ENTER");
+    let mut m = machine(Profile::Web, "BACKSPACE,ENTER");
     let prompt = m.string(">");
     let c = m.call("Keyboard.readLine", &[prompt]);
     assert_eq!(c.stop, Some(Stop::SysError(18)));
@@ -96,7 +96,7 @@ fn the_101st_char_is_err17() {
 
 #[test]
 fn read_int() {
-    let mut m = machine(Profile::Desktop, "-,1,2,x,3,ENTER,ENTER");
+    let mut m = machine(Profile::Web, "-,1,2,x,3,ENTER,ENTER");
     let prompt = m.string("n=");
     assert_eq!(m.ok("Keyboard.readInt", &[prompt]), -12);
     assert_eq!(m.err("Keyboard.readInt", &[prompt], 15), 0);

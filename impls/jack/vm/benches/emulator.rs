@@ -227,9 +227,45 @@ fn corpus_table(_: &mut Criterion) {
     }
 }
 
+/// A test script's `repeat N { vmstep; }` on a counting loop: it runs at
+/// the emulator's own speed (one run of N steps), compared with
+/// `Machine::run` of the same N steps.
+fn script_repeat(c: &mut Criterion) {
+    const STEPS: u64 = 10_000_000;
+    let dir = tempfile::tempdir().unwrap();
+    let vm =
+        "function Sys.init 0\nlabel L\npush static 0\npush constant 1\nadd\npop static 0\ngoto L\n";
+    std::fs::write(dir.path().join("Sys.vm"), vm).unwrap();
+    let tst = dir.path().join("LoopVME.tst");
+    std::fs::write(
+        &tst,
+        format!("load Sys.vm,\nrepeat {STEPS} {{ vmstep; }}\n"),
+    )
+    .unwrap();
+    let mut g = c.benchmark_group("hack-vm script");
+    g.throughput(Throughput::Elements(STEPS));
+    g.sample_size(10);
+    g.bench_function("repeat N { vmstep; }", |b| {
+        b.iter(|| {
+            let r = hack_vm::run_script(&tst, hack_vm::Profile::Desktop).unwrap();
+            assert_eq!(r.steps, STEPS);
+        })
+    });
+    let program = Program::from_sources(&[("Sys.vm", vm)]).unwrap();
+    g.bench_function("Machine::run, the same steps", |b| {
+        b.iter(|| {
+            let mut m = Machine::new(Arc::clone(&program), Config::default());
+            m.run(Some(STEPS));
+            assert_eq!(m.steps(), STEPS);
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     emulator,
+    script_repeat,
     jack_raymarcher,
     corpus_programs,
     corpus_table

@@ -86,6 +86,15 @@ enum Halt {
     Exit(Exit),
     Error(String),
     Os(Stop),
+    /// Desktop: a built-in with this many arguments ended the run; its
+    /// arguments are popped and its frame is still to be written.
+    OsInFrame(Stop, u8),
+    /// Desktop: a built-in call at an SP where its frame and result do
+    /// not fit below the end of the stack segment (arguments not popped).
+    BuiltinOverflow(Builtin, u8),
+    /// Web: a blocking built-in with this many arguments (on the stack),
+    /// its call step counted (see `Machine::web_blocking_call`).
+    Blocking(Builtin, u8),
     /// A fused instruction's fast-path conditions do not hold: run the
     /// plain commands from the same index.
     Deopt,
@@ -167,6 +176,11 @@ const LOCAL_OOB: &str = "Local offset out of bounds";
 const THIS_UNINIT: &str = "The this segment cannot be accessed since it was not initialized";
 const THAT_UNINIT: &str = "The that segment cannot be accessed since it was not initialized";
 const STACK_OVERFLOW: &str = "Stack overflow";
+
+/// Desktop: the highest SP at a built-in call (its arguments pushed) that
+/// leaves room for the call's 5-word frame and the pushed result, each
+/// push keeping SP <= 2047.
+const BUILTIN_LAST_BASE: u16 = STACK_LAST - 6;
 
 impl Machine {
     /// Run instructions of `code` (its fused array if `fused`, else its plain
@@ -310,6 +324,14 @@ impl Machine {
                     let b: Builtin = $b;
                     let mut args = [0i16; 8];
                     let n = usize::from($n).min(args.len());
+                    if stack_check && sp > BUILTIN_LAST_BASE {
+                        // Desktop: no room for the built-in's frame.
+                        break 'run Some(Halt::BuiltinOverflow(b, n as u8));
+                    }
+                    if timing.handover_step && b.blocks() {
+                        // Web: its wait and hand-over, which a budget may cut.
+                        break 'run Some(Halt::Blocking(b, n as u8));
+                    }
                     for i in (0..n).rev() {
                         args[i] = pop!();
                     }
@@ -322,10 +344,16 @@ impl Machine {
                         clock + u64::from(timing.handover_step && b.blocks() && c.stop.is_none());
                     w = words(ram);
                     Regs { sp, base: seg } = Regs::load(w);
-                    push!(c.value);
                     if let Some(stop) = c.stop {
+                        if function_step {
+                            // Desktop: the run ends inside the built-in,
+                            // above its frame (pushed after the return).
+                            break 'run Some(Halt::OsInFrame(stop, n as u8));
+                        }
+                        push!(c.value);
                         break 'run Some(Halt::Os(stop));
                     }
+                    push!(c.value);
                 }};
             }
 
@@ -571,7 +599,11 @@ impl Machine {
                 Op::Fail(m) => break Some(Halt::Error(program.messages[m as usize].clone())),
                 Op::EntryAccess { local, push, index } => {
                     let entry_invocation = frames.is_empty();
-                    let ok = if entry_invocation {
+                    let ok = if entry_invocation && function_step {
+                        // Desktop: the entry runs without a frame, and its
+                        // segments are not checked for it.
+                        true
+                    } else if entry_invocation {
                         flags & if local { LOCAL_OK } else { ARG_OK } != 0
                     } else if local {
                         index < functions[cur as usize].n_vars
@@ -906,12 +938,35 @@ impl Machine {
         self.nargs = nargs;
         self.flags = flags;
         self.profile_mark = profile_mark;
-        let Some(halt) = halt else { return Flow::Limit };
+        let Some(mut halt) = halt else {
+            return Flow::Limit;
+        };
+        match halt {
+            Halt::OsInFrame(stop, n) => {
+                self.desktop_builtin_frame(u16::from(n));
+                halt = Halt::Os(stop);
+            }
+            Halt::BuiltinOverflow(b, n) => {
+                halt = self.desktop_builtin_overflow(b, u16::from(n));
+            }
+            Halt::Blocking(b, n) => match self.web_blocking_call(b, u16::from(n), self.steps) {
+                None => return Flow::Limit,
+                Some(exit) => return Flow::End(exit),
+            },
+            _ => {}
+        }
         Flow::End(match halt {
             Halt::Deopt => return Flow::Deopt,
+            Halt::OsInFrame(..) | Halt::BuiltinOverflow(..) | Halt::Blocking(..) => {
+                unreachable!("resolved above")
+            }
             Halt::Exit(e) => e,
             Halt::Error(message) => Exit::RuntimeError {
-                message,
+                message: if function_step {
+                    self.desktop_message(&message)
+                } else {
+                    message
+                },
                 stack: self.call_stack(),
             },
             Halt::Os(Stop::Halt) => Exit::Halted,
@@ -942,4 +997,97 @@ fn resume_pc(program: &Program, caller: u32, ret: i16) -> Option<u32> {
     let idx = usize::try_from(i32::from(ret) + 1).ok()?;
     let pc = *f.resume.get(idx).or(f.resume.last())?;
     (pc != u32::MAX).then_some(pc)
+}
+
+impl Machine {
+    /// The desktop's RET word for the built-in call just run (`self.pc`
+    /// is the instruction after it).
+    fn desktop_ret_word(&self) -> i16 {
+        let f = &self.program.functions[self.cur as usize];
+        f.desktop_return_address(self.pc.wrapping_sub(1))
+            .map_or(-1, |a| a as i16)
+    }
+
+    /// Desktop: a built-in with `nargs` arguments (popped) ended the run
+    /// (halt, error): the VM emulator had pushed the call's frame above
+    /// the arguments (RET, LCL, ARG, THIS, THAT) and pointed ARG at them
+    /// and LCL and SP above the frame, and the run stops there.
+    #[cold]
+    fn desktop_builtin_frame(&mut self, nargs: u16) {
+        let ret = self.desktop_ret_word();
+        let r = &mut self.ram;
+        let base = r.read(0).wrapping_add(nargs as i16);
+        let saved = [ret, r.read(1), r.read(2), r.read(3), r.read(4)];
+        for (a, v) in (i32::from(base)..).zip(saved) {
+            r.write(a, v);
+        }
+        r.write(2, base.wrapping_sub(nargs as i16));
+        r.write(1, base.wrapping_add(5));
+        r.write(0, base.wrapping_add(5));
+    }
+
+    /// Desktop: a built-in call at SP `base` > [`BUILTIN_LAST_BASE`]. Each
+    /// push of the call's frame writes its word and then fails if SP would
+    /// pass 2047, so from a base of 2043 on the frame stops at RAM[2047]
+    /// and the built-in never runs; at 2042 the frame fits, the built-in
+    /// runs, and the push of its result at 2047 fails.
+    #[cold]
+    fn desktop_builtin_overflow(&mut self, b: Builtin, nargs: u16) -> Halt {
+        let base = self.ram.read(0);
+        let ret = self.desktop_ret_word();
+        let saved = [0, 1, 2, 3, 4].map(|a| self.ram.read(a));
+        let frame = [ret, saved[1], saved[2], saved[3], saved[4]];
+        let last = STACK_LAST as i16;
+        if base > last - 5 {
+            for (a, v) in (base..=last).zip(frame) {
+                self.ram.write(i32::from(a), v);
+            }
+            self.ram.write(0, last);
+            return Halt::Error(STACK_OVERFLOW.into());
+        }
+        let args: Vec<i16> = (0..nargs)
+            .map(|k| {
+                self.ram
+                    .read(i32::from(base) - i32::from(nargs) + i32::from(k))
+            })
+            .collect();
+        for (a, v) in (i32::from(base)..).zip(frame) {
+            self.ram.write(a, v);
+        }
+        let lcl = base.wrapping_add(5);
+        self.ram.write(2, base.wrapping_sub(nargs as i16));
+        self.ram.write(1, lcl);
+        self.ram.write(0, lcl);
+        let c = self.os.call(b, &args, &mut self.ram, &mut self.steps);
+        if let Some(stop) = c.stop {
+            return Halt::Os(stop);
+        }
+        self.ram.write(i32::from(lcl), c.value);
+        Halt::Error(STACK_OVERFLOW.into())
+    }
+
+    /// A runtime error's message as the desktop VM emulator words it: its
+    /// own text for the checks it shares, then " in F.i", the function on
+    /// top of its call stack and the failing command's index in it (the
+    /// `function` line is 0; labels do not count). At a `function` line
+    /// the callee is not on its call stack yet: the caller is named.
+    #[cold]
+    fn desktop_message(&self, web: &str) -> String {
+        let text = match web {
+            ARG_OOB | LOCAL_OOB => "Out of segment space",
+            other => other,
+        };
+        let p = &self.program;
+        let at = self.pc.wrapping_sub(1);
+        let f = &p.functions[self.cur as usize];
+        let at_function_line = at == f.start.wrapping_sub(1);
+        let (name, index) = if at_function_line {
+            let caller = self.frames.last().map_or(self.cur, |fr| fr.caller);
+            (p.function_name(caller), 0)
+        } else {
+            let index = at.wrapping_sub(f.start) + u32::from(f.headed);
+            (f.name.as_str(), index)
+        };
+        format!("{text} in {name}.{index}")
+    }
 }

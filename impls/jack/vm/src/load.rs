@@ -42,6 +42,16 @@ struct RawFunction {
 impl Program {
     /// Load every `.vm` file of `dir`, in file-name order.
     pub fn load_dir(dir: &Path) -> Result<Arc<Program>, LoadError> {
+        Program::load_dir_in_order(dir, &[])
+    }
+
+    /// Load every `.vm` file of `dir`: the files named in `order` (base
+    /// names, `Main` for `Main.vm`) first, in that order, then the others
+    /// in file-name order. The load order decides where each file's
+    /// statics go (the desktop's segments follow it, the web IDE numbers
+    /// statics by first appearance in it): the official tools take the
+    /// order their directory listing gives, which need not be sorted.
+    pub fn load_dir_in_order(dir: &Path, order: &[String]) -> Result<Arc<Program>, LoadError> {
         let io = |source| LoadError::Io {
             path: dir.to_path_buf(),
             source,
@@ -69,6 +79,7 @@ impl Program {
                 dir.display()
             )));
         }
+        in_load_order(&mut sources, order)?;
         Program::from_sources(&sources)
     }
 
@@ -90,6 +101,29 @@ impl Program {
         let raw = dedupe(raw)?;
         build(raw, command_lines).map(Arc::new)
     }
+}
+
+/// Put `(file name, text)` sources in the load order `order` (base names:
+/// `Main` for `Main.vm`): the named files first, in that order, then the
+/// others as they were. A name that is not among the files, or is named
+/// twice, is an error.
+pub fn in_load_order<T>(sources: &mut Vec<(String, T)>, order: &[String]) -> Result<(), LoadError> {
+    let base = |f: &str| f.strip_suffix(".vm").unwrap_or(f).to_string();
+    let mut rest: Vec<(String, T)> = std::mem::take(sources);
+    for name in order {
+        let name = base(name.trim());
+        let at = rest
+            .iter()
+            .position(|(f, _)| base(f) == name)
+            .ok_or_else(|| {
+                LoadError::Program(format!(
+                "the load order names {name}, which is not one of the files (or is named twice)"
+            ))
+            })?;
+        sources.push(rest.remove(at));
+    }
+    sources.extend(rest);
+    Ok(())
 }
 
 /// Group a file's commands into functions and check the file-name rule.
@@ -234,7 +268,21 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
     // Desktop jump targets that differ from the web ones: (instruction, target).
     // and the desktop's static addresses: (instruction, desktop instruction).
     let mut desktop_ops: Vec<(usize, Op)> = Vec::new();
+    // The first command the web IDE refuses at load but the desktop runs.
+    let mut web_refusal: Option<(String, usize, String)> = None;
     let static_base = desktop_static_bases(&raw);
+    // The desktop's address of each function's command 0 (its invisible
+    // start-up code follows the program's own lines).
+    let mut addresses = Vec::with_capacity(raw.len());
+    let mut next_address = 0u32;
+    for (i, f) in raw.iter().enumerate() {
+        if synthetic_entry && i == raw.len() - 1 {
+            addresses.push(command_lines as u32 + 3);
+        } else {
+            addresses.push(next_address);
+            next_address += u32::from(f.has_header) + f.body.len() as u32;
+        }
+    }
 
     for (id, f) in raw.iter().enumerate() {
         let id = id as FnId;
@@ -375,11 +423,12 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
                         Segment::Static => {
                             let address =
                                 16 + u32::from(static_base[f.file.as_str()]) + u32::from(i);
-                            let desktop = if address > 255 {
-                                fail(
-                                    &mut messages,
-                                    format!("Out of segment space: {}'s static {i} would be RAM[{address}]", f.file),
-                                )
+                            // The desktop's static segment of a file ends at
+                            // its largest index: any index fits, whatever
+                            // RAM word it reaches (RAM[256] for `static 240`
+                            // of a lone class).
+                            let desktop = if address > jack_os::KBD as u32 {
+                                fail(&mut messages, "Out of segment space".into())
                             } else if push {
                                 Op::PushAbs(address as u16)
                             } else {
@@ -388,7 +437,15 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
                             desktop_ops.push((plain.len(), desktop));
                             let next = statics.len();
                             let slot = *statics.entry((class.clone(), i)).or_insert(next);
-                            if slot >= STATIC_SLOTS {
+                            if i >= STATIC_SLOTS as u16 {
+                                let m = format!(
+                                    "Illegal static index {i} (must be between 0 and {})",
+                                    STATIC_SLOTS - 1
+                                );
+                                web_refusal
+                                    .get_or_insert_with(|| (f.file.clone(), l.line, m.clone()));
+                                fail(&mut messages, m)
+                            } else if slot >= STATIC_SLOTS {
                                 fail(
                                     &mut messages,
                                     format!("Too many static variables: {class}'s static {i} needs slot {slot} of {STATIC_SLOTS}"),
@@ -424,6 +481,7 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
             arg_reach,
             start,
             resume,
+            address: addresses[id as usize],
         });
     }
     if plain.len() >= u32::MAX as usize / 2 {
@@ -452,6 +510,7 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
         messages,
         entry,
         synthetic_entry,
+        web_refusal,
         command_lines,
         statics,
         native: Default::default(),

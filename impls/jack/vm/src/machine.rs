@@ -8,7 +8,7 @@ use crate::native::{Engine, Fault, Native, AUTO_THRESHOLD};
 use crate::program::{FnId, Program};
 use crate::tier::Tier;
 use crate::timing::{self, Timing};
-use jack_os::{Builtin, Completion, KeyScript, Os, Profile, Ram, KBD};
+use jack_os::{Builtin, Completion, KeyScript, Os, Profile, Ram, Stop, KBD};
 use std::sync::Arc;
 
 /// A register that a test script may preset (`set sp 261`, `set local 300`).
@@ -112,6 +112,24 @@ pub struct Machine {
     pub(crate) native: Option<Arc<Native>>,
     /// An [`Engine::Auto`] machine still on the interpreter.
     pub(crate) tier: Option<Tier>,
+    /// The step at which the current run's budget ends (`u64::MAX`: none).
+    pub(crate) budget_end: u64,
+    /// Web: a blocking built-in whose result was still to be handed back
+    /// when the budget ended (see [`Machine::web_blocking_call`]).
+    pub(crate) pending: Option<Box<Pending>>,
+}
+
+/// A web blocking call the budget interrupted: the built-in, its argument
+/// count, and the machine's memory and OS from before the call (the call
+/// is made again from there when the run goes on).
+#[derive(Clone, Debug)]
+pub(crate) struct Pending {
+    builtin: Builtin,
+    nargs: u16,
+    /// The call's step: the read watches the keys from there.
+    at: u64,
+    ram: Ram,
+    os: Os,
 }
 
 impl Machine {
@@ -160,8 +178,16 @@ impl Machine {
             native,
             tier: (config.engine == Engine::Auto)
                 .then(|| Tier::new(config.auto_threshold.unwrap_or(AUTO_THRESHOLD))),
+            budget_end: u64::MAX,
+            pending: None,
         };
         machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
+        if timing.hidden_sys_init && !machine.program.synthetic_entry {
+            // The desktop writes the heap header only in its built-in
+            // Memory.init, which a program with its own entry may never call.
+            machine.ram.write(2048, 0);
+            machine.ram.write(2049, 0);
+        }
         machine
     }
 
@@ -181,8 +207,14 @@ impl Machine {
     fn desktop_startup(&mut self, watch: &mut Option<(&[bool], &mut dyn Watcher)>) {
         let p = Arc::clone(&self.program);
         let size = i16::try_from(p.command_lines + 5).unwrap_or(i16::MAX);
-        let (words, regs) = timing::desktop_startup(size);
-        for (a, v) in (i32::from(timing::STACK_BASE)..).zip(words) {
+        // The built-in Sys.init's Memory.init writes the heap header (the
+        // other OS inits change no RAM).
+        let mut clock = self.steps;
+        self.os
+            .call(Builtin::MemoryInit, &[], &mut self.ram, &mut clock);
+        let before = [0, 1, 2, 3, 4].map(|a| self.ram.read(a));
+        let (words, regs) = timing::desktop_startup(size, before);
+        for (a, v) in (i32::from(before[0])..).zip(words) {
             self.ram.write(a, v);
         }
         for (a, v) in (0..).zip(regs) {
@@ -287,6 +319,21 @@ impl Machine {
             stack.push_run(p.function_name(last), n);
         }
         stack
+    }
+
+    /// The function a test script's `currentFunction` names: the running
+    /// one, except where the machine stands at a called function's
+    /// `function` line under the desktop profile, whose call stack takes
+    /// the callee on only when that line runs (the caller is named then).
+    pub fn current_function(&self) -> &str {
+        let f = &self.program.functions[self.cur as usize];
+        let at_function_line = f.headed && self.pc + 1 == f.start;
+        match self.frames.last() {
+            Some(fr) if at_function_line && Timing::of(self.os.profile()).function_step => {
+                self.program.function_name(fr.caller)
+            }
+            _ => &f.name,
+        }
     }
 
     /// How the run ended, if it has.
@@ -473,9 +520,29 @@ impl Machine {
             return e.clone();
         }
         let budget_end = budget.map_or(u64::MAX, |b| self.steps.saturating_add(b));
+        self.budget_end = budget_end;
         if self.startup_pending && self.frames.is_empty() && budget_end > self.steps {
             self.startup_pending = false;
             self.desktop_startup(&mut watch);
+        }
+        if budget_end > self.steps {
+            if let Some(p) = self.pending.take() {
+                // The interrupted blocking call, from the state before it.
+                let Pending {
+                    builtin,
+                    nargs,
+                    at,
+                    ram,
+                    os,
+                } = *p;
+                (self.ram, self.os) = (ram, os);
+                // The keyboard word is set again from the script at this step.
+                self.next_key_sync = 0;
+                if let Some(exit) = self.web_blocking_call(builtin, nargs, at) {
+                    self.ended = Some(exit.clone());
+                    return exit;
+                }
+            }
         }
         self.sync_keyboard();
         let program = Arc::clone(&self.program);
@@ -517,12 +584,125 @@ impl Machine {
                 };
             }
         };
+        if exit == Exit::Halted
+            && self.program.synthetic_entry
+            && self.frames.is_empty()
+            && self.cur == self.program.entry
+            && Timing::of(self.os.profile()).hidden_sys_init
+        {
+            // Desktop: `Main.main` returned into the built-in `Sys.init`,
+            // which takes its value off the stack (SP back to its frame's
+            // base) and halts.
+            let sp = self.ram.read(0);
+            self.ram.write(0, sp.wrapping_sub(1));
+        }
         self.charge_profile();
         self.tier_credit();
         if !matches!(exit, Exit::Budget { .. } | Exit::Returned(_)) {
             self.ended = Some(exit.clone());
         }
         exit
+    }
+
+    /// Web: the blocking built-in `b` with `nargs` arguments on the stack,
+    /// whose call step has been counted. The web IDE hands its result back
+    /// one step after the wait ends (a keyboard read waits for its key's
+    /// release). If that step falls past the budget, the IDE is still in the
+    /// call when the budget ends: the machine stops there at the budget,
+    /// the arguments still on the stack and the read's cursor (and
+    /// prompt) drawn, and the next run makes the call again from the state
+    /// before it, watching the keys from the call's step `at`. Otherwise
+    /// the arguments are replaced by the result.
+    /// `Some` when the call ends the run.
+    #[cold]
+    pub(crate) fn web_blocking_call(&mut self, b: Builtin, nargs: u16, at: u64) -> Option<Exit> {
+        let sp = self.ram.read(0);
+        let base = sp.wrapping_sub(nargs as i16);
+        let args: Vec<i16> = (0..nargs as i16)
+            .map(|k| self.ram.read(i32::from(base.wrapping_add(k))))
+            .collect();
+        let before = (self.budget_end != u64::MAX).then(|| (self.ram.clone(), self.os.clone()));
+        let mut clock = at;
+        let c = self.os.call(b, &args, &mut self.ram, &mut clock);
+        if c.stop.is_none() && clock.saturating_add(1) > self.budget_end {
+            if let Some((ram, os)) = before {
+                let (mut shown_ram, mut shown_os) = (ram.clone(), os.clone());
+                let mut clock = at;
+                shown_os.start_blocking(b, &args, &mut shown_ram, &mut clock);
+                self.pending = Some(Box::new(Pending {
+                    builtin: b,
+                    nargs,
+                    at,
+                    ram,
+                    os,
+                }));
+                (self.ram, self.os) = (shown_ram, shown_os);
+                self.steps = self.budget_end;
+                return None;
+            }
+        }
+        self.steps = self.steps.max(clock + u64::from(c.stop.is_none()));
+        self.ram.write(i32::from(base), c.value);
+        self.ram.write(0, base.wrapping_add(1));
+        let stop = c.stop?;
+        Some(match stop {
+            Stop::Halt => Exit::Halted,
+            Stop::SysError(code) => Exit::SysError {
+                code,
+                stack: self.call_stack(),
+            },
+            Stop::RuntimeError(message) => Exit::RuntimeError {
+                message,
+                stack: self.call_stack(),
+            },
+            Stop::Hang(message) => Exit::Hang {
+                message,
+                stack: self.call_stack(),
+            },
+            Stop::BlockedForever => Exit::BlockedForever {
+                stack: self.call_stack(),
+            },
+        })
+    }
+
+    /// Whether the machine stands in an idle loop: within the next 64
+    /// steps its whole state (position, call stack, registers, RAM, OS)
+    /// comes back to what it is now, and no scripted key change is still
+    /// to come, so running on changes nothing but the step count (a `goto`
+    /// to its own label, or the OS's compiled `while (true) {}` of
+    /// `Sys.halt`). The official tools spin there for ever; a run without
+    /// a budget may stop there instead. Costs a snapshot and 64 steps.
+    pub fn idle(&self) -> bool {
+        if self.ended.is_some() || self.pending.is_some() || self.startup_pending {
+            return false;
+        }
+        if self.os.keys().next_change(self.steps).is_some() {
+            return false;
+        }
+        let mut m = self.clone();
+        m.native = None;
+        m.tier = None;
+        m.profile = None;
+        for _ in 0..64 {
+            if !matches!(m.run(Some(1)), Exit::Budget { .. }) {
+                return false;
+            }
+            let same_frames = m.frames.len() == self.frames.len()
+                && m.frames.iter().zip(&self.frames).all(|(a, b)| {
+                    (a.caller, a.ret_pc, a.ret, a.nargs, a.flags)
+                        == (b.caller, b.ret_pc, b.ret, b.nargs, b.flags)
+                });
+            if m.pc == self.pc
+                && m.cur == self.cur
+                && (m.nargs, m.flags) == (self.nargs, self.flags)
+                && same_frames
+                && m.ram == self.ram
+                && m.os == self.os
+            {
+                return true;
+            }
+        }
+        false
     }
 
     /// Set the keyboard word from the key script if a key change is due.

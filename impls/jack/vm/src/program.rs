@@ -263,6 +263,27 @@ pub struct Function {
     /// Command index (as stored in a frame's RET, counting the `function`
     /// line and labels) to the instruction that runs it.
     pub(crate) resume: Vec<u32>,
+    /// The desktop VM emulator's address of the function's command 0 (its
+    /// `function` line): files in load order, every non-blank line one
+    /// address, labels included. A RET word of the desktop is such an
+    /// address.
+    pub(crate) address: u32,
+}
+
+impl Function {
+    /// The desktop's RET word for a call whose instruction is at `call_pc`:
+    /// the address of the first command after the call that is not a label.
+    pub(crate) fn desktop_return_address(&self, call_pc: u32) -> Option<u32> {
+        let r = &self.resume;
+        // Labels share the index of the command after them: the call is
+        // the last command index resuming at its own instruction.
+        let call = r.iter().rposition(|&p| p == call_pc)?;
+        let mut next = call + 1;
+        while next + 1 < r.len() && r[next] == r[next + 1] {
+            next += 1;
+        }
+        Some(self.address + next as u32)
+    }
 }
 
 impl Function {
@@ -303,6 +324,9 @@ pub struct Program {
     pub(crate) entry: FnId,
     /// The entry is the synthetic `Sys.init` (no VM `Sys.init`, a `Main.main`).
     pub(crate) synthetic_entry: bool,
+    /// A command the web IDE refuses at load and the desktop runs (file,
+    /// line, message): see [`Program::check_profile`].
+    pub(crate) web_refusal: Option<(String, usize, String)>,
     /// Number of command lines of all files (function and label lines
     /// included): the desktop VM emulator's program size before its
     /// invisible start-up code.
@@ -336,6 +360,20 @@ impl Program {
     /// `__implicit` or the sole function.
     pub fn entry(&self) -> FnId {
         self.entry
+    }
+
+    /// The load-time checks that only one profile's tool makes: the web
+    /// IDE refuses a static index past 239, which the desktop runs. Call it
+    /// with the profile a program is about to run under; a machine of that
+    /// profile that runs the program anyway stops at the refused command
+    /// with the same message.
+    pub fn check_profile(&self, profile: Profile) -> Result<(), crate::LoadError> {
+        match (&self.web_refusal, profile) {
+            (Some((file, line, message)), Profile::Web) => {
+                Err(crate::LoadError::at(file, *line, message.clone()))
+            }
+            _ => Ok(()),
+        }
     }
 
     /// Number of distinct static variables (RAM 16.. holds them).

@@ -1,10 +1,12 @@
 //! The course's VM emulator test scripts (`.tst`, spec §5.1): `load`,
 //! `output-file`, `compare-to`, `output-list` with formats, `output`, `set`
 //! on RAM, registers and segments, `vmstep`, `repeat`, `while`, `echo` and
-//! `clear-echo`. [`run_script`] runs one on a [`Machine`], writes the
+//! `clear-echo`; `currentFunction` as an output column. (`line` and
+//! `breakpoint` are not supported.) [`run_script`] runs one on a [`Machine`], writes the
 //! `.out` file and compares each output line with the `.cmp` file as it is
 //! written, the way the official tools do: the first differing line ends
-//! the script.
+//! the script. The web IDE compares lines with their spaces trimmed, the
+//! desktop compares them exactly (`--profile` decides).
 
 use crate::{Config, Machine, Profile, Program, Register};
 use std::fmt;
@@ -76,7 +78,11 @@ pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptE
         message: format!("cannot read the script: {e}"),
     })?;
     let commands = parse(&name, &text)?;
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+    // `NAME.tst` run from its own folder has an empty parent: that folder.
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => Path::new(".").to_path_buf(),
+    };
     let mut run = Run {
         file: name,
         dir,
@@ -104,6 +110,11 @@ pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptE
         echo: run.echo,
         steps: run.machine.as_ref().map_or(0, Machine::steps),
     })
+}
+
+/// Whether a block is the single command `vmstep`.
+fn is_vmstep(body: &[Command]) -> bool {
+    matches!(body, [Command { kind: Kind::Words(w), .. }] if w.len() == 1 && w[0] == "vmstep")
 }
 
 /// One parsed command, with the position of its first word.
@@ -355,6 +366,17 @@ impl Column {
         format!("{}{name}{}", " ".repeat(left), " ".repeat(total - n - left))
     }
 
+    /// A text value (`currentFunction`): left-aligned, cut to the width.
+    fn text_cell(&self, text: &str) -> String {
+        let text: String = text.chars().take(self.width).collect();
+        format!(
+            "{}{text:<w$}{}",
+            " ".repeat(self.left),
+            " ".repeat(self.right),
+            w = self.width
+        )
+    }
+
     fn cell(&self, v: i16) -> String {
         let text = match self.format {
             'D' | 'S' => v.to_string(),
@@ -467,6 +489,15 @@ impl Run {
             };
             match &c.kind {
                 Kind::Words(words) => self.simple(words).map_err(fail)?,
+                Kind::Repeat(count, body) if is_vmstep(body) => {
+                    // `repeat N { vmstep; }`: N steps in one run, at the
+                    // emulator's own speed (a run of N steps is N runs of
+                    // one, step for step).
+                    let n = count.unwrap_or(MAX_OPEN_LOOP);
+                    if n > 0 && self.mismatch.is_none() {
+                        self.machine().map_err(fail)?.run(Some(n));
+                    }
+                }
                 Kind::Repeat(count, body) => {
                     let n = count.unwrap_or(MAX_OPEN_LOOP);
                     for _ in 0..n {
@@ -525,6 +556,7 @@ impl Run {
                         }
                     }
                 }
+                .and_then(|p| p.check_profile(self.profile).map(|()| p))
                 .map_err(|e| e.to_string())?;
                 let config = Config {
                     profile: self.profile,
@@ -541,7 +573,7 @@ impl Run {
                 let path = self.dir.join(&words[1]);
                 let text = std::fs::read_to_string(&path)
                     .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-                let lines = text.lines().map(|l| l.trim().to_string()).collect();
+                let lines = text.lines().map(str::to_string).collect();
                 self.compare = Some((path, lines));
             }
             "output-list" => {
@@ -549,7 +581,7 @@ impl Run {
                     .iter()
                     .map(|w| Column::parse(w))
                     .collect::<Result<_, _>>()?;
-                for c in &self.columns {
+                for c in self.columns.iter().filter(|c| c.var != "currentFunction") {
                     var(&c.var)?;
                 }
                 let line = format!(
@@ -566,6 +598,11 @@ impl Run {
                 arity(0)?;
                 let mut cells = Vec::new();
                 for c in self.columns.clone() {
+                    if c.var == "currentFunction" {
+                        let name = self.machine()?.current_function().to_string();
+                        cells.push(c.text_cell(&name));
+                        continue;
+                    }
                     let v = self.read(&c.var)?;
                     cells.push(c.cell(v));
                 }
@@ -654,7 +691,13 @@ impl Run {
         let n = self.written.len();
         if let Some((_, expected)) = &self.compare {
             let want = expected.get(n).cloned().unwrap_or_default();
-            if want != line.trim() {
+            // The web IDE compares trimmed lines; the desktop compares
+            // them as they are, so a line that differs only in spaces fails.
+            let same = match self.profile {
+                Profile::Web => want.trim() == line.trim(),
+                Profile::Desktop => want == line,
+            };
+            if !same {
                 self.mismatch = Some(Mismatch {
                     line: n + 1,
                     expected: want,

@@ -97,18 +97,25 @@ pub(crate) const fn index(profile: Profile) -> usize {
 }
 
 /// The desktop's start-up before `Main.main` runs (its built-in `Sys.init`):
-/// RAM words from 256 and the registers at the `function Main.main` line.
-/// `program_size` is the RET word of the hidden call (the desktop program's
-/// length, with its five invisible commands).
-pub(crate) fn desktop_startup(program_size: i16) -> (Vec<i16>, [i16; 5]) {
-    // 256..260: the hidden call's frame (RET, LCL, ARG, THIS, THAT).
-    let mut words = vec![program_size, 0, 0, 0, 0];
-    // 261..265: the 0 that each of Memory, Math, Screen, Output and
-    // Keyboard.init leaves (each called from the built-in through a frame).
-    words.extend([0; 5]);
-    // 266..270: Main.main's frame, RET -1 = back into the built-in.
-    words.extend([-1, 261, 256, 0, 0]);
-    let sp = STACK_BASE as i16 + words.len() as i16;
-    // SP, LCL, ARG, THIS, THAT.
-    (words, [sp, sp, 266, 0, 0])
+/// the RAM words it writes from the stack pointer `regs[0]` up, and the
+/// registers (SP, LCL, ARG, THIS, THAT) at the `function Main.main` line.
+/// `regs` are the registers before the run (a `--set` or a test script may
+/// have moved them). `program_size` is the RET word of the hidden call (the
+/// desktop program's length, with its five invisible commands).
+///
+/// The hidden `call Sys.init 0` pushes its frame at SP. The built-in's calls
+/// of the other built-ins (the OS inits) touch no stack, so its call of
+/// `Main.main` pushes the next frame right above: from the default SP of
+/// 256, the built-in's frame is at 256, `Main.main`'s at 261 (RET -1, the
+/// desktop's "return into a built-in") and LCL = 266.
+pub(crate) fn desktop_startup(program_size: i16, regs: [i16; 5]) -> (Vec<i16>, [i16; 5]) {
+    let [sp, lcl, arg, this, that] = regs;
+    // The hidden call's frame: RET, LCL, ARG, THIS, THAT.
+    let mut words = vec![program_size, lcl, arg, this, that];
+    let (sys_lcl, sys_arg) = (sp.wrapping_add(5), sp);
+    // Main.main's frame, called by the built-in with no arguments.
+    words.extend([-1, sys_lcl, sys_arg, this, that]);
+    let main_base = sp.wrapping_add(5);
+    let main_lcl = main_base.wrapping_add(5);
+    (words, [main_lcl, main_lcl, main_base, this, that])
 }

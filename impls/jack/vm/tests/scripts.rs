@@ -147,3 +147,93 @@ fn a_broken_script_names_its_line_and_column() {
         assert!(e.contains(message), "{e}");
     }
 }
+
+#[test]
+fn a_compare_line_that_differs_only_in_spaces_fails_on_the_desktop_only() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Add.vm"),
+        "push constant 7\npush constant 8\nadd\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("AddVME.tst"),
+        "load Add.vm,\noutput-file Add.out,\ncompare-to Add.cmp,\noutput-list RAM[256]%D1.6.1;\n\
+         set sp 256,\nrepeat 3 { vmstep; }\noutput;\n",
+    )
+    .unwrap();
+    let tst = dir.path().join("AddVME.tst");
+    // The header line with a space more at its end.
+    std::fs::write(dir.path().join("Add.cmp"), "|RAM[256]| \n|     15 |\n").unwrap();
+    let web = run_script(&tst, Profile::Web).unwrap();
+    assert!(web.mismatch.is_none(), "trailing space: {:?}", web.mismatch);
+    let desktop = run_script(&tst, Profile::Desktop).unwrap();
+    let m = desktop.mismatch.expect("strict on the desktop");
+    assert_eq!(m.line, 1);
+    std::fs::write(dir.path().join("Add.cmp"), "|RAM[256]|\n|     15 |\n").unwrap();
+    let desktop = run_script(&tst, Profile::Desktop).unwrap();
+    assert!(desktop.mismatch.is_none(), "{:?}", desktop.mismatch);
+}
+
+#[test]
+fn a_repeat_of_vmstep_is_the_same_run_as_its_steps_one_by_one() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Sys.vm"),
+        "function Sys.init 1\nlabel L\nlabel M\npush local 0\npush constant 3\nadd\npop local 0\n\
+         push local 0\npush constant 60\ngt\nif-goto E\ngoto L\nlabel E\ncall Sys.halt 0\n",
+    )
+    .unwrap();
+    let out = |name: &str, body: &str, profile: Profile| {
+        let tst = dir.path().join(format!("{name}.tst"));
+        std::fs::write(
+            &tst,
+            format!("load Sys.vm,\noutput-file {name}.out,\noutput-list RAM[0]%D1.6.1 RAM[257]%D1.6.1;\n{body}\noutput;\n"),
+        )
+        .unwrap();
+        let r = run_script(&tst, profile).unwrap();
+        (
+            r.steps,
+            std::fs::read_to_string(dir.path().join(format!("{name}.out"))).unwrap(),
+        )
+    };
+    for profile in Profile::ALL {
+        for n in [1, 7, 50, 200] {
+            let one_by_one = out("A", &"vmstep;\n".repeat(n), profile);
+            let repeated = out("B", &format!("repeat {n} {{ vmstep; }}"), profile);
+            assert_eq!(one_by_one, repeated, "{profile} {n}");
+        }
+    }
+}
+
+#[test]
+fn current_function_names_the_running_function_and_the_caller_at_a_desktop_function_line() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Sys.vm"),
+        "function Sys.init 0\ncall Sys.f 0\nlabel L\ngoto L\nfunction Sys.f 0\npush constant 0\nreturn\n",
+    )
+    .unwrap();
+    let tst = dir.path().join("FVME.tst");
+    std::fs::write(
+        &tst,
+        "load Sys.vm,\noutput-file F.out,\noutput-list currentFunction%S1.10.1;\n\
+         repeat 6 { vmstep; output; }\n",
+    )
+    .unwrap();
+    let out = |profile| {
+        run_script(&tst, profile).unwrap();
+        std::fs::read_to_string(dir.path().join("F.out")).unwrap()
+    };
+    // Desktop: function Sys.init, call (still Sys.init at Sys.f's function
+    // line), function Sys.f, push, return, goto.
+    assert_eq!(
+        out(Profile::Desktop),
+        "|currentFunct|\n| Sys.init   |\n| Sys.init   |\n| Sys.f      |\n| Sys.f      |\n| Sys.init   |\n| Sys.init   |\n"
+    );
+    // Web: the call enters Sys.f at once.
+    assert_eq!(
+        out(Profile::Web),
+        "|currentFunct|\n| Sys.f      |\n| Sys.f      |\n| Sys.init   |\n| Sys.init   |\n| Sys.init   |\n| Sys.init   |\n"
+    );
+}

@@ -198,11 +198,13 @@ fn deep_recursion_is_a_desktop_stack_overflow_with_a_collapsed_call_stack() {
     let mut m = load(RECURSE, Profile::Desktop);
     match m.run(Some(60_000_000)) {
         Exit::RuntimeError { message, stack } => {
-            assert_eq!(message, "Stack overflow");
-            // Main.main's frame at 266, LCL 271; each call pushes 5 words;
-            // the 356th call fails at its 2nd word, SP leaving 2047.
-            assert_eq!(stack.to_string(), "Sys.init > Main.main x 356");
-            assert_eq!(stack.depth(), 357);
+            // The desktop names the function and the failing command:
+            // Main.main's command 1, its `call`.
+            assert_eq!(message, "Stack overflow in Main.main.1");
+            // Main.main's frame at 261, LCL 266; each call pushes 5 words;
+            // the 357th call fails at its 2nd word, SP leaving 2047.
+            assert_eq!(stack.to_string(), "Sys.init > Main.main x 357");
+            assert_eq!(stack.depth(), 358);
         }
         other => panic!("{other}"),
     }
@@ -233,11 +235,14 @@ fn thirty_thousand_locals_overflow_the_desktop_stack_at_the_function_line() {
     let Exit::RuntimeError { message, stack } = e else {
         panic!("{e}")
     };
-    assert_eq!(message, "Stack overflow");
+    assert_eq!(
+        message, "Stack overflow in Main.main.0",
+        "charged to the caller"
+    );
     assert_eq!(stack.to_string(), "Sys.init > Main.main > Main.g");
     // Start-up, function Main.main, call Main.g, function Main.g.
     assert_eq!(m.steps(), 4);
-    assert_eq!(m.ram().read(0), 276, "no local was pushed");
+    assert_eq!(m.ram().read(0), 271, "no local was pushed");
 }
 
 #[test]
@@ -256,4 +261,61 @@ fn thirty_thousand_web_locals_zero_what_ram_holds_and_drop_the_rest() {
     // The loop goes on, bounded by the budget.
     assert!(matches!(m.run(Some(100_000)), Exit::Budget { .. }));
     assert_eq!(m.steps(), 100_012);
+}
+
+fn web_machine(main: &str, keys: &str, hold: u64) -> Machine {
+    Machine::new(
+        compile(main, Profile::Web),
+        Config {
+            profile: Profile::Web,
+            keys: KeyScript::parse(keys, hold).unwrap(),
+            ..Config::default()
+        },
+    )
+}
+
+#[test]
+fn a_web_budget_that_ends_at_a_blocking_call_stops_there_with_the_argument_on_the_stack() {
+    // Step 17 is the first `call Sys.wait 1`: the web IDE stops at 17 with
+    // the argument 10 still on the stack (SP 270: Main.main's local at 268).
+    let mut m = web_machine(WAITS, "", 1000);
+    assert!(matches!(m.run(Some(17)), Exit::Budget { .. }));
+    assert_eq!(m.steps(), 17);
+    assert_eq!((m.ram().read(0), m.ram().read(269)), (270, 10));
+    // Going on hands the result back (the step of 18) and ends as an
+    // uninterrupted run does.
+    assert!(matches!(m.run(Some(1)), Exit::Budget { .. }));
+    assert_eq!(
+        (m.steps(), m.ram().read(0), m.ram().read(269)),
+        (18, 270, 0)
+    );
+    assert_eq!(m.run(None), Exit::Halted);
+    assert_eq!(m.steps(), 123);
+}
+
+#[test]
+fn a_web_budget_inside_a_key_wait_shows_the_cursor_and_not_the_echo() {
+    let (whole, _) = both(KEYS, "A", 100);
+    for budget in [9, 50, 100] {
+        let mut m = web_machine(KEYS, "A", 100);
+        assert!(
+            matches!(m.run(Some(budget)), Exit::Budget { .. }),
+            "{budget}"
+        );
+        assert_eq!(m.steps(), budget);
+        // readChar's cursor box at cell (0, 0): x 2..=6, y 2..=9.
+        let black: Vec<(usize, usize)> = (0..256)
+            .flat_map(|y| (0..512).map(move |x| (x, y)))
+            .filter(|&(x, y)| m.ram().pixel(x, y))
+            .collect();
+        assert_eq!(black.len(), 5 * 8, "{budget}: the cursor only");
+        assert!(black
+            .iter()
+            .all(|&(x, y)| (2..=6).contains(&x) && (2..=9).contains(&y)));
+        // Going on takes the key at its release (100), hands it back (101)
+        // and ends as the uninterrupted run.
+        assert_eq!(m.run(None), Exit::Halted);
+        assert_eq!(m.steps(), 111);
+        assert!(m.ram() == whole.ram(), "{budget}");
+    }
 }

@@ -58,10 +58,16 @@ impl Machine {
         s
     }
 
-    /// The text of string object `s`, read from RAM by its layout.
+    /// The text of string object `s`, read from RAM by its profile's
+    /// layout (web: a pointer to the chars at s+2; desktop: the chars from
+    /// s+2).
     pub fn text(&self, s: i16) -> String {
         let s = i32::from(s);
-        let (len, chars) = (self.ram.read(s + 1), i32::from(self.ram.read(s + 2)));
+        let chars = match self.profile {
+            Profile::Web => i32::from(self.ram.read(s + 2)),
+            Profile::Desktop => s + 2,
+        };
+        let len = self.ram.read(s + 1);
         (0..i32::from(len))
             .map(|i| char::from(self.ram.read(chars + i) as u8))
             .collect()

@@ -34,6 +34,9 @@ pub(crate) fn kind(op: Op) -> Kind {
             Kind::Interpreted
         }
         Op::PopRam(a) if !crate::native::plain_address(a) => Kind::Interpreted,
+        // A desktop static past RAM[255] (a file's index past 239) may
+        // alias the stack: left to the interpreter.
+        Op::PushAbs(a) | Op::PopAbs(a) if a > 255 => Kind::Interpreted,
         Op::Function { n_vars, .. } if n_vars > MAX_INLINE_LOCALS => Kind::Interpreted,
         _ => Kind::Straight,
     }
