@@ -168,18 +168,29 @@ pub struct Watchdog {
     pub per_input: [Duration; 4],
 }
 
+/// The longest duration a user may set (`watchdog_s`, `HARNESS_WATCHDOG_S`,
+/// a shader's `timeout_s`): one day.
+pub const MAX_DURATION_S: u64 = 86_400;
+
+/// `s` as a duration when it lies in (0, [`MAX_DURATION_S`]].
+pub fn user_seconds(s: f64) -> Option<Duration> {
+    (s.is_finite() && s > 0.0 && s <= MAX_DURATION_S as f64).then(|| Duration::from_secs_f64(s))
+}
+
 impl Default for Watchdog {
     /// Generous for the slowest built-in (the Jack program on the Hack VM
     /// emulator in the dev profile: about 1 s per pixel on a loaded
     /// machine, a minute or two per image). `HARNESS_WATCHDOG_S` sets a
     /// fixed number of seconds per batch instead.
     fn default() -> Self {
-        if let Some(s) = std::env::var("HARNESS_WATCHDOG_S")
-            .ok()
-            .and_then(|s| s.parse::<f64>().ok())
-            .filter(|s| s.is_finite() && *s > 0.0)
-        {
-            return Watchdog::fixed(Duration::from_secs_f64(s));
+        if let Ok(text) = std::env::var("HARNESS_WATCHDOG_S") {
+            match text.parse::<f64>().ok().and_then(user_seconds) {
+                Some(limit) => return Watchdog::fixed(limit),
+                None => eprintln!(
+                    "warning: HARNESS_WATCHDOG_S: `{text}` is not a number of seconds in \
+                     (0, {MAX_DURATION_S}]: not used, the default watchdog applies"
+                ),
+            }
         }
         Watchdog {
             base: Duration::from_secs(30),
@@ -205,7 +216,9 @@ impl Watchdog {
     /// The time allowed for a batch of `n` inputs of `level`.
     pub fn limit(&self, level: Level, n: usize) -> Duration {
         let i = Level::ALL.iter().position(|l| *l == level).unwrap_or(0);
-        self.base + self.per_input[i] * u32::try_from(n).unwrap_or(u32::MAX)
+        let n = u32::try_from(n).unwrap_or(u32::MAX);
+        let per = self.per_input[i].checked_mul(n).unwrap_or(Duration::MAX);
+        self.base.saturating_add(per)
     }
 }
 
@@ -456,6 +469,27 @@ impl Implementation for Contained {
             )
             .after(Vec::new(), one)
             .into()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod duration_tests {
+    use super::*;
+
+    /// A long fixed watchdog times a large batch without a multiply overflow
+    /// (1e19 s used to panic two runner threads), and user durations are
+    /// bounded to one day.
+    #[test]
+    fn limits_saturate_and_user_seconds_are_bounded() {
+        let w = Watchdog {
+            base: Duration::from_secs(86_400),
+            per_input: [Duration::from_secs(u64::MAX / 2); 4],
+        };
+        assert_eq!(w.limit(Level::Image, 1 << 20), Duration::MAX);
+        assert_eq!(user_seconds(86_400.0), Some(Duration::from_secs(86_400)));
+        for bad in [1e300, 1e19, 86_400.5, 0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(user_seconds(bad), None, "{bad}");
         }
     }
 }

@@ -253,3 +253,49 @@ fn the_nightly_passes_with_a_clean_declared_implementation() {
         "{line}"
     );
 }
+
+/// Durations from the user are refused out of (0, one day] with the field
+/// named, instead of panicking in `Duration::from_secs_f64` (1e300) or in a
+/// runner thread's multiply (1e19), and a shader's `timeout_s` of u64::MAX
+/// no longer panics inside `harness cast`.
+#[test]
+fn out_of_range_durations_are_refused_with_the_field_named() {
+    let dir = tempfile::tempdir().unwrap();
+    for (n, seconds) in ["1e300", "1e19", "86401"].iter().enumerate() {
+        let file = dir.path().join(format!("pipe{n}.toml"));
+        std::fs::write(
+            &file,
+            format!(
+                "[impl.p]\nkind = \"pipe\"\nnumbers = \"f64\"\nlevels = [\"ops\"]\n\
+                 command = \"python3\"\nwatchdog_s = {seconds}\n"
+            ),
+        )
+        .unwrap();
+        let o = harness_in(dir.path(), &["--cast", file.to_str().unwrap(), "cast"]);
+        assert_eq!(o.status.code(), Some(2), "{seconds}: {}", text(&o));
+        assert!(
+            text(&o).contains(
+                "impl.p.watchdog_s: expected a positive number of seconds, at most 86400"
+            ),
+            "{seconds}: {}",
+            text(&o)
+        );
+    }
+    let shader = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/shaders/seed.glsl");
+    let file = dir.path().join("shader.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "[impl.s]\nkind = \"shader\"\npath = \"{shader}\"\nshade = \"red\"\n\
+             timeout_s = 18446744073709551615\n"
+        ),
+    )
+    .unwrap();
+    let o = harness_in(dir.path(), &["--cast", file.to_str().unwrap(), "cast"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("impl.s.timeout_s: at most 86400 seconds (one day)"),
+        "{}",
+        text(&o)
+    );
+}

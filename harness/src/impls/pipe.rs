@@ -22,7 +22,6 @@ use crate::contain::{Failure, FailureKind, Watchdog};
 use crate::implementation::{ImplError, Implementation, Numbers};
 use crate::pipe::{Pipe, PipeConfig};
 use std::path::PathBuf;
-use std::time::Duration;
 use vectors::Level;
 
 /// The `pipe` kind (no built-in entries).
@@ -69,11 +68,17 @@ impl Kind for PipeKind {
                     toml::de::DeValue::Float(f) => f.as_str().parse::<f64>().ok(),
                     _ => None,
                 }
-                .filter(|s| s.is_finite() && *s > 0.0)
+                .and_then(crate::contain::user_seconds)
                 .ok_or_else(|| {
-                    fields.error("watchdog_s", "expected a positive number of seconds")
+                    fields.error(
+                        "watchdog_s",
+                        format!(
+                            "expected a positive number of seconds, at most {} (one day)",
+                            crate::contain::MAX_DURATION_S
+                        ),
+                    )
                 })?;
-                Watchdog::fixed(Duration::from_secs_f64(seconds))
+                Watchdog::fixed(seconds)
             }
         };
         let origin = format!("{}:{}", fields.file().display(), fields.line());

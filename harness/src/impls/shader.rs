@@ -80,6 +80,15 @@ impl Kind for ShaderKind {
             );
         }
         if let Some(seconds) = positive(fields, "timeout_s")? {
+            if seconds > crate::contain::MAX_DURATION_S {
+                return Err(fields.error(
+                    "timeout_s",
+                    format!(
+                        "at most {} seconds (one day), is {seconds}",
+                        crate::contain::MAX_DURATION_S
+                    ),
+                ));
+            }
             options.time_limit = Some(Duration::from_secs(seconds));
         }
         // The front end alone (no device) decides the levels; a shader that

@@ -19,6 +19,13 @@ pub const MAX_SIZE: u32 = 4096;
 pub const MAX_EXPONENT: u32 = 64;
 /// The most nodes a scene may have.
 pub const MAX_NODES: usize = 256;
+/// The most uses of nodes once shared nodes are expanded (a node listed
+/// twice is lowered twice), which bounds the lowered program's size.
+pub const MAX_USES: usize = 256;
+/// The most transforms of one shape.
+pub const MAX_TRANSFORMS: usize = 16;
+/// The most children of one combination.
+pub const MAX_CHILDREN: usize = 64;
 
 /// A description that passed every check, with what the lowering needs.
 #[derive(Clone, Debug)]
@@ -100,6 +107,7 @@ pub fn check(d: Description) -> Result<Checked, SceneError> {
         materials: Vec::new(),
         spheres: Vec::new(),
         shapes: BTreeSet::new(),
+        uses: 0,
     };
     walk.node(&d.root, "root")?;
     let (materials, spheres, shapes) = (walk.materials, walk.spheres, walk.shapes);
@@ -319,6 +327,8 @@ struct Walk<'a> {
     materials: Vec<String>,
     spheres: Vec<([f64; 3], f64, String)>,
     shapes: BTreeSet<&'static str>,
+    /// Nodes visited so far, shared ones once per use.
+    uses: usize,
 }
 
 impl Walk<'_> {
@@ -337,11 +347,28 @@ impl Walk<'_> {
         if self.stack.len() >= 64 {
             return Err(err(from, "the graph is deeper than 64 nodes"));
         }
+        self.uses += 1;
+        if self.uses > MAX_USES {
+            return Err(err(
+                "nodes",
+                format!(
+                    "the scene uses more than {MAX_USES} nodes once shared nodes are counted \
+                     per use (at `{from}`): its program would be too large"
+                ),
+            ));
+        }
         self.stack.push(name.to_string());
         let p = format!("nodes.{name}");
         let analytic = matches!(self.d.method, Method::AnalyticSpheres { .. });
         let children = |kind: &str, c: &[String], min: usize, max: usize| {
-            if c.len() < min || c.len() > max {
+            let max = max.min(MAX_CHILDREN);
+            if c.len() > max {
+                return Err(err(
+                    format!("{p}.{kind}.children"),
+                    format!("a combination has at most {max} children, has {}", c.len()),
+                ));
+            }
+            if c.len() < min {
                 let want = if min == max {
                     format!("exactly {min}")
                 } else {
@@ -447,6 +474,15 @@ impl Walk<'_> {
             }
             _ => unreachable!("a leaf"),
         };
+        if transform.len() > MAX_TRANSFORMS {
+            return Err(err(
+                format!("nodes.{name}.transform"),
+                format!(
+                    "a shape has at most {MAX_TRANSFORMS} transforms, has {}",
+                    transform.len()
+                ),
+            ));
+        }
         let mut centre = [0.0; 3];
         for (i, t) in transform.iter().enumerate() {
             let tp = format!("nodes.{name}.transform[{i}]");

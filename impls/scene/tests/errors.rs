@@ -174,3 +174,57 @@ fn the_seed_is_recognised_under_other_names_only() {
     v["nodes"]["ball"]["sphere"]["radius"] = json!(1.01);
     assert!(!scene::is_seed(&scene::parse(&v.to_string()).unwrap()));
 }
+
+/// Levels of unions that each list the level below twice pass every per-node
+/// check but double the lowered program per level: refused, naming `nodes`,
+/// before anything is lowered (depth 40 used to hang, 12 to panic).
+#[test]
+fn shared_nodes_that_grow_exponentially_are_refused() {
+    let e = error(|v| {
+        let root = v["root"].as_str().unwrap().to_string();
+        let mut below = root;
+        for level in 0..40 {
+            let name = format!("level{level}");
+            v["nodes"][&name] = json!({"union": {"children": [below, below]}});
+            below = name;
+        }
+        v["root"] = json!(below);
+    });
+    expect(&e, &["nodes:", "more than 256 nodes"]);
+}
+
+/// 20,000 transforms on one shape (a register index used to wrap) and
+/// 100,000 references to one child are refused with the field named.
+#[test]
+fn transforms_and_references_are_bounded() {
+    let e = error(|v| {
+        let nodes = v["nodes"].as_object_mut().unwrap();
+        let (_, shape) = nodes
+            .iter_mut()
+            .find(|(_, n)| {
+                n.as_object()
+                    .unwrap()
+                    .values()
+                    .next()
+                    .unwrap()
+                    .get("material")
+                    .is_some()
+            })
+            .unwrap();
+        let body = shape.as_object_mut().unwrap().values_mut().next().unwrap();
+        body["transform"] = Value::Array(vec![json!({"scale": 1.0}); 20_000]);
+    });
+    expect(&e, &[".transform:", "at most 16 transforms, has 20000"]);
+    let e = error(|v| {
+        let root = v["root"].as_str().unwrap().to_string();
+        v["nodes"]["many"] = json!({"union": {"children": vec![root; 100_000]}});
+        v["root"] = json!("many");
+    });
+    expect(
+        &e,
+        &[
+            "nodes.many.union.children:",
+            "at most 64 children, has 100000",
+        ],
+    );
+}
