@@ -213,6 +213,14 @@ impl Verdict {
         }
     }
 
+    /// How many comparisons diverged beyond their policy.
+    pub fn beyond_policy(&self) -> usize {
+        self.compared
+            .iter()
+            .filter(|c| c.beyond_policy.is_some())
+            .count()
+    }
+
     /// Cases compared, over every comparison.
     pub fn cases(&self) -> u64 {
         self.compared.iter().map(|c| c.cases).sum()
@@ -249,11 +257,7 @@ impl Verdict {
             )));
         }
         let failing = self.not_compared.iter().filter(|n| self.counts(n)).count();
-        let diverged = self
-            .compared
-            .iter()
-            .filter(|c| c.beyond_policy.is_some())
-            .count();
+        let diverged = self.beyond_policy();
         let summary = format!(
             "{} comparisons on {} cases, {diverged} beyond policy; {failing} not compared",
             self.compared.len(),

@@ -160,11 +160,7 @@ impl Summary {
     /// The one line printed at the end.
     pub fn line(&self) -> String {
         let v = &self.verdict;
-        let beyond = v
-            .compared
-            .iter()
-            .filter(|c| c.beyond_policy.is_some())
-            .count();
+        let beyond = v.beyond_policy();
         let missing = v.not_compared.len();
         format!(
             "{}: {} comparisons on {} cases, {beyond} beyond policy, {missing} not compared, {} problems, {:.0} s",

@@ -191,11 +191,7 @@ fn summary(h: &mut String, r: &Report) {
         .filter(|p| p.differing_pixels > 0)
         .count();
     let v = &r.verdict;
-    let beyond = v
-        .compared
-        .iter()
-        .filter(|c| c.beyond_policy.is_some())
-        .count();
+    let beyond = v.beyond_policy();
     let missing = v.not_compared.len();
     let card = |h: &mut String, value: String, label: &str, class: &str| {
         let _ = write!(

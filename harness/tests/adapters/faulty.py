@@ -21,7 +21,7 @@ if mode == "no-start":
 if mode == "hang-f32":
     handshake = {"numbers": "f32", "levels": ["sdf", "pixels"]}
 else:
-    import float316  # the example port
+    import adapter  # the example adapter and its port
     handshake = {"numbers": "float316", "levels": ["ops"]}
     crash_at = int(sys.argv[2])
 handshake.update({"protocol": 1, "name": "faulty-" + mode, "trace": False})
@@ -33,17 +33,7 @@ out.flush()
 def answer(request):
     if mode == "hang-f32":
         return {"id": request["id"], "outcome": "hang"}
-    args = [tuple(request["a"])] + ([tuple(request["b"])] if "b" in request else [])
-    outcome = float316.apply(request["op"], *args)
-    reply = {"id": request["id"]}
-    if outcome[0] == "value":
-        value = outcome[1]
-        reply["value"] = value if isinstance(value, bool) else list(value)
-    else:
-        reply["outcome"] = outcome[0]
-        if outcome[0] == "sys_error":
-            reply["code"] = outcome[1]
-    return reply
+    return adapter.answer(request)
 
 
 answered = 0
