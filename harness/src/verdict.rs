@@ -349,6 +349,67 @@ mod tests {
         assert!(text.contains("2 comparisons on 13 cases, 1 beyond policy; 1 not compared"));
     }
 
+    /// A divergence's reason counts only the differences its policy does
+    /// not tolerate one by one.
+    #[test]
+    fn a_divergence_counts_only_the_untolerated_differences() {
+        use crate::compare::{Comparison, DiffKind, Group, Policy};
+        let group = |count, tolerated| Group {
+            level: vectors::Level::Sdf,
+            op: None,
+            category: "random".into(),
+            kind: DiffKind::Value,
+            count,
+            tolerated,
+            first: 0,
+        };
+        let report = LevelReport {
+            set: "sdf-small".into(),
+            level: vectors::Level::Sdf,
+            vectors: 10,
+            runs: Vec::new(),
+            comparisons: vec![Comparison {
+                a: "a".into(),
+                b: "b".into(),
+                level: vectors::Level::Sdf,
+                set: "sdf-small".into(),
+                policy: Policy::Exact,
+                vectors: 10,
+                divergences: Vec::new(),
+                omitted: 0,
+                groups: vec![group(3, false), group(5, true)],
+                stats: None,
+                findings: vec!["a finding".into()],
+                diverged: true,
+            }],
+            shard: None,
+        };
+        let mut v = Verdict::new(false);
+        v.add_comparisons(&report);
+        assert_eq!(
+            v.lines(false)[0],
+            "diverged: a vs b on sdf-small: 3 differences beyond policy; a finding"
+        );
+    }
+
+    /// "Nothing was compared" only when no case was.
+    #[test]
+    fn an_incomplete_run_says_nothing_was_compared_only_when_nothing_was() {
+        let mut v = agreed();
+        v.not_compared("c on s", Missing::Failed, "crashed");
+        assert_eq!(
+            v.lines(false).last().unwrap(),
+            "verdict: INCOMPLETE (1 comparisons on 10 cases, 0 beyond policy; 1 not compared)"
+        );
+        let mut none = Verdict::new(false);
+        none.not_compared("c on s", Missing::Failed, "crashed");
+        assert!(none
+            .lines(false)
+            .last()
+            .unwrap()
+            .starts_with("verdict: INCOMPLETE, nothing was compared"));
+    }
+
     #[test]
     fn only_unavailable_ones_may_be_allowed() {
         for (missing, allowed) in [

@@ -332,29 +332,55 @@ fn a_render_that_fails_is_not_compared() {
     assert_status(&o, 2, &["unknown implementation `ref-f3`"]);
 }
 
-/// A shader with an endless loop: every pixel is a hang, never a white
-/// pixel, in every command.
-#[test]
-fn a_shader_that_loops_for_ever_fails_every_command() {
+/// A project whose harness.toml declares `name`, the seed shader with
+/// `edit` applied to its source.
+fn seed_shader_project(name: &str, edit: impl FnOnce(&str) -> String) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let seed = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../examples/shaders/seed.glsl"
     ))
     .unwrap();
-    let body = seed.find("void mainImage").unwrap();
-    let open = body + seed[body..].find('{').unwrap() + 1;
-    let looping = format!(
-        "{}\n    float spin = 0.0;\n    while (spin >= 0.0) {{ spin += 1.0; }}\n{}",
-        &seed[..open],
-        &seed[open..]
-    );
-    std::fs::write(dir.path().join("loop.glsl"), looping).unwrap();
+    std::fs::write(dir.path().join(format!("{name}.glsl")), edit(&seed)).unwrap();
     std::fs::write(
         dir.path().join("harness.toml"),
-        "[impl.loop]\nkind = \"shader\"\npath = \"loop.glsl\"\nshade = \"red\"\n",
+        format!("[impl.{name}]\nkind = \"shader\"\npath = \"{name}.glsl\"\nshade = \"red\"\n"),
     )
     .unwrap();
+    dir
+}
+
+/// The nightly's levels step on the one implementation `name` of project
+/// `p`.
+fn nightly_levels(p: &Path, name: &str) -> Output {
+    let out = p.join("reports/nightly");
+    run(
+        p,
+        &[
+            "nightly",
+            "--out",
+            out.to_str().unwrap(),
+            "--impls",
+            name,
+            "--steps",
+            "levels",
+        ],
+    )
+}
+
+/// A shader with an endless loop: every pixel is a hang, never a white
+/// pixel, in every command.
+#[test]
+fn a_shader_that_loops_for_ever_fails_every_command() {
+    let dir = seed_shader_project("loop", |seed| {
+        let body = seed.find("void mainImage").unwrap();
+        let open = body + seed[body..].find('{').unwrap() + 1;
+        format!(
+            "{}\n    float spin = 0.0;\n    while (spin >= 0.0) {{ spin += 1.0; }}\n{}",
+            &seed[..open],
+            &seed[open..]
+        )
+    });
     let p = dir.path();
     let o = run(p, &["render", "--impl", "loop", "--out", "loop.png"]);
     assert_status(
@@ -369,20 +395,32 @@ fn a_shader_that_loops_for_ever_fails_every_command() {
         &["check", "--max-error", "loop", "1", "--metric", "mean"],
     );
     assert_status(&o, 1, &["bad: loop: 131072 of 131072 pixels trapped"]);
-    let out = p.join("reports/nightly");
-    let o = run(
-        p,
+    let o = nightly_levels(p, "loop");
+    assert_status(&o, 1, &["diverged: loop vs ref-f64 on pixels-nightly"]);
+}
+
+/// A shader with a sign error that moves the torus onto the sphere: no
+/// pixel traps, but more of the nightly's pixels change level than f32's
+/// flip fraction allows, and `diff` on the image says so too.
+#[test]
+fn a_shader_with_a_sign_error_fails_the_nightly_by_its_flip_fraction() {
+    let dir = seed_shader_project("torus", |seed| {
+        let torus = "sdTorus(p - vec3(1.5";
+        assert!(seed.contains(torus), "the seed shader places its torus");
+        seed.replace(torus, "sdTorus(p + vec3(1.5")
+    });
+    let p = dir.path();
+    let o = nightly_levels(p, "torus");
+    assert_status(
+        &o,
+        1,
         &[
-            "nightly",
-            "--out",
-            out.to_str().unwrap(),
-            "--impls",
-            "loop",
-            "--steps",
-            "levels",
+            "diverged: torus vs ref-f64 on pixels-nightly",
+            "pixels flip",
         ],
     );
-    assert_status(&o, 1, &["diverged: loop vs ref-f64 on pixels-nightly"]);
+    let o = run(p, &["diff", "ref-f64", "torus", "--level", "image"]);
+    assert_status(&o, 1, &["FINDING"]);
 }
 
 /// `examples/jack-port` copied into a project, with `while (true) { }`
