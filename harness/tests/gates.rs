@@ -426,24 +426,30 @@ fn a_shader_with_a_sign_error_fails_the_nightly_by_its_flip_fraction() {
 /// `examples/jack-port` copied into a project, with `while (true) { }`
 /// put first in the body of `function Num NAME` of Num.jack.
 fn jack_port_looping_in(name: &str) -> tempfile::TempDir {
-    jack_port_with(name, "while (true) { }")
+    jack_port_with("Num", name, "while (true) { }")
 }
 
 /// `examples/jack-port` copied into a project, with `statement` put first
-/// in the body of `function Num NAME` of Num.jack.
-fn jack_port_with(name: &str, statement: &str) -> tempfile::TempDir {
+/// in the body of the function `name` of class `class` (after its `var`
+/// declarations).
+fn jack_port_with(class: &str, name: &str, statement: &str) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let port = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/jack-port");
     for entry in std::fs::read_dir(&port).unwrap() {
         let path = entry.unwrap().path();
         std::fs::copy(&path, dir.path().join(path.file_name().unwrap())).unwrap();
     }
-    let num = dir.path().join("Num.jack");
-    let text = std::fs::read_to_string(&num).unwrap();
-    let head = text.find(&format!("function Num {name}(")).unwrap();
-    let body = head + text[head..].find("let ").unwrap();
+    let file = dir.path().join(format!("{class}.jack"));
+    let text = std::fs::read_to_string(&file).unwrap();
+    let head = text.find(&format!(" {name}(")).unwrap();
+    let body = head
+        + ["let ", "do ", "while ", "if ", "return"]
+            .iter()
+            .filter_map(|k| text[head..].find(k))
+            .min()
+            .unwrap();
     let changed = format!("{}{statement}\n        {}", &text[..body], &text[body..]);
-    std::fs::write(&num, changed).unwrap();
+    std::fs::write(&file, changed).unwrap();
     std::fs::write(
         dir.path().join("harness.toml"),
         "[impl.port]\nkind = \"jack\"\nprogram = \".\"\nbindings = \"bindings.toml\"\n",
@@ -511,7 +517,7 @@ fn explain_exits_1_only_where_the_dithered_bit_differs() {
 /// skip, so `git bisect run` blames the commit.
 #[test]
 fn a_jack_operation_that_halts_is_a_crash_on_its_input() {
-    let p = jack_port_with("mod2", "do Sys.halt();");
+    let p = jack_port_with("Num", "mod2", "do Sys.halt();");
     let o = run(p.path(), &["diff", "ref-f316", "port", "--level", "ops"]);
     assert_status(
         &o,
@@ -535,4 +541,30 @@ fn a_jack_operation_that_halts_is_a_crash_on_its_input() {
         ],
     );
     assert_status(&o, 1, &["bad: ", "halted"]);
+}
+
+/// A port whose whole program stops with `Sys.error` as it starts to draw
+/// (its entry points all answer): the nightly's screens step reports that
+/// screen as not compared, never skips it.
+#[test]
+fn a_whole_program_that_stops_fails_the_screens_step() {
+    let p = jack_port_with("Picture", "render", "do Sys.error(7);");
+    let out = p.path().join("reports/nightly");
+    let o = run(
+        p.path(),
+        &[
+            "nightly",
+            "--out",
+            out.to_str().unwrap(),
+            "--impls",
+            "port",
+            "--steps",
+            "screens",
+        ],
+    );
+    assert_status(
+        &o,
+        3,
+        &["port-main", "the whole program did not finish", "7"],
+    );
 }
