@@ -7,7 +7,8 @@
 //!
 //! [`Contained`] wraps any in-process [`Implementation`]: each call runs
 //! on a worker thread under `catch_unwind`, and a [`Watchdog`] turns an
-//! answer that never comes into a reported hang (the looping thread is
+//! answer that never comes into a reported hang. Workers are reused from
+//! call to call; only one that hangs is replaced (the looping thread is
 //! left behind; it holds its own reference to the implementation, so
 //! nothing it uses is freed under it). Pipe adapters report their own
 //! failures the same way (`pipe`).
@@ -19,7 +20,7 @@ use std::any::Any;
 use std::cell::RefCell;
 use std::fmt;
 use std::panic::{self, AssertUnwindSafe};
-use std::sync::{mpsc, Arc, Once};
+use std::sync::{mpsc, Arc, Mutex, Once, PoisonError};
 use std::time::Duration;
 use vectors::{Level, Vector};
 
@@ -270,8 +271,42 @@ fn catch<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     })
 }
 
-/// Run `job` on a named worker thread and wait at most `limit` for it.
-/// `None`: it did not finish in time (the thread is left running).
+/// A job for a worker thread.
+type Job = Box<dyn FnOnce() + Send>;
+
+/// A thread that runs contained jobs one after another, so that a batch
+/// costs a message rather than a thread.
+struct Worker {
+    jobs: mpsc::Sender<Job>,
+}
+
+/// The workers waiting for a job, shared by every contained implementation:
+/// as many as ever ran at once.
+static IDLE: Mutex<Vec<Worker>> = Mutex::new(Vec::new());
+
+impl Worker {
+    fn spawn() -> std::io::Result<Worker> {
+        let (jobs, queue) = mpsc::channel::<Job>();
+        std::thread::Builder::new()
+            .name(format!("{WORKER}worker"))
+            .spawn(move || {
+                for job in queue {
+                    job();
+                }
+            })?;
+        Ok(Worker { jobs })
+    }
+}
+
+fn idle() -> std::sync::MutexGuard<'static, Vec<Worker>> {
+    IDLE.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Run `job` on a worker thread and wait at most `limit` for it. `None`: it
+/// did not finish in time. The worker that ran it goes back to the idle
+/// ones; one that hangs is left behind with its job (its queue closes, so
+/// its thread ends if the job ever does), and a new one takes its place
+/// when needed.
 fn on_worker<T: Send + 'static>(
     label: &str,
     limit: Duration,
@@ -279,18 +314,33 @@ fn on_worker<T: Send + 'static>(
 ) -> Result<Option<T>, ImplError> {
     install_panic_hook();
     let (tx, rx) = mpsc::channel();
-    std::thread::Builder::new()
-        .name(format!("{WORKER}{label}"))
-        .spawn(move || {
-            let _ = tx.send(job());
-        })
-        .map_err(|e| ImplError::Failed(format!("{label}: cannot start a worker thread: {e}")))?;
-    wait(&rx, limit).ok_or_else(|| {
-        // The worker catches panics, so it always sends unless it is gone.
+    let mut job: Job = Box::new(move || {
+        let _ = tx.send(job());
+    });
+    let worker = loop {
+        let worker = match idle().pop() {
+            Some(w) => w,
+            None => Worker::spawn().map_err(|e| {
+                ImplError::Failed(format!("{label}: cannot start a worker thread: {e}"))
+            })?,
+        };
+        match worker.jobs.send(job) {
+            Ok(()) => break worker,
+            // That worker's thread is gone: the job comes back for another.
+            Err(mpsc::SendError(back)) => job = back,
+        }
+    };
+    let answer = wait(&rx, limit).ok_or_else(|| {
+        // The jobs catch panics, so one always sends unless its thread is
+        // gone.
         ImplError::Failed(format!(
             "{label}: its worker thread ended without an answer"
         ))
-    })
+    })?;
+    if answer.is_some() {
+        idle().push(worker);
+    }
+    Ok(answer)
 }
 
 /// Wait at most `limit` for a value on `rx`: `Some(Some(v))` when it came,

@@ -196,6 +196,18 @@ pub struct ImageAnswers {
     pub costs: Option<Vec<u64>>,
 }
 
+/// The batch sizes of [`Implementation::batch_size`] unless an
+/// implementation says otherwise: large for the cheap levels, a few pixels,
+/// one image.
+pub fn default_batch_size(level: Level) -> usize {
+    match level {
+        Level::Ops => 4096,
+        Level::Sdf => 256,
+        Level::Pixels => 4,
+        Level::Image => 1,
+    }
+}
+
 /// One implementation, as the runner and the localizer see it.
 pub trait Implementation: Send + Sync {
     /// The name printed in reports: the label it was opened under, its
@@ -213,12 +225,7 @@ pub trait Implementation: Send + Sync {
     /// get: the runner splits work into batches of this size and runs the
     /// batches in parallel.
     fn batch_size(&self, level: Level) -> usize {
-        match level {
-            Level::Ops => 4096,
-            Level::Sdf => 256,
-            Level::Pixels => 4,
-            Level::Image => 1,
-        }
+        default_batch_size(level)
     }
 
     /// Answer every vector of `batch` (all of one level), in order.

@@ -352,3 +352,76 @@ fn the_whole_image_paths_pass_through_containment() {
     assert!(reference.render_image(false).is_none());
     assert!(reference.program_screen(None, false).is_none());
 }
+
+/// Answers every input with a number, and notes the thread each batch ran
+/// on; loops for ever on a batch that holds the input `hang_on`.
+struct ThreadNoting {
+    threads: std::sync::Mutex<std::collections::HashSet<std::thread::ThreadId>>,
+    hang_on: Option<Vector>,
+}
+
+impl Implementation for ThreadNoting {
+    fn label(&self) -> String {
+        "thread-noting".into()
+    }
+    fn numbers(&self) -> Numbers {
+        Numbers::Float316
+    }
+    fn supports(&self, level: Level) -> bool {
+        level == Level::Ops
+    }
+    fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+        if self.hang_on.as_ref().is_some_and(|h| batch.contains(h)) {
+            loop {
+                std::thread::sleep(Duration::from_secs(1));
+            }
+        }
+        self.threads
+            .lock()
+            .unwrap()
+            .insert(std::thread::current().id());
+        Ok(batch.iter().map(|_| Outcome::OutOfDomain).collect())
+    }
+}
+
+/// Containment costs no thread per batch: 300 batches in turn run on a
+/// handful of reused workers (other tests of this binary share them), and
+/// a worker that hangs is replaced, so the calls after it are answered.
+#[test]
+fn contained_batches_reuse_their_workers_and_replace_one_that_hangs() {
+    let set = doubles();
+    let noting = std::sync::Arc::new(ThreadNoting {
+        threads: Default::default(),
+        hang_on: Some(set.vectors[9].clone()),
+    });
+    struct Shared(std::sync::Arc<ThreadNoting>);
+    impl Implementation for Shared {
+        fn label(&self) -> String {
+            self.0.label()
+        }
+        fn numbers(&self) -> Numbers {
+            self.0.numbers()
+        }
+        fn supports(&self, level: Level) -> bool {
+            self.0.supports(level)
+        }
+        fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+            self.0.eval(batch)
+        }
+    }
+    let contained = Contained::new(
+        Box::new(Shared(std::sync::Arc::clone(&noting))),
+        Watchdog::fixed(Duration::from_millis(300)),
+    );
+    let answers = |at: usize| contained.eval(&set.vectors[at..at + 1]);
+    for _ in 0..300 {
+        assert_eq!(answers(0).unwrap().len(), 1);
+    }
+    let threads = noting.threads.lock().unwrap().len();
+    assert!(threads <= 16, "300 batches ran on {threads} threads");
+    let hang = answers(9).expect_err("the batch hangs");
+    assert_eq!(failure(&hang).kind, FailureKind::Hang);
+    for _ in 0..3 {
+        assert_eq!(answers(1).unwrap().len(), 1, "answered after the hang");
+    }
+}

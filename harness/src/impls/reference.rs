@@ -301,6 +301,16 @@ impl Implementation for RefAdapter {
         true
     }
 
+    fn batch_size(&self, level: Level) -> usize {
+        match level {
+            // A pixel takes a few microseconds here: batches of the default
+            // four would cost more in hand-overs to the contained worker
+            // than in tracing.
+            Level::Pixels => 256,
+            _ => crate::implementation::default_batch_size(level),
+        }
+    }
+
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
         Ok(batch
             .iter()
