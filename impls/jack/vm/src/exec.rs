@@ -5,7 +5,7 @@
 
 use crate::exit::Exit;
 use crate::machine::{
-    Frame, Machine, Watcher, ARG_OK, HOST, LOCAL_OK, MAX_DEPTH, THAT_OK, THIS_OK,
+    Frame, Machine, Watcher, ARG_OK, HOST, LOCAL_OK, MAX_DEPTH, THAT_OK, THAT_ZERO, THIS_OK,
 };
 use crate::program::{Bin, Code, Op, Operand, Program, ARG, CONST, LCL, PTR, THAT, THIS};
 use crate::timing::{Timing, STACK_BASE, STACK_LAST};
@@ -176,6 +176,64 @@ const LOCAL_OOB: &str = "Local offset out of bounds";
 const THIS_UNINIT: &str = "The this segment cannot be accessed since it was not initialized";
 const THAT_UNINIT: &str = "The that segment cannot be accessed since it was not initialized";
 const STACK_OVERFLOW: &str = "Stack overflow";
+/// Desktop: a `this i` or `that i` outside the segment's range.
+const SEGMENT_SPACE: &str = "Out of segment space";
+const THIS_RANGE: &str = "'This' segment must be in the Heap range";
+const THAT_RANGE: &str = "'That' segment must be in the Heap or Screen range";
+
+/// The desktop's heap (2048..=16383) and the end of its `that` range (the
+/// keyboard word, 24576).
+const HEAP_START: i32 = 2048;
+const HEAP_END: i32 = 16383;
+const THAT_END: i32 = 24576;
+
+/// Desktop: `this i` lies in the heap (the desktop tests the address, a
+/// 16-bit sum, for every access).
+#[inline(always)]
+pub(crate) fn desktop_this_ok(this: u16, i: u16) -> bool {
+    let at = i32::from(this.wrapping_add(i) as i16);
+    (HEAP_START..=HEAP_END).contains(&at)
+}
+
+/// Desktop: `that i` lies from the segment's first word to 24576. The
+/// range starts where the last `pop pointer 1` put THAT (0 included, see
+/// [`THAT_ZERO`]); after a return it starts at THAT or 2048, whichever is
+/// higher.
+#[inline(always)]
+pub(crate) fn desktop_that_ok(that: u16, i: u16, flags: u8) -> bool {
+    let at = i32::from(that.wrapping_add(i) as i16);
+    let floor = if flags & THAT_ZERO != 0 {
+        0
+    } else {
+        i32::from(that as i16).max(HEAP_START)
+    };
+    (floor..=THAT_END).contains(&at)
+}
+
+/// Desktop: the values `pop pointer 0` accepts (the heap, or not above 0).
+#[inline(always)]
+pub(crate) fn desktop_this_value_ok(v: i16) -> bool {
+    v <= 0 || (HEAP_START..=HEAP_END).contains(&i32::from(v))
+}
+
+/// Desktop: the values `pop pointer 1` accepts (0, the heap or the screen
+/// through 24576).
+#[inline(always)]
+pub(crate) fn desktop_that_value_ok(v: i16) -> bool {
+    v == 0 || (HEAP_START..=THAT_END).contains(&i32::from(v))
+}
+
+/// Desktop: whether a fused instruction's `this`/`that` operands all pass
+/// the desktop's address tests with the pointers as they are (the web IDE's
+/// tests are the flags of [`operands_ok`]).
+#[inline(always)]
+fn desktop_operands_ok<const N: usize>(operands: [Operand; N], seg: &[u16; 8], flags: u8) -> bool {
+    operands.iter().all(|o| match usize::from(o.base) {
+        THIS => desktop_this_ok(seg[THIS], o.off),
+        THAT => desktop_that_ok(seg[THAT], o.off, flags),
+        _ => true,
+    })
+}
 
 /// Desktop: the highest SP at a built-in call (its arguments pushed) that
 /// leaves room for the call's 5-word frame and the pushed result, each
@@ -303,10 +361,29 @@ impl Machine {
                     push!($e);
                 }};
             }
+            // The web IDE's test that the invocation set the pointer; the
+            // desktop makes its own address test instead.
             macro_rules! this_ok {
-                ($bit:expr, $msg:expr) => {
-                    if flags & $bit == 0 {
+                ($bit:expr, $msg:expr, $desktop:expr) => {
+                    if function_step {
+                        $desktop;
+                    } else if flags & $bit == 0 {
                         break 'run Some(Halt::Error($msg.into()));
+                    }
+                };
+            }
+            // Desktop: the address tests of `this i` and `that i`.
+            macro_rules! desktop_this {
+                ($i:expr) => {
+                    if function_step && !desktop_this_ok(seg[THIS], $i) {
+                        break 'run Some(Halt::Error(SEGMENT_SPACE.into()));
+                    }
+                };
+            }
+            macro_rules! desktop_that {
+                ($i:expr) => {
+                    if function_step && !desktop_that_ok(seg[THAT], $i, flags) {
+                        break 'run Some(Halt::Error(SEGMENT_SPACE.into()));
                     }
                 };
             }
@@ -367,6 +444,15 @@ impl Machine {
                     pc += extra as usize;
                 }};
             }
+            // A fused instruction's fast path: SP away from the stack's ends,
+            // and every operand sure to pass its profile's tests.
+            macro_rules! fast {
+                ($($o:expr),+) => {
+                    fast_sp(sp)
+                        && operands_ok([$($o),+], flags)
+                        && (!function_step || desktop_operands_ok([$($o),+], &seg, flags))
+                };
+            }
             // Undo the fetch and let plain code run from here.
             macro_rules! deopt {
                 () => {{
@@ -374,6 +460,15 @@ impl Machine {
                     steps -= 1;
                     break 'run Some(Halt::Deopt);
                 }};
+            }
+            // Desktop: a `pop pointer 1` of a fused instruction stores `v`,
+            // which passes the desktop's test without setting THAT_ZERO.
+            macro_rules! desktop_that_store {
+                ($v:expr) => {
+                    if function_step && !(HEAP_START..=THAT_END).contains(&i32::from($v)) {
+                        deopt!();
+                    }
+                };
             }
             // Read a fused operand (its checks were done by `operands_ok`).
             macro_rules! src {
@@ -444,7 +539,7 @@ impl Machine {
                     let top = sp - 1;
                     sp = top;
                     seg[THAT] = a as u16;
-                    flags |= THAT_OK;
+                    flags = (flags | THAT_OK) & !THAT_ZERO;
                     let v = rd!(seg[THAT]);
                     w[top as usize] = v;
                     (top, v)
@@ -538,14 +633,20 @@ impl Machine {
                     }
                     push!(rd!(seg[ARG].wrapping_add(i)))
                 }
-                Op::PushThis(i) => push!(rd!(seg[THIS].wrapping_add(i))),
-                Op::PushThisChk(i) => {
-                    this_ok!(THIS_OK, THIS_UNINIT);
+                Op::PushThis(i) => {
+                    desktop_this!(i);
                     push!(rd!(seg[THIS].wrapping_add(i)))
                 }
-                Op::PushThat(i) => push!(rd!(seg[THAT].wrapping_add(i))),
+                Op::PushThisChk(i) => {
+                    this_ok!(THIS_OK, THIS_UNINIT, desktop_this!(i));
+                    push!(rd!(seg[THIS].wrapping_add(i)))
+                }
+                Op::PushThat(i) => {
+                    desktop_that!(i);
+                    push!(rd!(seg[THAT].wrapping_add(i)))
+                }
                 Op::PushThatChk(i) => {
-                    this_ok!(THAT_OK, THAT_UNINIT);
+                    this_ok!(THAT_OK, THAT_UNINIT, desktop_that!(i));
                     push!(rd!(seg[THAT].wrapping_add(i)))
                 }
                 Op::PushAbs(a) => push!(w[a as usize]),
@@ -563,20 +664,22 @@ impl Machine {
                     wr!(seg[ARG].wrapping_add(i), v)
                 }
                 Op::PopThis(i) => {
+                    desktop_this!(i);
                     let v = pop!();
                     wr!(seg[THIS].wrapping_add(i), v)
                 }
                 Op::PopThisChk(i) => {
-                    this_ok!(THIS_OK, THIS_UNINIT);
+                    this_ok!(THIS_OK, THIS_UNINIT, desktop_this!(i));
                     let v = pop!();
                     wr!(seg[THIS].wrapping_add(i), v)
                 }
                 Op::PopThat(i) => {
+                    desktop_that!(i);
                     let v = pop!();
                     wr!(seg[THAT].wrapping_add(i), v)
                 }
                 Op::PopThatChk(i) => {
-                    this_ok!(THAT_OK, THAT_UNINIT);
+                    this_ok!(THAT_OK, THAT_UNINIT, desktop_that!(i));
                     let v = pop!();
                     wr!(seg[THAT].wrapping_add(i), v)
                 }
@@ -585,10 +688,24 @@ impl Machine {
                     w[a as usize] = v;
                 }
                 Op::PopPtr(0) => {
+                    if function_step && !desktop_this_value_ok(rd!(sp.wrapping_sub(1))) {
+                        break Some(Halt::Error(THIS_RANGE.into()));
+                    }
                     seg[THIS] = pop!() as u16;
                     flags |= THIS_OK;
                 }
                 Op::PopPtr(_) => {
+                    let v = rd!(sp.wrapping_sub(1));
+                    if function_step {
+                        if !desktop_that_value_ok(v) {
+                            break Some(Halt::Error(THAT_RANGE.into()));
+                        }
+                        flags = if v == 0 {
+                            flags | THAT_ZERO
+                        } else {
+                            flags & !THAT_ZERO
+                        };
+                    }
                     seg[THAT] = pop!() as u16;
                     flags |= THAT_OK;
                 }
@@ -700,17 +817,18 @@ impl Machine {
                     if !function_step {
                         zero_locals!(f.n_vars);
                     }
+                    // The caller's `that` range is 2048 up after the return.
                     frames.push(Frame {
                         caller: cur,
                         ret_pc: pc as u32,
                         ret: ret as i16,
                         nargs,
-                        flags,
+                        flags: flags & !THAT_ZERO,
                         watched,
                     });
                     cur = callee as u32;
                     nargs = n;
-                    flags = f.entry_flags(n);
+                    flags = f.entry_flags(n) | (flags & THAT_ZERO);
                     pc = f.start as usize;
                     if function_step {
                         // Desktop: the callee's `function` line is the next step.
@@ -728,7 +846,11 @@ impl Machine {
                 Op::Return => do_return!(),
                 Op::Function { n_vars, method } => {
                     zero_locals!(n_vars);
-                    if method && nargs >= 1 && fast_sp(sp) {
+                    if method
+                        && nargs >= 1
+                        && fast_sp(sp)
+                        && (!function_step || desktop_this_value_ok(rd!(seg[ARG])))
+                    {
                         // The method's `push argument 0; pop pointer 0`.
                         let this = rd!(seg[ARG]);
                         w[usize::from(sp)] = this;
@@ -745,7 +867,7 @@ impl Machine {
 
                 // Fused instructions.
                 Op::Push2(a, b) => {
-                    if !(fast_sp(sp) && operands_ok([a, b], flags)) {
+                    if !fast!(a, b) {
                         deopt!();
                     }
                     skip!(op, 2);
@@ -756,7 +878,7 @@ impl Machine {
                     sp = top + 2;
                 }
                 Op::Move(a, d) => {
-                    if !(fast_sp(sp) && operands_ok([a, d], flags)) {
+                    if !fast!(a, d) {
                         deopt!();
                     }
                     skip!(op, 2);
@@ -765,7 +887,11 @@ impl Machine {
                     dst!(d, v);
                 }
                 Op::MoveRun { from, to, len } => {
-                    if !(fast_sp(sp) && operands_ok([from, to], flags)) {
+                    let last = |o: Operand| Operand {
+                        off: o.off.wrapping_add(u16::from(len) - 1),
+                        ..o
+                    };
+                    if !fast!(from, to, last(from), last(to)) {
                         deopt!();
                     }
                     skip!(op, 2 * u64::from(len));
@@ -793,14 +919,14 @@ impl Machine {
                     }
                 }
                 Op::BinSS { op: o, a, b } => {
-                    if !(fast_sp(sp) && operands_ok([a, b], flags)) {
+                    if !fast!(a, b) {
                         deopt!();
                     }
                     push_push_op!(o, a, b);
                     skip!(op, 3);
                 }
                 Op::BinPop { op: o, a, b, d } => {
-                    if !(fast_sp(sp) && operands_ok([a, b, d], flags)) {
+                    if !fast!(a, b, d) {
                         deopt!();
                     }
                     let r = push_push_op!(o, a, b);
@@ -809,13 +935,13 @@ impl Machine {
                     dst!(d, r);
                 }
                 Op::BinS { op: o, b } => {
-                    if !(fast_sp(sp) && operands_ok([b], flags)) {
+                    if !fast!(b) {
                         deopt!();
                     }
                     push_op!(op, 2, o, b);
                 }
                 Op::BinSPop { op: o, b, d } => {
-                    if !(fast_sp(sp) && operands_ok([b, d], flags)) {
+                    if !fast!(b, d) {
                         deopt!();
                     }
                     push_op!(op, 3, o, b, d);
@@ -827,7 +953,7 @@ impl Machine {
                     not,
                     target,
                 } => {
-                    if !(fast_sp(sp) && operands_ok([a, b], flags)) {
+                    if !fast!(a, b) {
                         deopt!();
                     }
                     skip!(op, 4 + u64::from(not));
@@ -868,16 +994,18 @@ impl Machine {
                     }
                 }
                 Op::ArrayRead { index, base } => {
-                    if !(fast_sp(sp) && operands_ok([index, base], flags)) {
+                    if !fast!(index, base) {
                         deopt!();
                     }
+                    desktop_that_store!(src!(index).wrapping_add(src!(base)));
                     skip!(op, 5);
                     array_read!(index, base);
                 }
                 Op::ArrayReadPop { index, base, to } => {
-                    if !(fast_sp(sp) && operands_ok([index, base, to], flags)) {
+                    if !fast!(index, base, to) {
                         deopt!();
                     }
+                    desktop_that_store!(src!(index).wrapping_add(src!(base)));
                     skip!(op, 6);
                     array_read!(index, base, to);
                 }
@@ -885,22 +1013,24 @@ impl Machine {
                     if !fast_sp(sp) {
                         deopt!();
                     }
-                    skip!(op, 3);
                     let top = sp as usize;
                     let a = w[top - 2].wrapping_add(w[top - 1]);
+                    desktop_that_store!(a);
+                    skip!(op, 3);
                     w[top - 2] = a;
                     sp -= 2;
                     seg[THAT] = a as u16;
-                    flags |= THAT_OK;
+                    flags = (flags | THAT_OK) & !THAT_ZERO;
                     let v = rd!(seg[THAT]);
                     w[top - 2] = v;
                     sp += 1;
                 }
                 Op::StoreThat | Op::StoreThatSrc(_) => {
                     let v = if let Op::StoreThatSrc(s) = *op {
-                        if !(fast_sp(sp) && operands_ok([s], flags)) {
+                        if !fast!(s) {
                             deopt!();
                         }
+                        desktop_that_store!(w[sp as usize - 1]);
                         let v = src!(s);
                         w[sp as usize] = v;
                         v
@@ -908,6 +1038,7 @@ impl Machine {
                         if !fast_sp(sp) {
                             deopt!();
                         }
+                        desktop_that_store!(w[sp as usize - 2]);
                         sp -= 1;
                         w[sp as usize]
                     };
@@ -916,12 +1047,12 @@ impl Machine {
                     w[5] = v;
                     sp -= 1;
                     seg[THAT] = w[sp as usize] as u16;
-                    flags |= THAT_OK;
+                    flags = (flags | THAT_OK) & !THAT_ZERO;
                     w[sp as usize] = v;
                     wr!(seg[THAT], v);
                 }
                 Op::PushReturn(a) => {
-                    if !(fast_sp(sp) && operands_ok([a], flags)) {
+                    if !fast!(a) {
                         deopt!();
                     }
                     skip!(op, 2);

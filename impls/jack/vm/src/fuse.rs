@@ -18,8 +18,10 @@ use crate::program::{Bin, Dst, Op, Operand, Src, ABS, ARG, CONST, LCL, PTR, THAT
 pub(crate) const MAX_FUSED_STEPS: u64 = 8;
 
 /// The fused instruction array (same indexing as `plain`); `starts` holds
-/// each function's first instruction.
-pub(crate) fn fuse(plain: &[Op], starts: &[u32]) -> Vec<Op> {
+/// each function's first instruction. Under the desktop profile (`desktop`)
+/// no fused instruction ends in a `pop pointer` of a value it computes: the
+/// desktop tests that value, and the plain command does.
+pub(crate) fn fuse(plain: &[Op], starts: &[u32], desktop: bool) -> Vec<Op> {
     (0..plain.len())
         .map(|i| match plain[i] {
             Op::Call {
@@ -37,9 +39,22 @@ pub(crate) fn fuse(plain: &[Op], starts: &[u32]) -> Vec<Op> {
                 n_vars,
                 method: true,
             },
-            _ => longest(&plain[i..]),
+            _ => match longest(&plain[i..]) {
+                fused if desktop && pops_pointer(fused) => plain[i],
+                fused => fused,
+            },
         })
         .collect()
+}
+
+/// Whether fused instruction `op` ends in a `pop pointer` (a target `PTR`).
+fn pops_pointer(op: Op) -> bool {
+    let d = match op {
+        Op::Move(_, d) | Op::BinPop { d, .. } | Op::BinSPop { d, .. } => d,
+        Op::ArrayReadPop { to, .. } => to,
+        _ => return false,
+    };
+    usize::from(d.base) == PTR
 }
 
 /// Whether the function at `start` opens with `push argument 0; pop
@@ -324,7 +339,7 @@ mod tests {
         );
         for op in [cond.as_slice(), &read, &store, &copy, &read_into]
             .into_iter()
-            .flat_map(|code| fuse(code, &[]))
+            .flat_map(|code| fuse(code, &[], false))
         {
             assert!(op.steps() <= MAX_FUSED_STEPS);
         }

@@ -497,12 +497,12 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
     for (at, op) in desktop_ops {
         desktop[at] = op;
     }
-    let code = |plain: Vec<Op>| Code {
-        fused: crate::fuse::fuse(&plain, &starts),
+    let code = |plain: Vec<Op>, desktop: bool| Code {
+        fused: crate::fuse::fuse(&plain, &starts, desktop),
         plain,
     };
     // In the order of crate::timing::index.
-    let code = [code(desktop), code(plain)];
+    let code = [code(desktop, true), code(plain, false)];
     Ok(Program {
         functions,
         by_name,

@@ -33,6 +33,12 @@ pub(crate) const LOCAL_OK: u8 = 4;
 pub(crate) const ARG_OK: u8 = 8;
 /// The invocation has at least `arg_reach` arguments (see [`crate::Function`]).
 pub(crate) const ARGS_FIT: u8 = 16;
+/// Desktop: the last `pop pointer 1` stored 0, so `that` reaches from word 0
+/// (the desktop's `that` range starts at the pointer it was given); a
+/// return, or a `pop pointer 1` of any other value, clears it. A callee
+/// inherits it, its frame keeps the caller's flags without it, and
+/// compiled code never runs while it is set (see [`crate::exec`]).
+pub(crate) const THAT_ZERO: u8 = 32;
 
 /// `ret_pc` of the frame below a call made by [`Machine::call`].
 pub(crate) const HOST: u32 = u32::MAX;

@@ -372,3 +372,179 @@ fn a_printing_recursion_overflows_the_desktop_stack_at_step_3252() {
     assert_eq!(message, "Stack overflow in Main.f.2");
     assert_eq!(stack.to_string(), "Sys.init > Main.main > Main.f x 296");
 }
+
+/// `text` (one file, Main.vm) under `profile` on the interpreter and on
+/// compiled code: both end the same way after the same steps, which are
+/// returned with the exit.
+fn on_both_engines(profile: Profile, text: &str) -> (Exit, u64) {
+    let program = Program::from_sources(&[("Main.vm", text)]).unwrap();
+    let runs: Vec<(Exit, u64)> = [hack_vm::Engine::Interp, hack_vm::Engine::Native]
+        .into_iter()
+        .map(|engine| {
+            let mut m = Machine::new(
+                program.clone(),
+                Config {
+                    profile,
+                    engine,
+                    ..Config::default()
+                },
+            );
+            let e = m.run(Some(10_000));
+            (e, m.steps())
+        })
+        .collect();
+    assert_eq!(
+        runs[0], runs[1],
+        "the interpreter, then compiled code:\n{text}"
+    );
+    runs[0].clone()
+}
+
+/// The desktop's message for `text`, on both engines.
+fn desktop_error(text: &str) -> String {
+    match on_both_engines(Profile::Desktop, text).0 {
+        Exit::RuntimeError { message, .. } => message,
+        e => panic!("{e}, not an error:\n{text}"),
+    }
+}
+
+fn desktop_halts(text: &str) {
+    let (e, _) = on_both_engines(Profile::Desktop, text);
+    assert_eq!(e, Exit::Halted, "{text}");
+}
+
+const MAIN: &str = "function Main.main 0\n";
+const END: &str = "push constant 0\nreturn\n";
+
+#[test]
+fn the_desktop_tests_the_value_of_each_pop_pointer() {
+    assert_eq!(
+        desktop_error(&format!("{MAIN}push constant 30000\npop pointer 1\n{END}")),
+        "'That' segment must be in the Heap or Screen range in Main.main.2"
+    );
+    assert_eq!(
+        desktop_error(&format!("{MAIN}push constant 16384\npop pointer 0\n{END}")),
+        "'This' segment must be in the Heap range in Main.main.2"
+    );
+    assert_eq!(
+        desktop_error(&format!("{MAIN}push constant 2047\npop pointer 1\n{END}")),
+        "'That' segment must be in the Heap or Screen range in Main.main.2"
+    );
+    // THIS: the heap, 0 or below; THAT: 0, the heap, the screen and 24576.
+    for (v, p) in [
+        (2048, 0),
+        (16383, 0),
+        (0, 0),
+        (-5, 0),
+        (0, 1),
+        (2048, 1),
+        (16384, 1),
+        (24576, 1),
+    ] {
+        let push = if v < 0 {
+            format!("push constant {}\nneg", -v)
+        } else {
+            format!("push constant {v}")
+        };
+        desktop_halts(&format!("{MAIN}{push}\npop pointer {p}\n{END}"));
+    }
+    // The web IDE takes any value.
+    let (e, _) = on_both_engines(
+        Profile::Web,
+        &format!("{MAIN}push constant 30000\npop pointer 1\n{END}"),
+    );
+    assert_eq!(e, Exit::Halted);
+}
+
+#[test]
+fn a_fused_array_access_outside_the_heap_and_screen_fails_at_its_pop_pointer() {
+    let read = |base: i32| {
+        format!("{MAIN}push constant {base}\npush constant 5\nadd\npop pointer 1\npush that 0\npop temp 0\n{END}")
+    };
+    assert_eq!(
+        desktop_error(&read(24572)),
+        "'That' segment must be in the Heap or Screen range in Main.main.4"
+    );
+    desktop_halts(&read(24571));
+    let store = |base: i32| {
+        format!(
+            "{MAIN}push constant {base}\npush constant 1\nadd\npush constant 7\npop temp 0\n\
+             pop pointer 1\npush temp 0\npop that 0\n{END}"
+        )
+    };
+    assert_eq!(
+        desktop_error(&store(1000)),
+        "'That' segment must be in the Heap or Screen range in Main.main.6"
+    );
+    desktop_halts(&store(3000));
+}
+
+#[test]
+fn the_desktop_tests_each_this_and_that_address_instead_of_the_web_ides_pointer_check() {
+    // THIS was never set: 0 is outside the heap.
+    let text = format!("{MAIN}push this 0\npop temp 0\n{END}");
+    assert_eq!(desktop_error(&text), "Out of segment space in Main.main.1");
+    let Exit::RuntimeError { message, .. } = on_both_engines(Profile::Web, &text).0 else {
+        panic!()
+    };
+    assert_eq!(
+        message,
+        "The this segment cannot be accessed since it was not initialized"
+    );
+    // The last heap word, then one past it.
+    desktop_halts(&format!(
+        "{MAIN}push constant 16380\npop pointer 0\npush this 3\npop this 3\n{END}"
+    ));
+    assert_eq!(
+        desktop_error(&format!(
+            "{MAIN}push constant 16380\npop pointer 0\npush this 4\npop temp 0\n{END}"
+        )),
+        "Out of segment space in Main.main.3"
+    );
+    // `that` reaches the keyboard word and stops there.
+    desktop_halts(&format!(
+        "{MAIN}push constant 24570\npop pointer 1\npush that 6\npop temp 0\n{END}"
+    ));
+    assert_eq!(
+        desktop_error(&format!(
+            "{MAIN}push constant 24570\npop pointer 1\npush that 7\npop temp 0\n{END}"
+        )),
+        "Out of segment space in Main.main.3"
+    );
+    // A callee uses the pointer its caller set, with no `pop pointer` of
+    // its own: the desktop runs it, the web IDE refuses it.
+    let text = format!(
+        "{MAIN}push constant 3000\npop pointer 0\ncall Main.f 0\npop temp 0\n{END}\
+         function Main.f 0\npush this 2\nreturn\n"
+    );
+    desktop_halts(&text);
+    let (e, _) = on_both_engines(Profile::Web, &text);
+    assert!(matches!(e, Exit::RuntimeError { .. }), "{e}");
+}
+
+#[test]
+fn after_a_pop_pointer_1_of_0_that_reaches_from_word_0_until_a_return() {
+    // RAM[5..] through THAT = 0, in the function and in its callee.
+    desktop_halts(&format!(
+        "{MAIN}push constant 0\npop pointer 1\npush that 5\npop that 6\n\
+         call Main.f 0\npop temp 0\n{END}function Main.f 0\npush that 7\nreturn\n"
+    ));
+    // The return starts the range at 2048 again.
+    assert_eq!(
+        desktop_error(&format!(
+            "{MAIN}push constant 0\npop pointer 1\ncall Main.f 0\npop temp 0\npush that 5\n{END}\
+             function Main.f 0\npush constant 1\nreturn\n"
+        )),
+        "Out of segment space in Main.main.5"
+    );
+    // So does a `pop pointer 1` of any other value, for the same word.
+    assert_eq!(
+        desktop_error(&format!(
+            "{MAIN}push constant 0\npop pointer 1\npush constant 2048\npop pointer 1\n\
+             push constant 0\npop pointer 1\npush that 1\npop temp 0\npush constant 3000\n\
+             pop pointer 1\npush that 0\npop temp 0\npush pointer 1\npush constant 2048\nsub\n\
+             pop pointer 1\n{END}"
+        )),
+        "'That' segment must be in the Heap or Screen range in Main.main.16"
+    );
+}

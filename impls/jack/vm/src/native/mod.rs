@@ -18,7 +18,7 @@ mod blocks;
 mod translate;
 
 use crate::exec::Flow;
-use crate::machine::{Frame, Machine, Watcher, MAX_DEPTH};
+use crate::machine::{Frame, Machine, Watcher, MAX_DEPTH, THAT_ZERO};
 use crate::program::{Code, FnId, Op, Program};
 use crate::timing::{self, Timing};
 use cranelift_codegen::ir::{types, AbiParam, UserFuncName};
@@ -376,8 +376,11 @@ impl Machine {
             }
             // (A host call's return leaves PC in the callee: no block then.)
             let (owner, block) = native.block_at[self.pc as usize];
+            // (Compiled code leaves the desktop's `that` from word 0 to
+            // the interpreter: it never runs with THAT_ZERO set.)
             if block != NO_BLOCK
                 && owner == self.cur
+                && self.flags & THAT_ZERO == 0
                 && self.enter_native(native, block, stop_at, watched) == CONTINUE
             {
                 continue;

@@ -1082,6 +1082,34 @@ impl Translator<'_, '_> {
         self.guard(ok, before);
     }
 
+    /// Desktop: leave unless `pop pointer p` of `x` passes the desktop's
+    /// test: for THIS the heap or not above 0; for THAT 2048 to 24576 (0
+    /// is the interpreter's, as it widens the `that` range).
+    fn desktop_pointer_ok(&mut self, p: u8, x: Value, before: &Before) {
+        if self.env.profile != Profile::Desktop {
+            return;
+        }
+        let from = self.b.ins().iadd_imm_s(x, -2048);
+        let room = if p == 0 { 16383 - 2048 } else { 24576 - 2048 };
+        let mut ok = self
+            .b
+            .ins()
+            .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, from, room);
+        if p == 0 {
+            let low = self.b.ins().icmp_imm_s(IntCC::SignedLessThanOrEqual, x, 0);
+            ok = self.b.ins().bor(ok, low);
+        }
+        self.guard(ok, before);
+    }
+
+    /// The web IDE's test that the invocation set the pointer (the desktop
+    /// tests addresses instead, [`Self::desktop_span_ok`]).
+    fn web_flag_ok(&mut self, bit: u8, before: &Before) {
+        if self.env.profile != Profile::Desktop {
+            self.flag_ok(bit, before);
+        }
+    }
+
     fn flag_ok(&mut self, bit: u8, before: &Before) {
         if self.flags_known & bit == 0 {
             let ok = self.flag_set(bit);
@@ -1165,6 +1193,7 @@ impl Translator<'_, '_> {
     fn ptr_base(&mut self, var: Variable, before: &Before) -> Option<Value> {
         let test = self.ptr_tests[(before.pc - self.block_start) as usize];
         if let PtrTest::First(top) = test {
+            self.desktop_span_ok(var, top, before);
             let ok = self.span_ok(var, top);
             self.guard(ok, before);
             self.off_stack(var, top, before);
@@ -1172,10 +1201,34 @@ impl Translator<'_, '_> {
         (test != PtrTest::Each).then(|| self.seg_base(var))
     }
 
+    /// Desktop: leave unless `var + 0 ..= var + top` lie in the range the
+    /// desktop allows the segment of pointer `var`: the heap for `this`,
+    /// 2048 to 24576 for `that` (which the interpreter widens to word 0
+    /// after a `pop pointer 1` of 0, a state compiled code never runs in).
+    /// Stricter than the desktop only where the interpreter then decides.
+    fn desktop_span_ok(&mut self, var: Variable, top: u16, before: &Before) {
+        if self.env.profile != Profile::Desktop {
+            return;
+        }
+        let end = if var == self.v.this { 16383 } else { 24576 };
+        let room = end - 2048 - i64::from(top);
+        let ok = if room < 0 {
+            self.b.ins().iconst(types::I8, 0)
+        } else {
+            let base = self.b.use_var(var);
+            let from = self.b.ins().iadd_imm_s(base, -2048);
+            self.b
+                .ins()
+                .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, from, room)
+        };
+        self.guard(ok, before);
+    }
+
     fn ptr_read(&mut self, var: Variable, i: u16, before: &Before) -> Value {
         match self.ptr_base(var, before) {
             Some(p) => self.load_at(p, i),
             None => {
+                self.desktop_span_ok(var, i, before);
                 let a = self.seg_addr(var, i);
                 self.read(a, before)
             }
@@ -1186,6 +1239,7 @@ impl Translator<'_, '_> {
         match self.ptr_base(var, before) {
             Some(p) => self.store_at(p, i, x),
             None => {
+                self.desktop_span_ok(var, i, before);
                 let a = self.seg_addr(var, i);
                 self.write(a, x, before)
             }
@@ -1241,14 +1295,14 @@ impl Translator<'_, '_> {
             }
             Op::PushThis(i) | Op::PushThisChk(i) => {
                 if matches!(op, Op::PushThisChk(_)) {
-                    self.flag_ok(THIS_OK, before);
+                    self.web_flag_ok(THIS_OK, before);
                 }
                 let x = self.ptr_read(self.v.this, i, before);
                 s.push(x);
             }
             Op::PushThat(i) | Op::PushThatChk(i) => {
                 if matches!(op, Op::PushThatChk(_)) {
-                    self.flag_ok(THAT_OK, before);
+                    self.web_flag_ok(THAT_OK, before);
                 }
                 let x = self.ptr_read(self.v.that, i, before);
                 s.push(x);
@@ -1275,14 +1329,14 @@ impl Translator<'_, '_> {
             }
             Op::PopThis(i) | Op::PopThisChk(i) => {
                 if matches!(op, Op::PopThisChk(_)) {
-                    self.flag_ok(THIS_OK, before);
+                    self.web_flag_ok(THIS_OK, before);
                 }
                 let x = s.pop(self);
                 self.ptr_write(self.v.this, i, x, before);
             }
             Op::PopThat(i) | Op::PopThatChk(i) => {
                 if matches!(op, Op::PopThatChk(_)) {
-                    self.flag_ok(THAT_OK, before);
+                    self.web_flag_ok(THAT_OK, before);
                 }
                 let x = s.pop(self);
                 self.ptr_write(self.v.that, i, x, before);
@@ -1300,6 +1354,7 @@ impl Translator<'_, '_> {
             }
             Op::PopPtr(p) => {
                 let x = s.pop(self);
+                self.desktop_pointer_ok(p, x, before);
                 let (var, bit) = if p == 0 {
                     (self.v.this, THIS_OK)
                 } else {
