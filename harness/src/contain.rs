@@ -446,6 +446,12 @@ impl Implementation for Contained {
         self.inner.adapter()
     }
 
+    /// In order when the inner one is; each batch still goes through
+    /// [`Contained::eval`].
+    fn in_order(&self) -> bool {
+        self.inner.in_order()
+    }
+
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
         let Some(first) = batch.first() else {
             return Ok(Vec::new());

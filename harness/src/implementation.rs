@@ -208,6 +208,10 @@ pub fn default_batch_size(level: Level) -> usize {
     }
 }
 
+/// What one batch gave: its answers, or why it gave none (a contained
+/// failure carries the answers before it).
+pub type BatchAnswers = Result<Vec<Outcome<Answer>>, ImplError>;
+
 /// One implementation, as the runner and the localizer see it.
 pub trait Implementation: Send + Sync {
     /// The name printed in reports: the label it was opened under, its
@@ -230,6 +234,23 @@ pub trait Implementation: Send + Sync {
 
     /// Answer every vector of `batch` (all of one level), in order.
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError>;
+
+    /// Whether one process answers its batches one after another (a pipe
+    /// adapter). The runner then hands it all of a set's batches at once,
+    /// in set order, through [`Implementation::eval_in_order`], so which
+    /// batch a crash stops it at never depends on thread timing.
+    fn in_order(&self) -> bool {
+        false
+    }
+
+    /// Answer `batches` in set order, handing each one's answers to
+    /// `done` with its index as they come. The default evaluates them one
+    /// by one; a pipe keeps the next batch in flight.
+    fn eval_in_order(&self, batches: &[&[Vector]], done: &mut dyn FnMut(usize, BatchAnswers)) {
+        for (k, batch) in batches.iter().enumerate() {
+            done(k, self.eval(batch));
+        }
+    }
 
     /// The whole image by a path of its own that also counts each pixel's
     /// cost, or `None` (the default): the image is then rendered pixel by

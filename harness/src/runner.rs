@@ -6,7 +6,7 @@
 
 use crate::compare::{compare, odd_one_out, Comparison, Policy, Sides};
 use crate::contain::{Failure, FailureKind};
-use crate::implementation::{Answer, ImplError, Implementation, Numbers};
+use crate::implementation::{Answer, BatchAnswers, ImplError, Implementation, Numbers};
 use crate::progress;
 use common::Outcome;
 use indicatif::ProgressBar;
@@ -97,13 +97,9 @@ fn bars(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) -> 
         .collect()
 }
 
-/// What one batch gave: its answers, or why it gave none (a contained
-/// failure carries the answers before it).
-type BatchAnswers = Result<Vec<Outcome<Answer>>, ImplError>;
-
 /// One batch's answers checked for their count.
-fn checked(imp: &dyn Implementation, chunk: &[Vector]) -> BatchAnswers {
-    imp.eval(chunk).and_then(|a| {
+fn counted(answers: BatchAnswers, chunk: &[Vector]) -> BatchAnswers {
+    answers.and_then(|a| {
         if a.len() == chunk.len() {
             Ok(a)
         } else {
@@ -115,6 +111,26 @@ fn checked(imp: &dyn Implementation, chunk: &[Vector]) -> BatchAnswers {
         }
     })
 }
+
+/// The runner's unit of parallel work.
+enum Job<'a> {
+    /// One batch of implementation `i`, from `start` in the set.
+    Batch {
+        i: usize,
+        start: usize,
+        chunk: &'a [Vector],
+    },
+    /// Every batch of an implementation that answers in order, with
+    /// their starts.
+    InOrder {
+        i: usize,
+        batches: Vec<(usize, &'a [Vector])>,
+    },
+}
+
+/// One batch's result: the implementation, the batch's start, its answers
+/// and the seconds it took.
+type Done = (usize, usize, BatchAnswers, f64);
 
 /// Join one implementation's batches, in set order, into its answers. At
 /// the first batch that failed, a contained failure keeps every answer
@@ -161,39 +177,79 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
     let bars = bars(impls, set, options);
     // The start of each implementation's earliest failed batch.
     let failed: Vec<AtomicUsize> = impls.iter().map(|_| AtomicUsize::new(usize::MAX)).collect();
-    // One job per (implementation, batch); rayon spreads them over cores.
-    let jobs: Vec<(usize, usize, &[Vector])> = impls
+    // One job per (implementation, batch), or per implementation that
+    // answers in order; rayon spreads them over cores.
+    let jobs: Vec<Job> = impls
         .iter()
         .enumerate()
         .filter(|(_, imp)| imp.supports(set.level))
         .flat_map(|(i, imp)| {
             let size = imp.batch_size(set.level).max(1);
-            set.vectors
+            let batches = set
+                .vectors
                 .chunks(size)
                 .enumerate()
-                .map(move |(k, chunk)| (i, k * size, chunk))
+                .map(move |(k, chunk)| (k * size, chunk));
+            if imp.in_order() {
+                vec![Job::InOrder {
+                    i,
+                    batches: batches.collect(),
+                }]
+            } else {
+                batches
+                    .map(|(start, chunk)| Job::Batch { i, start, chunk })
+                    .collect()
+            }
         })
         .collect();
-    let work = || -> Vec<(usize, usize, BatchAnswers, f64)> {
+    let one_batch = |i: usize, start: usize, chunk: &[Vector]| -> Done {
+        let begin = Instant::now();
+        let answers = if start > failed[i].load(Ordering::Relaxed) {
+            Err(Failure::new(
+                &impls[i].label(),
+                FailureKind::NotRun,
+                "an earlier batch failed".into(),
+                chunk,
+            )
+            .into())
+        } else {
+            counted(impls[i].eval(chunk), chunk)
+        };
+        if answers.is_err() {
+            failed[i].fetch_min(start, Ordering::Relaxed);
+        }
+        bars[i].inc(chunk.len() as u64);
+        (i, start, answers, begin.elapsed().as_secs_f64())
+    };
+    let in_order = |i: usize, batches: &[(usize, &[Vector])]| -> Vec<Done> {
+        let chunks: Vec<&[Vector]> = batches.iter().map(|(_, c)| *c).collect();
+        let mut done: Vec<Option<Done>> = batches.iter().map(|_| None).collect();
+        let mut begin = Instant::now();
+        impls[i].eval_in_order(&chunks, &mut |k, answers| {
+            let Some(&(start, chunk)) = batches.get(k) else {
+                return;
+            };
+            bars[i].inc(chunk.len() as u64);
+            let seconds = begin.elapsed().as_secs_f64();
+            done[k].get_or_insert((i, start, counted(answers, chunk), seconds));
+            begin = Instant::now();
+        });
+        // A batch it never reported is a failure, not a gap in the answers.
+        done.into_iter()
+            .zip(batches)
+            .map(|(d, &(start, _))| {
+                d.unwrap_or_else(|| {
+                    let why = "its in-order evaluation gave this batch no answers".into();
+                    (i, start, Err(ImplError::Failed(why)), 0.0)
+                })
+            })
+            .collect()
+    };
+    let work = || -> Vec<Done> {
         jobs.into_par_iter()
-            .map(|(i, start, chunk)| {
-                let begin = Instant::now();
-                let answers = if start > failed[i].load(Ordering::Relaxed) {
-                    Err(Failure::new(
-                        &impls[i].label(),
-                        FailureKind::NotRun,
-                        "an earlier batch failed".into(),
-                        chunk,
-                    )
-                    .into())
-                } else {
-                    checked(impls[i], chunk)
-                };
-                if answers.is_err() {
-                    failed[i].fetch_min(start, Ordering::Relaxed);
-                }
-                bars[i].inc(chunk.len() as u64);
-                (i, start, answers, begin.elapsed().as_secs_f64())
+            .flat_map_iter(|job| match job {
+                Job::Batch { i, start, chunk } => vec![one_batch(i, start, chunk)],
+                Job::InOrder { i, batches } => in_order(i, &batches),
             })
             .collect()
     };

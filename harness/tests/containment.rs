@@ -425,3 +425,89 @@ fn contained_batches_reuse_their_workers_and_replace_one_that_hangs() {
         assert_eq!(answers(1).unwrap().len(), 1, "answered after the hang");
     }
 }
+
+/// `count` distinct `double` vectors.
+fn many_doubles(count: i16) -> VectorSet {
+    let vectors = (0..count)
+        .map(|i| {
+            Vector::Op(OpVector {
+                category: "double".into(),
+                op: Op::Double,
+                a: F316::new(i % 2, 120 + i % 50, 8192 + i % 8000),
+                b: None,
+            })
+        })
+        .collect();
+    VectorSet::new("many-doubles", Level::Ops, "", None, vectors)
+}
+
+/// A pipe answers its batches in set order, whatever the threads do: an
+/// adapter that crashes at its sixth answer always crashes on the set's
+/// sixth input, with the five before it compared, however many batches
+/// the set has (three here).
+#[test]
+fn a_pipe_gets_its_batches_in_set_order_so_a_crash_is_always_at_the_same_input() {
+    let reference = Cast::builtin().open("ref-f316").unwrap();
+    let set = many_doubles(2 * 4096 + 10);
+    for _ in 0..5 {
+        let pipe = misbehaving("crash").unwrap();
+        let report = diff_set(&[reference.as_ref(), &pipe], &set, RunOptions::default());
+        let (_, e) = report.failures().next().expect("the adapter crashed");
+        let f = failure(e);
+        assert_eq!((f.kind, f.index), (FailureKind::Crash, 5), "{f}");
+        assert_eq!(report.comparisons[0].vectors, 5);
+    }
+}
+
+/// Notes the order its batches came in, and whether two ever overlapped.
+#[derive(Default)]
+struct InOrder {
+    starts: std::sync::Mutex<Vec<i16>>,
+    busy: std::sync::atomic::AtomicBool,
+    overlapped: std::sync::atomic::AtomicBool,
+}
+
+impl Implementation for InOrder {
+    fn label(&self) -> String {
+        "in-order".into()
+    }
+    fn numbers(&self) -> Numbers {
+        Numbers::Float316
+    }
+    fn supports(&self, level: Level) -> bool {
+        level == Level::Ops
+    }
+    fn batch_size(&self, _: Level) -> usize {
+        3
+    }
+    fn in_order(&self) -> bool {
+        true
+    }
+    fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+        use std::sync::atomic::Ordering::SeqCst;
+        if self.busy.swap(true, SeqCst) {
+            self.overlapped.store(true, SeqCst);
+        }
+        let Vector::Op(first) = &batch[0] else {
+            panic!("ops only")
+        };
+        self.starts.lock().unwrap().push(first.a.m - 8192);
+        std::thread::sleep(Duration::from_millis(2));
+        self.busy.store(false, SeqCst);
+        Ok(batch.iter().map(|_| Outcome::OutOfDomain).collect())
+    }
+}
+
+/// An implementation that answers in order gets every batch in set
+/// order, one at a time, while the runner still runs others beside it.
+#[test]
+fn the_runner_gives_an_in_order_implementation_its_batches_in_turn() {
+    let reference = Cast::builtin().open("ref-f316").unwrap();
+    let set = many_doubles(40);
+    let subject = InOrder::default();
+    let report = diff_set(&[reference.as_ref(), &subject], &set, RunOptions::default());
+    assert_eq!(report.comparisons[0].vectors, 40);
+    let starts = subject.starts.lock().unwrap().clone();
+    assert_eq!(starts, (0..40).step_by(3).collect::<Vec<i16>>());
+    assert!(!subject.overlapped.load(std::sync::atomic::Ordering::SeqCst));
+}

@@ -13,7 +13,7 @@ mod process;
 pub mod protocol;
 
 use crate::contain::{Failure, FailureKind, Watchdog};
-use crate::implementation::{Answer, ImplError, Implementation, Num, Numbers};
+use crate::implementation::{Answer, BatchAnswers, ImplError, Implementation, Num, Numbers};
 use common::{Outcome, TraceRecord};
 use process::{Adapter, Reply, Request, StartError};
 use protocol::{Expect, Handshake};
@@ -145,8 +145,15 @@ impl Pipe {
     /// Send `batch` (asking for op traces when `trace`) and wait for its
     /// answers under the watchdog.
     fn ask(&self, batch: &[Vector], trace: bool) -> Result<Vec<process::Answered>, ImplError> {
+        let sent = self.send(batch, trace)?;
+        self.receive(batch, sent)
+    }
+
+    /// Send `batch` (asking for op traces when `trace`): where its reply
+    /// will come, or `None` for an empty batch.
+    fn send(&self, batch: &[Vector], trace: bool) -> Result<Option<Sent>, ImplError> {
         let Some(first) = batch.first() else {
-            return Ok(Vec::new());
+            return Ok(None);
         };
         let level = first.level();
         let mut lines = String::with_capacity(64 * (batch.len() + 1));
@@ -178,6 +185,18 @@ impl Pipe {
             ))
         })?;
         let limit = self.watchdog.limit(level, batch.len()) * (ahead as u32 + 1);
+        Ok(Some(Sent { rx, limit }))
+    }
+
+    /// Wait for the reply to `batch`, sent as `sent`, under the watchdog.
+    fn receive(
+        &self,
+        batch: &[Vector],
+        sent: Option<Sent>,
+    ) -> Result<Vec<process::Answered>, ImplError> {
+        let Some(Sent { rx, limit }) = sent else {
+            return Ok(Vec::new());
+        };
         let reply = match crate::contain::wait(&rx, limit) {
             Some(Some(reply)) => reply,
             Some(None) => {
@@ -208,7 +227,7 @@ impl Pipe {
             None => Ok(reply.answers),
             Some((kind, message)) => {
                 let outcomes = reply.answers.into_iter().map(|(o, _)| o).collect();
-                let mut f = Failure::new(label, kind, message, batch).after(outcomes, batch);
+                let mut f = Failure::new(&self.label, kind, message, batch).after(outcomes, batch);
                 if kind != FailureKind::NotRun {
                     f.stderr = self.adapter.stderr_tail();
                 }
@@ -216,7 +235,28 @@ impl Pipe {
             }
         }
     }
+
+    /// Why it cannot answer `batch`: a level its handshake does not declare.
+    fn unsupported(&self, batch: &[Vector]) -> Option<ImplError> {
+        let v = batch.iter().find(|v| !self.supports(v.level()))?;
+        Some(ImplError::Unsupported(format!(
+            "the {} level (its handshake declares {:?})",
+            v.level(),
+            self.hello.levels
+        )))
+    }
 }
+
+/// A batch sent: where its reply comes, and how long it may take (its own
+/// watchdog limit for each batch ahead of it, and itself).
+struct Sent {
+    rx: std::sync::mpsc::Receiver<Reply>,
+    limit: Duration,
+}
+
+/// Batches a pipe keeps sent ahead of the one whose answers it waits for,
+/// so the adapter never waits for the harness.
+const SENT_AHEAD: usize = 1;
 
 impl Implementation for Pipe {
     fn label(&self) -> String {
@@ -241,18 +281,44 @@ impl Implementation for Pipe {
     }
 
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
-        if let Some(v) = batch.iter().find(|v| !self.supports(v.level())) {
-            return Err(ImplError::Unsupported(format!(
-                "the {} level (its handshake declares {:?})",
-                v.level(),
-                self.hello.levels
-            )));
+        if let Some(e) = self.unsupported(batch) {
+            return Err(e);
         }
         Ok(self
             .ask(batch, false)?
             .into_iter()
             .map(|(o, _)| o)
             .collect())
+    }
+
+    /// One process answers the batches in turn.
+    fn in_order(&self) -> bool {
+        true
+    }
+
+    /// Each batch is sent before the answers of the one ahead of it are
+    /// awaited.
+    fn eval_in_order(&self, batches: &[&[Vector]], done: &mut dyn FnMut(usize, BatchAnswers)) {
+        let mut waiting = std::collections::VecDeque::new();
+        let mut answer = |k: usize, sent: Result<Option<Sent>, ImplError>| {
+            let answers = sent.and_then(|s| self.receive(batches[k], s));
+            done(k, answers.map(|a| a.into_iter().map(|(o, _)| o).collect()));
+        };
+        for (k, batch) in batches.iter().enumerate() {
+            let sent = match self.unsupported(batch) {
+                Some(e) => Err(e),
+                None => self.send(batch, false),
+            };
+            waiting.push_back((k, sent));
+            if waiting.len() > SENT_AHEAD {
+                if let Some((j, sent)) = waiting.pop_front() {
+                    answer(j, sent);
+                }
+            }
+        }
+        for (j, sent) in waiting {
+            answer(j, sent);
+        }
     }
 
     /// The adapter's trace of `input`. For a pixel, the adapter traces its
