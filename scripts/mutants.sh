@@ -5,8 +5,9 @@
 # all of them; harness: its library tests, as the integration tests rebuild
 # the whole harness per mutant), and of the code that decides a verdict
 # (`gates`: the verdict type, merge, measure, check, the report model's
-# comparisons and the nightly's summary), judged by the library tests and
-# tests/gates.rs, which runs the binary on faulty implementations.
+# comparisons and the nightly's summary), judged by the library tests,
+# tests/gates.rs, which runs the binary on faulty implementations, and the
+# merge and check suites.
 #   scripts/mutants.sh [float316|compare|gates] [K/N]    (default: all, whole)
 # K/N runs every N-th mutant from the K-th (K counts from 0), so N machines
 # share a file. Installs cargo-mutants from crates.io when missing. Results go
@@ -54,6 +55,8 @@ if [ "$which" = all ] || [ "$which" = gates ]; then
         --file harness/src/measure.rs --file harness/src/commands/check.rs \
         --file harness/src/report/model.rs --file harness/src/nightly/mod.rs \
         --timeout 300 --build-timeout 1500 \
-        --cargo-test-arg=--lib --cargo-test-arg=--test --cargo-test-arg=gates || status=$?
+        --cargo-test-arg=--lib --cargo-test-arg=--test --cargo-test-arg=gates \
+        --cargo-test-arg=--test --cargo-test-arg=merge \
+        --cargo-test-arg=--test --cargo-test-arg=check || status=$?
 fi
 exit "$status"

@@ -203,3 +203,56 @@ impl ImageError {
         .judge(self.pixels, self.flips, None, self.traps)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::implementation::ImplError;
+
+    /// The spec's image is the reference's render, pixel for pixel, and a
+    /// whole render has every pixel of it.
+    #[test]
+    fn the_spec_image_is_the_reference_render_of_every_pixel() {
+        let (render, _) = render(&Cast::builtin(), "ref-f316", false).unwrap();
+        assert_eq!(render.pixels(), (WIDTH * HEIGHT) as u64);
+        let spec = spec_image().unwrap();
+        assert_eq!(spec, render.images.bits);
+        // Black and white only, so where the grey threshold lies between
+        // them does not matter.
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../vectors/images/seed-float316-512x256.png");
+        let luma = image::open(path).unwrap().to_luma8();
+        assert!(luma.pixels().all(|p| p.0[0] == 0 || p.0[0] == 255));
+        assert!(spec.data().iter().any(|&w| w) && spec.data().iter().any(|&w| !w));
+    }
+
+    /// Answers every pixel with a boolean.
+    struct NotPixels;
+
+    impl Implementation for NotPixels {
+        fn label(&self) -> String {
+            "not-pixels".into()
+        }
+        fn numbers(&self) -> Numbers {
+            Numbers::F64
+        }
+        fn supports(&self, level: Level) -> bool {
+            level == Level::Pixels
+        }
+        fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+            Ok(batch
+                .iter()
+                .map(|_| Outcome::Value(Answer::Bool { value: true }))
+                .collect())
+        }
+    }
+
+    #[test]
+    fn a_render_whose_pixels_are_not_pixels_is_an_error_naming_the_implementation() {
+        let e = render_with(&NotPixels, 0.0, false).unwrap_err();
+        assert!(
+            format!("{e:#}").contains("not-pixels: a pixel answered"),
+            "{e:#}"
+        );
+    }
+}

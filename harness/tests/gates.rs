@@ -206,6 +206,22 @@ fn the_nightly_fails_on_a_float_port_beyond_policy_and_on_one_that_crashes() {
                 .any(|n| n["what"].as_str().unwrap().starts_with(name))),
             "{missing}"
         );
+        // Also a problem at the report's top, and the step has its time.
+        let problems = &report["problems"];
+        assert!(
+            problems
+                .as_array()
+                .is_some_and(|p| p.iter().any(|l| l.as_str().unwrap().starts_with(name))),
+            "{problems}"
+        );
+        let steps: Vec<&str> = report["meta"]["steps"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s["step"].as_str().unwrap())
+            .collect();
+        assert!(steps.len() >= 2, "{steps:?}");
+        assert_eq!(steps[0], "open implementations", "{steps:?}");
     }
 }
 

@@ -72,10 +72,71 @@ fn four_shards_merge_into_the_unsharded_report() {
             MergeError::BadShard(0, shard)
         );
     }
+    // Shards of two campaigns (0/4 beside 1/3) are refused.
+    let mut other = parts[1].clone();
+    other[0].shard = Some(Shard { index: 1, count: 3 });
+    assert_eq!(
+        merge(&[parts[0].clone(), other]).unwrap_err(),
+        MergeError::Counts(4, 3)
+    );
     let mut huge = edited(&|r| r.comparisons[0].vectors = usize::MAX);
     huge.push(parts[1].clone());
     assert_eq!(
         merge(&huge).unwrap_err(),
         MergeError::Overflow("compared vectors")
     );
+}
+
+/// The error policy's figures merged: counts summed, maxima kept, and the
+/// mean error weighted by each shard's values (1.0 over 10 values and 3.0
+/// over 30 give 2.5, not the mean of the means).
+#[test]
+fn merged_error_figures_weigh_each_shards_mean_by_its_values() {
+    let set = testfloat::set(&[common::Op::Add], CaseLevel::One, testfloat::DEFAULT_SEED);
+    let cast = harness::cast::Cast::builtin();
+    let a = cast.open("ref-f316").unwrap();
+    let b = cast.open("ref-f316+add-align-off-by-one").unwrap();
+    let impls: Vec<&dyn Implementation> = vec![a.as_ref(), b.as_ref()];
+    let stats =
+        |values: usize, mean_abs: f64, max_abs: f64, flips: usize| harness::compare::ErrorStats {
+            values,
+            max_abs,
+            mean_abs,
+            max_rel: max_abs / 10.0,
+            max_ulps_f32: None,
+            pixels: 2 * values,
+            flips,
+        };
+    let parts: Vec<Vec<LevelReport>> = [(0, stats(10, 1.0, 4.0, 1)), (1, stats(30, 3.0, 2.0, 2))]
+        .into_iter()
+        .map(|(k, st)| {
+            let mut r = run_shard(
+                &impls,
+                &set,
+                Shard { index: k, count: 2 },
+                RunOptions::default(),
+            );
+            r.comparisons[0].stats = Some(st);
+            vec![r]
+        })
+        .collect();
+    let merged = merge(&parts).unwrap();
+    let s = merged.reports[0].comparisons[0].stats.clone().unwrap();
+    assert_eq!((s.values, s.pixels, s.flips), (40, 80, 3));
+    assert_eq!((s.max_abs, s.max_rel), (4.0, 0.4));
+    assert_eq!(s.mean_abs, 2.5);
+    // No value compared: a mean of 0, not 0/0.
+    let empty: Vec<Vec<LevelReport>> = parts
+        .iter()
+        .map(|p| {
+            let mut p = p.clone();
+            p[0].comparisons[0].stats = Some(stats(0, 0.0, 0.0, 0));
+            p
+        })
+        .collect();
+    let s = merge(&empty).unwrap().reports[0].comparisons[0]
+        .stats
+        .clone()
+        .unwrap();
+    assert_eq!(s.mean_abs, 0.0);
 }

@@ -210,13 +210,19 @@ fn max_error(cast: &Cast, imp: &str, threshold: f64, metric: Metric) -> Result<B
 
 fn min_speed(cast: &Cast, imp: &str, threshold: f64) -> Result<Bisect> {
     let (r, _) = measure::render(cast, imp, false)?;
-    let speed = r.pixels() as f64 / r.render_s.max(1e-9);
+    Ok(speed_answer(imp, r.pixels(), r.render_s, threshold))
+}
+
+/// The `--min-speed` answer for `pixels` rendered in `seconds`: good at
+/// the threshold's speed or above.
+fn speed_answer(imp: &str, pixels: u64, seconds: f64, threshold: f64) -> Bisect {
+    let speed = pixels as f64 / seconds.max(1e-9);
     let what = format!("{imp}: {speed:.0} pixels/s, threshold {threshold:.0}");
-    Ok(if speed >= threshold {
+    if speed >= threshold {
         Bisect::Good(what)
     } else {
         Bisect::Bad(what)
-    })
+    }
 }
 
 /// Run `harness check`: print the verdict's line and exit with its code
@@ -233,6 +239,8 @@ pub fn run(args: CheckArgs, cast: Result<Cast, CastError>) -> Result<ExitCode> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::implementation::Answer;
+    use common::Outcome;
 
     #[test]
     fn exit_codes_follow_git_bisect() {
@@ -240,6 +248,102 @@ mod tests {
         assert_eq!(Bisect::Bad("x".into()).exit_code(), 1);
         assert_eq!(Bisect::Undecidable("x".into()).exit_code(), 125);
         assert_eq!(Bisect::Undecidable("no GPU".into()).line(), "skip: no GPU");
+    }
+
+    #[test]
+    fn the_speed_is_pixels_over_seconds_and_good_from_the_threshold_up() {
+        assert_eq!(
+            speed_answer("x", 131_072, 2.0, 65_536.0),
+            Bisect::Good("x: 65536 pixels/s, threshold 65536".into())
+        );
+        assert!(matches!(
+            speed_answer("x", 131_072, 2.0, 65_537.0),
+            Bisect::Bad(_)
+        ));
+    }
+
+    /// A contained failure of the implementation's own is an answer
+    /// (bad); a batch it was never asked, or another error, is not.
+    #[test]
+    fn only_an_implementations_own_contained_failure_decides() {
+        use crate::contain::{Failure, FailureKind};
+        let contained = |kind| {
+            anyhow::Error::new(ImplError::Contained(Box::new(Failure::new(
+                "port",
+                kind,
+                "boom".into(),
+                &[],
+            ))))
+            .context("rendering")
+        };
+        let own = contained(FailureKind::Panic);
+        assert_eq!(
+            contained_failure(&own).map(|f| f.label.as_str()),
+            Some("port")
+        );
+        assert!(contained_failure(&contained(FailureKind::NotRun)).is_none());
+        assert!(contained_failure(&anyhow::anyhow!("no such file")).is_none());
+    }
+
+    /// Answers a white pixel of shade 0.5 to every input, except `changed`.
+    struct Pixels {
+        changed: Vec<(vectors::Vector, Outcome<Answer>)>,
+    }
+
+    impl Implementation for Pixels {
+        fn label(&self) -> String {
+            format!("pixels{}", self.changed.len())
+        }
+        fn numbers(&self) -> crate::implementation::Numbers {
+            crate::implementation::Numbers::F64
+        }
+        fn supports(&self, level: vectors::Level) -> bool {
+            level == vectors::Level::Pixels
+        }
+        fn eval(&self, batch: &[vectors::Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
+            Ok(batch
+                .iter()
+                .map(|v| {
+                    self.changed
+                        .iter()
+                        .find(|(k, _)| k == v)
+                        .map_or_else(|| pixel(true), |(_, a)| a.clone())
+                })
+                .collect())
+        }
+    }
+
+    fn pixel(white: bool) -> Outcome<Answer> {
+        Outcome::Value(Answer::Pixel {
+            shade: crate::implementation::Num::F64(0.5),
+            white,
+        })
+    }
+
+    /// The bad answer names the first difference beyond the policy (a
+    /// pixel answered out of domain), not the tolerated flip before it.
+    #[test]
+    fn a_divergence_is_named_by_its_first_untolerated_difference() {
+        let set = measure::full_image_set();
+        let a = Pixels { changed: vec![] };
+        let b = Pixels {
+            changed: vec![
+                (set.vectors[0].clone(), pixel(false)),
+                (set.vectors[3].clone(), Outcome::OutOfDomain),
+            ],
+        };
+        let report = diff_set(&[&a, &b], &set, RunOptions { progress: false });
+        let d = &report.comparisons[0].divergences;
+        assert!(d.len() == 2 && d[0].tolerated && !d[1].tolerated, "{d:?}");
+        assert_ne!(d[0].input, d[1].input);
+        let Bisect::Bad(line) = no_divergence_between(&a, &b, std::slice::from_ref(&set)).unwrap()
+        else {
+            panic!("a divergence beyond policy is bad")
+        };
+        assert!(
+            line.ends_with(&format!("first at {}", d[1].input)),
+            "{line}"
+        );
     }
 
     #[test]

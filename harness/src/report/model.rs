@@ -590,3 +590,45 @@ impl Report {
         Ok(serde_json::from_value(value)?)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::verdict::{Status, Verdict};
+
+    #[test]
+    fn a_bench_rows_speed_is_the_inverse_of_its_time_per_pixel_and_0_without_one() {
+        let row = |per_pixel_s| BenchRow {
+            per_pixel_s,
+            ..BenchRow::default()
+        };
+        assert_eq!(row(0.25).pixels_per_s(), 4.0);
+        assert_eq!(row(0.0).pixels_per_s(), 0.0);
+    }
+
+    /// The self-test joins the verdict: a failed one is beyond policy,
+    /// naming its failing checks; a passed one is within.
+    #[test]
+    fn a_failed_self_test_fails_the_verdict_with_its_failing_checks() {
+        for (passed, lines) in [
+            (true, vec!["ok add", "ok mul"]),
+            (false, vec!["ok add", "FAIL mul: 3 of 9"]),
+        ] {
+            let mut report = Report::new(RunMeta::default());
+            report.selftest = Some(SelfTest {
+                passed,
+                lines: lines.iter().map(|l| l.to_string()).collect(),
+            });
+            let mut verdict = Verdict::new(false);
+            report.add_comparisons_to(&mut verdict);
+            assert_eq!(verdict.cases(), 2);
+            if passed {
+                assert_eq!(verdict.status(), Status::Agreed);
+            } else {
+                assert_eq!(verdict.status(), Status::Diverged);
+                let why = verdict.compared[0].beyond_policy.clone().unwrap();
+                assert_eq!(why, "the self-test failed: FAIL mul: 3 of 9");
+            }
+        }
+    }
+}
