@@ -5,7 +5,8 @@
 
 use crate::exit::Exit;
 use crate::machine::{
-    Frame, Machine, Watcher, ARG_OK, HOST, LOCAL_OK, MAX_DEPTH, THAT_OK, THAT_ZERO, THIS_OK,
+    Frame, Machine, Watcher, ARG_OK, DESKTOP_TEST, HOST, LOCAL_OK, MAX_DEPTH, THAT_OK, THAT_ZERO,
+    THIS_OK,
 };
 use crate::program::{Bin, Code, Op, Operand, Program, ARG, CONST, LCL, PTR, THAT, THIS};
 use crate::timing::{Timing, STACK_BASE, STACK_LAST};
@@ -150,9 +151,10 @@ fn fast_sp(sp: u16) -> bool {
 /// Whether none of `operands` can fail in this invocation (see
 /// [`crate::program::Operand::need`]).
 #[inline(always)]
-fn operands_ok<const N: usize>(operands: [Operand; N], flags: u8) -> bool {
+fn operands_ok<const N: usize>(operands: [Operand; N], flags: u8, seg: &[u16; 8]) -> bool {
     let need = operands.iter().fold(0, |n, o| n | o.need);
-    flags & need == need
+    let web = need & !DESKTOP_TEST;
+    flags & web == web && (need & DESKTOP_TEST == 0 || desktop_operands_ok(operands, seg, flags))
 }
 
 #[inline(always)]
@@ -361,8 +363,9 @@ impl Machine {
                     push!($e);
                 }};
             }
-            // The web IDE's test that the invocation set the pointer; the
-            // desktop makes its own address test instead.
+            // The checked forms (all of the desktop's `this`/`that`): the web
+            // IDE's test that the invocation set the pointer, or the
+            // desktop's address test.
             macro_rules! this_ok {
                 ($bit:expr, $msg:expr, $desktop:expr) => {
                     if function_step {
@@ -375,14 +378,14 @@ impl Machine {
             // Desktop: the address tests of `this i` and `that i`.
             macro_rules! desktop_this {
                 ($i:expr) => {
-                    if function_step && !desktop_this_ok(seg[THIS], $i) {
+                    if !desktop_this_ok(seg[THIS], $i) {
                         break 'run Some(Halt::Error(SEGMENT_SPACE.into()));
                     }
                 };
             }
             macro_rules! desktop_that {
                 ($i:expr) => {
-                    if function_step && !desktop_that_ok(seg[THAT], $i, flags) {
+                    if !desktop_that_ok(seg[THAT], $i, flags) {
                         break 'run Some(Halt::Error(SEGMENT_SPACE.into()));
                     }
                 };
@@ -448,9 +451,7 @@ impl Machine {
             // and every operand sure to pass its profile's tests.
             macro_rules! fast {
                 ($($o:expr),+) => {
-                    fast_sp(sp)
-                        && operands_ok([$($o),+], flags)
-                        && (!function_step || desktop_operands_ok([$($o),+], &seg, flags))
+                    fast_sp(sp) && operands_ok([$($o),+], flags, &seg)
                 };
             }
             // Undo the fetch and let plain code run from here.
@@ -538,6 +539,10 @@ impl Machine {
                     let a = push_push_op!(Bin::Add, $index, $base);
                     let top = sp - 1;
                     sp = top;
+                    // (Under the desktop `this`/`that` lie above the stack,
+                    // so the stack words written so far are dead ones the
+                    // plain commands write again.)
+                    desktop_that_store!(a);
                     seg[THAT] = a as u16;
                     flags = (flags | THAT_OK) & !THAT_ZERO;
                     let v = rd!(seg[THAT]);
@@ -633,18 +638,12 @@ impl Machine {
                     }
                     push!(rd!(seg[ARG].wrapping_add(i)))
                 }
-                Op::PushThis(i) => {
-                    desktop_this!(i);
-                    push!(rd!(seg[THIS].wrapping_add(i)))
-                }
+                Op::PushThis(i) => push!(rd!(seg[THIS].wrapping_add(i))),
                 Op::PushThisChk(i) => {
                     this_ok!(THIS_OK, THIS_UNINIT, desktop_this!(i));
                     push!(rd!(seg[THIS].wrapping_add(i)))
                 }
-                Op::PushThat(i) => {
-                    desktop_that!(i);
-                    push!(rd!(seg[THAT].wrapping_add(i)))
-                }
+                Op::PushThat(i) => push!(rd!(seg[THAT].wrapping_add(i))),
                 Op::PushThatChk(i) => {
                     this_ok!(THAT_OK, THAT_UNINIT, desktop_that!(i));
                     push!(rd!(seg[THAT].wrapping_add(i)))
@@ -664,7 +663,6 @@ impl Machine {
                     wr!(seg[ARG].wrapping_add(i), v)
                 }
                 Op::PopThis(i) => {
-                    desktop_this!(i);
                     let v = pop!();
                     wr!(seg[THIS].wrapping_add(i), v)
                 }
@@ -674,7 +672,6 @@ impl Machine {
                     wr!(seg[THIS].wrapping_add(i), v)
                 }
                 Op::PopThat(i) => {
-                    desktop_that!(i);
                     let v = pop!();
                     wr!(seg[THAT].wrapping_add(i), v)
                 }
@@ -997,17 +994,15 @@ impl Machine {
                     if !fast!(index, base) {
                         deopt!();
                     }
-                    desktop_that_store!(src!(index).wrapping_add(src!(base)));
-                    skip!(op, 5);
                     array_read!(index, base);
+                    skip!(op, 5);
                 }
                 Op::ArrayReadPop { index, base, to } => {
                     if !fast!(index, base, to) {
                         deopt!();
                     }
-                    desktop_that_store!(src!(index).wrapping_add(src!(base)));
-                    skip!(op, 6);
                     array_read!(index, base, to);
+                    skip!(op, 6);
                 }
                 Op::PtrRead => {
                     if !fast_sp(sp) {

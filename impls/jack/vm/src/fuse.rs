@@ -11,7 +11,7 @@
 //! would fail) it does nothing and the plain commands run instead, so errors
 //! and step counts are exactly those of the plain commands.
 
-use crate::machine::{ARGS_FIT, THAT_OK, THIS_OK};
+use crate::machine::{ARGS_FIT, DESKTOP_TEST, THAT_OK, THIS_OK};
 use crate::program::{Bin, Dst, Op, Operand, Src, ABS, ARG, CONST, LCL, PTR, THAT, THIS};
 
 /// The most VM commands one fused instruction stands for.
@@ -41,10 +41,78 @@ pub(crate) fn fuse(plain: &[Op], starts: &[u32], desktop: bool) -> Vec<Op> {
             },
             _ => match longest(&plain[i..]) {
                 fused if desktop && pops_pointer(fused) => plain[i],
+                fused if desktop => with_operands(fused, desktop_need),
                 fused => fused,
             },
         })
         .collect()
+}
+
+/// Desktop: a `this`/`that` operand needs the desktop's address test, not
+/// the web IDE's flag.
+fn desktop_need(o: Operand) -> Operand {
+    match usize::from(o.base) {
+        THIS | THAT => Operand {
+            need: DESKTOP_TEST,
+            ..o
+        },
+        _ => o,
+    }
+}
+
+/// `op` with `f` applied to each of its operands.
+fn with_operands(op: Op, f: fn(Operand) -> Operand) -> Op {
+    match op {
+        Op::Push2(a, b) => Op::Push2(f(a), f(b)),
+        Op::Move(a, d) => Op::Move(f(a), f(d)),
+        Op::MoveRun { from, to, len } => Op::MoveRun {
+            from: f(from),
+            to: f(to),
+            len,
+        },
+        Op::BinSS { op, a, b } => Op::BinSS {
+            op,
+            a: f(a),
+            b: f(b),
+        },
+        Op::BinPop { op, a, b, d } => Op::BinPop {
+            op,
+            a: f(a),
+            b: f(b),
+            d: f(d),
+        },
+        Op::BinS { op, b } => Op::BinS { op, b: f(b) },
+        Op::BinSPop { op, b, d } => Op::BinSPop {
+            op,
+            b: f(b),
+            d: f(d),
+        },
+        Op::CmpJump {
+            op,
+            a,
+            b,
+            not,
+            target,
+        } => Op::CmpJump {
+            op,
+            a: f(a),
+            b: f(b),
+            not,
+            target,
+        },
+        Op::ArrayRead { index, base } => Op::ArrayRead {
+            index: f(index),
+            base: f(base),
+        },
+        Op::ArrayReadPop { index, base, to } => Op::ArrayReadPop {
+            index: f(index),
+            base: f(base),
+            to: f(to),
+        },
+        Op::StoreThatSrc(v) => Op::StoreThatSrc(f(v)),
+        Op::PushReturn(a) => Op::PushReturn(f(a)),
+        other => other,
+    }
 }
 
 /// Whether fused instruction `op` ends in a `pop pointer` (a target `PTR`).

@@ -497,6 +497,17 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
     for (at, op) in desktop_ops {
         desktop[at] = op;
     }
+    // The desktop tests every `this`/`that` address: its code keeps the
+    // checked forms, whose tests follow the profile (crate::exec).
+    for op in &mut desktop {
+        *op = match *op {
+            Op::PushThis(i) => Op::PushThisChk(i),
+            Op::PushThat(i) => Op::PushThatChk(i),
+            Op::PopThis(i) => Op::PopThisChk(i),
+            Op::PopThat(i) => Op::PopThatChk(i),
+            other => other,
+        };
+    }
     let code = |plain: Vec<Op>, desktop: bool| Code {
         fused: crate::fuse::fuse(&plain, &starts, desktop),
         plain,

@@ -39,6 +39,9 @@ pub(crate) const ARGS_FIT: u8 = 16;
 /// inherits it, its frame keeps the caller's flags without it, and
 /// compiled code never runs while it is set (see [`crate::exec`]).
 pub(crate) const THAT_ZERO: u8 = 32;
+/// Never a flag: in a fused operand's `need` (desktop code only), the
+/// operand is a `this`/`that` access whose address the desktop tests.
+pub(crate) const DESKTOP_TEST: u8 = 64;
 
 /// `ret_pc` of the frame below a call made by [`Machine::call`].
 pub(crate) const HOST: u32 = u32::MAX;

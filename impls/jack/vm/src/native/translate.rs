@@ -252,6 +252,16 @@ struct Inlined {
     arg: Value,
 }
 
+/// Desktop, in `Translator::flags_known` beside the flags: the block's
+/// `pop pointer` tested that THIS (THAT) lies in its desktop range.
+fn in_range(this: bool) -> u8 {
+    if this {
+        0x40
+    } else {
+        0x80
+    }
+}
+
 /// How a `this` or `that` access of a block tests its address.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum PtrTest {
@@ -1082,24 +1092,23 @@ impl Translator<'_, '_> {
         self.guard(ok, before);
     }
 
-    /// Desktop: leave unless `pop pointer p` of `x` passes the desktop's
-    /// test: for THIS the heap or not above 0; for THAT 2048 to 24576 (0
-    /// is the interpreter's, as it widens the `that` range).
+    /// Desktop: leave unless `pop pointer p` of `x` is in the pointer's
+    /// range (the heap for THIS, 2048 to 24576 for THAT), so that the
+    /// block's accesses through it at index 0 need no test. The other
+    /// values the desktop takes (THIS not above 0, THAT 0, which widens the
+    /// `that` range) and its errors are the interpreter's.
     fn desktop_pointer_ok(&mut self, p: u8, x: Value, before: &Before) {
         if self.env.profile != Profile::Desktop {
             return;
         }
         let from = self.b.ins().iadd_imm_s(x, -2048);
         let room = if p == 0 { 16383 - 2048 } else { 24576 - 2048 };
-        let mut ok = self
+        let ok = self
             .b
             .ins()
             .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, from, room);
-        if p == 0 {
-            let low = self.b.ins().icmp_imm_s(IntCC::SignedLessThanOrEqual, x, 0);
-            ok = self.b.ins().bor(ok, low);
-        }
         self.guard(ok, before);
+        self.flags_known |= in_range(p == 0);
     }
 
     /// The web IDE's test that the invocation set the pointer (the desktop
@@ -1193,10 +1202,18 @@ impl Translator<'_, '_> {
     fn ptr_base(&mut self, var: Variable, before: &Before) -> Option<Value> {
         let test = self.ptr_tests[(before.pc - self.block_start) as usize];
         if let PtrTest::First(top) = test {
-            self.desktop_span_ok(var, top, before);
-            let ok = self.span_ok(var, top);
-            self.guard(ok, before);
-            self.off_stack(var, top, before);
+            if self.env.profile == Profile::Desktop {
+                // The desktop's ranges lie above its stack (256..=2047)
+                // and inside RAM: their test is the only one needed, and
+                // none where the block's `pop pointer` tested word 0.
+                if !(top == 0 && self.flags_known & in_range(var == self.v.this) != 0) {
+                    self.desktop_span_ok(var, top, before);
+                }
+            } else {
+                let ok = self.span_ok(var, top);
+                self.guard(ok, before);
+                self.off_stack(var, top, before);
+            }
         }
         (test != PtrTest::Each).then(|| self.seg_base(var))
     }
