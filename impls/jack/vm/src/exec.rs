@@ -311,11 +311,14 @@ impl Machine {
                         w[at] = v;
                         sp += 1;
                     } else {
-                        wr!(sp, v);
-                        if stack_check && !(STACK_BASE..=STACK_LAST).contains(&sp.wrapping_add(1)) {
+                        // SP is the word it had before the write, as in
+                        // both tools: a push at SP = 0 leaves SP = 1.
+                        let at = sp;
+                        wr!(at, v);
+                        if stack_check && !(STACK_BASE..=STACK_LAST).contains(&at.wrapping_add(1)) {
                             break 'run Some(Halt::Error(STACK_OVERFLOW.into()));
                         }
-                        sp = sp.wrapping_add(1);
+                        sp = at.wrapping_add(1);
                     }
                 }};
             }

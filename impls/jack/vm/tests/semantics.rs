@@ -174,6 +174,30 @@ fn memory_outside_ram_reads_minus_one_and_drops_writes() {
     );
 }
 
+/// A push at SP = 0 writes its value into SP, then SP becomes 1, as the
+/// web IDE's push does (it keeps SP's old value for the increment); the
+/// next push writes RAM[1]. Both engines.
+#[test]
+fn a_push_at_sp_0_leaves_sp_1() {
+    let src = "function Sys.init 0\npush constant 0\npop pointer 1\npush constant 0\npop that 0\n\
+               push constant 7\npush constant 5\nlabel L\ngoto L\n";
+    for engine in [hack_vm::Engine::Interp, hack_vm::Engine::Native] {
+        let mut m = Machine::new(
+            Program::from_sources(&[("Sys.vm", src)]).unwrap(),
+            Config {
+                profile: Profile::Web,
+                engine,
+                ..Config::default()
+            },
+        );
+        assert!(
+            matches!(m.run(Some(100)), Exit::Budget { .. }),
+            "{engine:?}"
+        );
+        assert_eq!((m.ram().read(0), m.ram().read(1)), (2, 5), "{engine:?}");
+    }
+}
+
 #[test]
 fn computed_addresses_reach_the_registers() {
     // THAT = 0: `push that 0` reads SP, `pop that 3` writes THIS.
