@@ -253,6 +253,15 @@ impl Machine {
         stop_at: u64,
         watch: &mut Option<(&[bool], &mut dyn Watcher)>,
     ) -> Flow {
+        if let Some(message) = self.beyond_end.take() {
+            // The step after a return past the caller's end (the callers
+            // run this only with a step left before `stop_at`).
+            self.steps += 1;
+            return Flow::End(Exit::RuntimeError {
+                message,
+                stack: self.call_stack(),
+            });
+        }
         let mut pc = self.pc as usize;
         let mut steps = self.steps;
         let mut cur = self.cur;
@@ -265,6 +274,7 @@ impl Machine {
         let mut profile = self.profile.as_deref_mut();
         let mut profile_mark = self.profile_mark;
         let scratch = &mut self.scratch;
+        let beyond_end = &mut self.beyond_end;
         let os_profile = os.profile();
         let timing = Timing::of(os_profile);
         let (function_step, stack_check) = (timing.function_step, timing.stack_check);
@@ -564,7 +574,8 @@ impl Machine {
             macro_rules! do_return {
                 () => {{
                     let frame = seg[LCL];
-                    let ret = rd!(frame.wrapping_sub(5));
+                    let ret_at = frame.wrapping_sub(5);
+                    let ret = rd!(ret_at);
                     let v = pop!();
                     // RAM[ARG] = v; if ARG points at SP, the next line wins.
                     let a = usize::from(seg[ARG]);
@@ -599,10 +610,24 @@ impl Machine {
                     }
                     pc = if ret == fr.ret {
                         fr.ret_pc as usize
-                    } else {
+                    } else if function_step {
                         match resume_pc(program, cur, ret) {
                             Some(p) => p as usize,
                             None => {
+                                break 'run Some(Halt::Error(format!(
+                                    "Return address {ret} is not a command of {}",
+                                    program.function_name(cur)
+                                )))
+                            }
+                        }
+                    } else {
+                        match web_resume(program, cur, ret, usize::from(ret_at) < RAM_SIZE) {
+                            WebResume::At(p) => p as usize,
+                            WebResume::BeyondEnd(message) => {
+                                *beyond_end = Some(message);
+                                break 'run None;
+                            }
+                            WebResume::FunctionLine => {
                                 break 'run Some(Halt::Error(format!(
                                     "Return address {ret} is not a command of {}",
                                     program.function_name(cur)
@@ -1126,6 +1151,35 @@ fn resume_pc(program: &Program, caller: u32, ret: i16) -> Option<u32> {
     let idx = usize::try_from(i32::from(ret) + 1).ok()?;
     let pc = *f.resume.get(idx).or(f.resume.last())?;
     (pc != u32::MAX).then_some(pc)
+}
+
+/// Web: where a return resumes `caller` from its RET word `ret` (read at an
+/// address `in_ram` or not), as the web IDE does: the word, or 65,535 when
+/// read outside RAM, plus one is the caller's command index. Before the
+/// first command or at the end the VM halts there; past the end the return
+/// is done and the next step fails.
+fn web_resume(program: &Program, caller: u32, ret: i16, in_ram: bool) -> WebResume {
+    let f = &program.functions[caller as usize];
+    let idx = if in_ram { i32::from(ret) } else { 0xFFFF } + 1;
+    let end = f.resume.len() - 1;
+    match usize::try_from(idx) {
+        Ok(i) if i > end => WebResume::BeyondEnd(format!(
+            "Current operation step beyond end of function operations ({idx} > {end})"
+        )),
+        Ok(i) if f.resume[i] == u32::MAX => WebResume::FunctionLine,
+        Ok(i) => WebResume::At(f.resume[i]),
+        Err(_) => WebResume::At(f.resume[end]),
+    }
+}
+
+/// Where a web return resumes its caller.
+enum WebResume {
+    /// At this instruction.
+    At(u32),
+    /// Past the caller's last command: the next step fails with this.
+    BeyondEnd(String),
+    /// At the caller's `function` line, which never runs.
+    FunctionLine,
 }
 
 impl Machine {

@@ -126,6 +126,9 @@ pub struct Machine {
     /// Web: a blocking built-in whose result was still to be handed back
     /// when the budget ended (see [`Machine::web_blocking_call`]).
     pub(crate) pending: Option<Box<Pending>>,
+    /// Web: a return resumed its caller past the caller's last command;
+    /// the next step fails with this message, as in the web IDE.
+    pub(crate) beyond_end: Option<String>,
 }
 
 /// A web blocking call the budget interrupted: the built-in, its argument
@@ -189,6 +192,7 @@ impl Machine {
                 .then(|| Tier::new(config.auto_threshold.unwrap_or(AUTO_THRESHOLD))),
             budget_end: u64::MAX,
             pending: None,
+            beyond_end: None,
         };
         machine.startup_pending = timing.hidden_sys_init && machine.program.synthetic_entry;
         if timing.hidden_sys_init && !machine.program.synthetic_entry {
@@ -682,7 +686,11 @@ impl Machine {
     /// `Sys.halt`). The official tools spin there for ever; a run without
     /// a budget may stop there instead. Costs a snapshot and 64 steps.
     pub fn idle(&self) -> bool {
-        if self.ended.is_some() || self.pending.is_some() || self.startup_pending {
+        if self.ended.is_some()
+            || self.pending.is_some()
+            || self.beyond_end.is_some()
+            || self.startup_pending
+        {
             return false;
         }
         if self.os.keys().next_change(self.steps).is_some() {

@@ -198,6 +198,87 @@ fn a_push_at_sp_0_leaves_sp_1() {
     }
 }
 
+/// `src` (one file, `Sys.vm`) under the web profile, on both engines
+/// (which must agree): how it ended and after how many steps.
+fn web_on_both_engines(src: &str, budget: u64) -> (String, u64) {
+    let runs: Vec<(String, u64)> = [hack_vm::Engine::Interp, hack_vm::Engine::Native]
+        .into_iter()
+        .map(|engine| {
+            let mut m = Machine::new(
+                Program::from_sources(&[("Sys.vm", src)]).unwrap(),
+                Config {
+                    profile: Profile::Web,
+                    engine,
+                    ..Config::default()
+                },
+            );
+            let exit = m.run(Some(budget));
+            (exit.to_string(), m.steps())
+        })
+        .collect();
+    assert_eq!(runs[0], runs[1], "the interpreter, then compiled code");
+    runs[0].clone()
+}
+
+/// `Main.f` stores `ret` into its own RET word (through `that`, from
+/// LCL - 5) and returns: 11 steps from the start to its return.
+fn returning_to(ret: i16) -> String {
+    let set = if ret < 0 {
+        format!("push constant 0\npush constant {}\nsub\n", -i32::from(ret))
+    } else {
+        format!("push constant {ret}\n")
+    };
+    format!(
+        "function Sys.init 0\ncall Main.f 0\nlabel L\ngoto L\n\
+         function Main.f 0\npush constant 0\npop pointer 1\npush that 1\npush constant 5\nsub\n\
+         pop pointer 1\n{set}pop that 0\npush constant 0\nreturn\n"
+    )
+}
+
+/// A return resumes its caller at the RET word plus one, as the web IDE
+/// does: past the caller's last command the return itself runs and the
+/// next step fails with the IDE's message; before its first command the VM
+/// halts.
+#[test]
+fn a_web_return_past_its_callers_end_fails_the_next_step() {
+    // Sys.init's commands: its function line, call, label, goto (4).
+    let (exit, steps) = web_on_both_engines(&returning_to(30000), 100);
+    assert!(
+        exit.contains("Current operation step beyond end of function operations (30001 > 4)"),
+        "{exit}"
+    );
+    assert!(exit.contains("in Sys.init"), "{exit}");
+    assert_eq!(steps, 12, "the call, f's 10 commands, the step after");
+    let (exit, steps) = web_on_both_engines(&returning_to(-5), 100);
+    assert_eq!((exit.as_str(), steps), ("halted", 13));
+    // Its own RET word: back after the call, looping to the budget.
+    let (exit, steps) = web_on_both_engines(&returning_to(1), 100);
+    assert!(exit.contains("budget"), "{exit}");
+    assert_eq!(steps, 100);
+}
+
+/// A recursion that runs its stack past the end of RAM. Each level takes
+/// 8 words (a frame and 3 locals); the 3,041st call's frame starts at the
+/// keyboard word, 24,576, so its own stack lies past the end: the test it
+/// pops reads -1, it returns at once, and its saved LCL and ARG, written
+/// past the end, come back as -1. Its caller's return then reads its RET
+/// word outside RAM, as 65,535, and fails the step after it: 1 + 3,040 x 9
+/// + 10 + 1 steps, plus the failing one.
+#[test]
+fn a_web_recursion_past_the_end_of_ram_stops_after_a_return() {
+    let src = "function Sys.init 0\ncall Main.f 0\nlabel E\ngoto E\n\
+               function Main.f 3\npush static 0\npush constant 1\nadd\npop static 0\n\
+               push static 0\npush constant 5000\neq\nif-goto D\ncall Main.f 0\nreturn\n\
+               label D\npush constant 0\nreturn\n";
+    let (exit, steps) = web_on_both_engines(src, 1_000_000);
+    assert!(
+        exit.contains("Current operation step beyond end of function operations (65536 > 14)"),
+        "{exit}"
+    );
+    assert!(exit.contains("Main.f x 3039"), "{exit}");
+    assert_eq!(steps, 1 + 3040 * 9 + 10 + 1 + 1);
+}
+
 #[test]
 fn computed_addresses_reach_the_registers() {
     // THAT = 0: `push that 0` reads SP, `pop that 3` writes THIS.
