@@ -178,6 +178,8 @@ const LOCAL_OOB: &str = "Local offset out of bounds";
 const THIS_UNINIT: &str = "The this segment cannot be accessed since it was not initialized";
 const THAT_UNINIT: &str = "The that segment cannot be accessed since it was not initialized";
 const STACK_OVERFLOW: &str = "Stack overflow";
+/// Desktop: a `return` with LCL = 0 (the entry function, which has no frame).
+const NOWHERE_TO_RETURN: &str = "Nowhere to return to";
 /// Desktop: a `this i` or `that i` outside the segment's range.
 const SEGMENT_SPACE: &str = "Out of segment space";
 const THIS_RANGE: &str = "'This' segment must be in the Heap range";
@@ -549,13 +551,19 @@ impl Machine {
             // `push index; push base; add; pop pointer 1; push that 0 [; pop to]`.
             macro_rules! array_read {
                 (@value $index:expr, $base:expr) => {{
+                    // The two stack words the sum writes: an operand may
+                    // lie there (a local at SP), so a desktop pointer the
+                    // plain commands must refuse puts them back first.
+                    let at = usize::from(sp);
+                    let saved = (w[at], w[at + 1]);
                     let a = push_push_op!(Bin::Add, $index, $base);
+                    if function_step && !(HEAP_START..=THAT_END).contains(&i32::from(a)) {
+                        (w[at], w[at + 1]) = saved;
+                        sp = at as u16;
+                        deopt!();
+                    }
                     let top = sp - 1;
                     sp = top;
-                    // (Under the desktop `this`/`that` lie above the stack,
-                    // so the stack words written so far are dead ones the
-                    // plain commands write again.)
-                    desktop_that_store!(a);
                     seg[THAT] = a as u16;
                     flags = (flags | THAT_OK) & !THAT_ZERO;
                     let v = rd!(seg[THAT]);
@@ -576,6 +584,15 @@ impl Machine {
                     let frame = seg[LCL];
                     let ret_at = frame.wrapping_sub(5);
                     let ret = rd!(ret_at);
+                    if function_step {
+                        if frame == 0 {
+                            break 'run Some(Halt::Error(NOWHERE_TO_RETURN.into()));
+                        }
+                        // The desktop's return goes through R13 (FRAME)
+                        // and R14 (RET).
+                        w[13] = frame as i16;
+                        w[14] = ret;
+                    }
                     let v = pop!();
                     // RAM[ARG] = v; if ARG points at SP, the next line wins.
                     let a = usize::from(seg[ARG]);
@@ -611,14 +628,9 @@ impl Machine {
                     pc = if ret == fr.ret {
                         fr.ret_pc as usize
                     } else if function_step {
-                        match resume_pc(program, cur, ret) {
-                            Some(p) => p as usize,
-                            None => {
-                                break 'run Some(Halt::Error(format!(
-                                    "Return address {ret} is not a command of {}",
-                                    program.function_name(cur)
-                                )))
-                            }
+                        match desktop_resume(program, cur, ret) {
+                            Ok(p) => p as usize,
+                            Err(message) => break 'run Some(Halt::Error(message)),
                         }
                     } else {
                         match web_resume(program, cur, ret, usize::from(ret_at) < RAM_SIZE) {
@@ -1143,14 +1155,23 @@ impl Machine {
     }
 }
 
-/// Resume position in `caller` for a RET word that is not the one the call
-/// wrote (the program overwrote its frame): command `ret + 1`. None for the
-/// `function` line, which is never executed.
-fn resume_pc(program: &Program, caller: u32, ret: i16) -> Option<u32> {
+/// Desktop: where a return resumes `caller` from a RET word that is not
+/// the one its call wrote (the program overwrote its frame): the program
+/// address `ret`, which must be one of the caller's commands here (the
+/// desktop would go on at any address of the program).
+fn desktop_resume(program: &Program, caller: u32, ret: i16) -> Result<u32, String> {
     let f = &program.functions[caller as usize];
-    let idx = usize::try_from(i32::from(ret) + 1).ok()?;
-    let pc = *f.resume.get(idx).or(f.resume.last())?;
-    (pc != u32::MAX).then_some(pc)
+    let index = i64::from(ret) - i64::from(f.address);
+    match usize::try_from(index).ok().and_then(|i| f.resume.get(i)) {
+        Some(&pc) if pc != u32::MAX => Ok(pc),
+        _ if ret < 0 || ret as usize >= program.command_lines + 5 => {
+            Err("Illegal return address".into())
+        }
+        _ => Err(format!(
+            "Return address {ret} is not a command of {}",
+            f.name
+        )),
+    }
 }
 
 /// Web: where a return resumes `caller` from its RET word `ret` (read at an
@@ -1268,8 +1289,7 @@ impl Machine {
             let caller = self.frames.last().map_or(self.cur, |fr| fr.caller);
             (p.function_name(caller), 0)
         } else {
-            let index = at.wrapping_sub(f.start) + u32::from(f.headed);
-            (f.name.as_str(), index)
+            (f.name.as_str(), f.desktop_index(at))
         };
         format!("{text} in {name}.{index}")
     }

@@ -497,6 +497,21 @@ fn build(mut raw: Vec<RawFunction>, command_lines: usize) -> Result<Program, Loa
     for (at, op) in desktop_ops {
         desktop[at] = op;
     }
+    // The desktop's RET word is the program address of the command after
+    // the call (crate::timing), not a command index.
+    for (i, f) in functions.iter().enumerate() {
+        let end = functions
+            .get(i + 1)
+            .map_or(desktop.len(), |next| next.start as usize - 1);
+        let body = desktop.iter_mut().enumerate().take(end);
+        for (pc, op) in body.skip(f.start as usize) {
+            if let Op::Call { ret, .. } = op {
+                *ret = f
+                    .desktop_return_address(pc as u32)
+                    .map_or(u16::MAX, |a| a as u16);
+            }
+        }
+    }
     // The desktop tests every `this`/`that` address: its code keeps the
     // checked forms, whose tests follow the profile (crate::exec).
     for op in &mut desktop {

@@ -271,6 +271,14 @@ pub struct Function {
 }
 
 impl Function {
+    /// The desktop's index in the function of the command at instruction
+    /// `pc` (its `function` line 0, labels not counted), which its
+    /// messages and a script's `line` print.
+    pub(crate) fn desktop_index(&self, pc: u32) -> u32 {
+        pc.wrapping_sub(self.start)
+            .wrapping_add(u32::from(self.headed))
+    }
+
     /// The desktop's RET word for a call whose instruction is at `call_pc`:
     /// the address of the first command after the call that is not a label.
     pub(crate) fn desktop_return_address(&self, call_pc: u32) -> Option<u32> {

@@ -548,3 +548,82 @@ fn after_a_pop_pointer_1_of_0_that_reaches_from_word_0_until_a_return() {
         "'That' segment must be in the Heap or Screen range in Main.main.16"
     );
 }
+
+/// A VM call's RET word is the desktop's program address of the command
+/// after the call (every non-blank line one address from 0, a label after
+/// the call skipped), and a return leaves FRAME in R13 and RET in R14, as
+/// the desktop's return does; a return with LCL = 0 (from a VM `Sys.init`,
+/// which runs without a frame) has nowhere to go. Both engines.
+#[test]
+fn a_calls_ret_word_is_a_program_address_and_a_return_sets_r13_and_r14() {
+    let text = "function Sys.init 0\ncall Main.f 0\nreturn\n\
+                function Main.f 0\npush constant 7\nlabel L\nreturn\n";
+    for engine in [hack_vm::Engine::Interp, hack_vm::Engine::Native] {
+        let mut m = Machine::new(
+            Program::from_sources(&[("Main.vm", text)]).unwrap(),
+            Config {
+                profile: Profile::Desktop,
+                engine,
+                ..Config::default()
+            },
+        );
+        // Sys.init's function line, the call, f's function line and its
+        // push: f's frame is at 256 (the entry has none).
+        assert!(matches!(m.run(Some(4)), Exit::Budget { .. }));
+        assert_eq!(
+            words(&m, 256, 261),
+            [2, 0, 0, 0, 0],
+            "{engine:?}: RET is the address of Sys.init's `return`"
+        );
+        assert!(matches!(m.run(Some(1)), Exit::Budget { .. }));
+        assert_eq!(words(&m, 13, 15), [261, 2], "{engine:?}: R13, R14");
+        assert_eq!((m.ram().read(0), m.ram().read(256)), (257, 7));
+        match m.run(Some(10)) {
+            Exit::RuntimeError { message, .. } => {
+                assert_eq!(message, "Nowhere to return to in Sys.init.2", "{engine:?}")
+            }
+            other => panic!("{engine:?}: {other}"),
+        }
+        assert_eq!(m.steps(), 6);
+    }
+}
+
+/// A fused array read (`a[i]`) whose pointer the desktop refuses leaves
+/// RAM as the plain commands leave it, even where its operand, a local,
+/// lies at the top of the stack that the fused sum writes (found by
+/// `compiled_execution_equals_interpretation`). Both engines, and the
+/// commands one step at a time.
+#[test]
+fn a_refused_array_read_leaves_the_stack_as_the_plain_commands_do() {
+    let text = "function Main.main 0\npush constant 0\nreturn\nfunction Main.f 3\nlabel L0\nadd\npush constant 1\npop static 0\npop pointer 0\n\
+                if-goto L0\npush local 0\npush static 0\nadd\npop pointer 1\npush that 0\n\
+                pop temp 0\npush constant 0\nreturn\n";
+    let program = Program::from_sources(&[("Main.vm", text)]).unwrap();
+    let run = |engine, one_by_one: bool| {
+        let mut m = Machine::new(
+            program.clone(),
+            Config {
+                profile: Profile::Desktop,
+                engine,
+                ..Config::default()
+            },
+        );
+        m.call("Main.f", &[0, 0], Some(0)).unwrap();
+        let exit = if one_by_one {
+            loop {
+                match m.run(Some(1)) {
+                    Exit::Budget { .. } => {}
+                    other => break other,
+                }
+            }
+        } else {
+            m.run(Some(1000))
+        };
+        (exit.to_string(), m.steps(), words(&m, 256, 266))
+    };
+    let plain = run(hack_vm::Engine::Interp, true);
+    // Main.f's local 0, at 263, is 0 + 1 when `pop pointer 1` refuses 1.
+    assert_eq!(plain.2[7], 1, "{plain:?}");
+    assert_eq!(run(hack_vm::Engine::Interp, false), plain);
+    assert_eq!(run(hack_vm::Engine::Native, false), plain);
+}

@@ -1793,6 +1793,7 @@ impl Translator<'_, '_> {
             .ins()
             .icmp_imm_s(IntCC::Equal, ret_word, i64::from(call.ret as i16));
         self.guard(ok, &before);
+        self.desktop_return_registers(frame, ret_word);
         let x = s.pop(self);
         let arg = self.b.use_var(self.v.arg);
         self.store_word(arg, x);
@@ -1819,6 +1820,15 @@ impl Translator<'_, '_> {
             restored.push(r);
         }
         self.continue_after_call(restored[0], restored[1], call.lcl, call.arg, call.ret_pc);
+    }
+
+    /// Desktop: a return leaves FRAME in R13 and RET in R14, as the
+    /// desktop's does (crate::exec).
+    fn desktop_return_registers(&mut self, frame: Value, ret_word: Value) {
+        if self.env.profile == Profile::Desktop {
+            self.b.ins().store(self.mem.ram, frame, self.ram, 2 * 13);
+            self.b.ins().store(self.mem.ram, ret_word, self.ram, 2 * 14);
+        }
     }
 
     /// `return` to a caller whose frame is on the frame stack with its RET
@@ -1891,8 +1901,10 @@ impl Translator<'_, '_> {
         let ok = self.b.ins().icmp(IntCC::Equal, ret_word, expected);
         self.guard(ok, before);
 
-        // Commit, in the interpreter's order: the value to RAM[ARG], then
-        // the saved registers (which that store may have changed).
+        // Commit, in the interpreter's order: the desktop's R13 and R14,
+        // the value to RAM[ARG], then the saved registers (which that
+        // store may have changed).
+        self.desktop_return_registers(frame, ret_word);
         let x = s.pop(self);
         self.store_word(arg, x);
         self.b
