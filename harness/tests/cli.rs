@@ -281,6 +281,17 @@ fn jack_test_runs_a_course_script_and_compares_like_the_official_tools() {
         "{}",
         text(&o)
     );
+    // A breakpoint stops it before the comparison fails: exit 0, saying so.
+    std::fs::write(
+        &tst,
+        "load,\noutput-file FibonacciElement.out,\ncompare-to FibonacciElement.cmp,\n\
+         output-list RAM[0]%D1.6.1 RAM[261]%D1.6.1;\nbreakpoint sp 262;\n\
+         repeat 6000 { vmstep; }\noutput;\n",
+    )
+    .unwrap();
+    let o = harness(&["jack", "test", &tst]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert!(text(&o).contains("Breakpoint reached"), "{}", text(&o));
     // A script that cannot run: exit 2, with its line and column.
     std::fs::write(&tst, "load,\nvmstep;\nfrobnicate;\n").unwrap();
     let o = harness(&["jack", "test", &tst]);

@@ -17,8 +17,8 @@ pub struct TestArgs {
 }
 
 /// Exit 0 when every output line matches the compare file (or the script
-/// names none), 1 at the first differing line, 2 when the script cannot
-/// be read, parsed or run.
+/// names none, or a breakpoint or `!` stopped it first), 1 at the first
+/// differing line, 2 when the script cannot be read, parsed or run.
 pub fn run(args: TestArgs) -> anyhow::Result<ExitCode> {
     let report = match hack_vm::run_script(&args.script, args.profile) {
         Ok(report) => report,
@@ -34,21 +34,22 @@ pub fn run(args: TestArgs) -> anyhow::Result<ExitCode> {
         println!("output: {} ({} lines)", out.display(), report.lines);
     }
     println!("steps: {}", report.steps);
-    match (&report.mismatch, &report.compare_file) {
-        (Some(m), _) => {
-            println!("{m}");
-            Ok(ExitCode::from(1))
-        }
-        (None, Some(cmp)) => {
-            println!(
-                "End of script - Comparison ended successfully ({})",
-                cmp.display()
-            );
-            Ok(ExitCode::SUCCESS)
-        }
-        (None, None) => {
-            println!("End of script");
-            Ok(ExitCode::SUCCESS)
-        }
+    if let Some(m) = &report.mismatch {
+        println!("{m}");
+        return Ok(ExitCode::from(1));
     }
+    // A breakpoint or a `!` stops the script, as in the desktop tool: no
+    // failure, and no end-of-script verdict.
+    if let Some(stop) = &report.stopped {
+        println!("{stop}");
+        return Ok(ExitCode::SUCCESS);
+    }
+    match &report.compare_file {
+        Some(cmp) => println!(
+            "End of script - Comparison ended successfully ({})",
+            cmp.display()
+        ),
+        None => println!("End of script"),
+    }
+    Ok(ExitCode::SUCCESS)
 }

@@ -349,6 +349,17 @@ impl Machine {
         }
     }
 
+    /// The index in its function of the command the next step runs, as
+    /// the desktop counts it (the `function` line 0, labels not counted):
+    /// what a test script's `line` prints, with
+    /// [`Machine::current_function`].
+    pub fn next_command_index(&self) -> Option<u32> {
+        let p = &self.program;
+        let k = p.functions.partition_point(|f| f.start <= self.pc + 1);
+        let f = p.functions.get(k.checked_sub(1)?)?;
+        Some(f.desktop_index(self.pc))
+    }
+
     /// How the run ended, if it has.
     pub fn exit(&self) -> Option<&Exit> {
         self.ended.as_ref()

@@ -1,12 +1,14 @@
 //! The course's VM emulator test scripts (`.tst`, spec §5.1): `load`,
 //! `output-file`, `compare-to`, `output-list` with formats, `output`, `set`
 //! on RAM, registers and segments, `vmstep`, `repeat`, `while`, `echo` and
-//! `clear-echo`; `currentFunction` as an output column. (`line` and
-//! `breakpoint` are not supported.) [`run_script`] runs one on a [`Machine`], writes the
-//! `.out` file and compares each output line with the `.cmp` file as it is
-//! written, the way the official tools do: the first differing line ends
-//! the script. The web IDE compares lines with their spaces trimmed, the
-//! desktop compares them exactly (`--profile` decides).
+//! `clear-echo`, `breakpoint` and `clear-breakpoints`; `currentFunction`
+//! and `line` as output columns; a `!` terminator stops the script.
+//! [`run_script`] runs one on a [`Machine`], writes the `.out` file and
+//! compares each output line with the `.cmp` file as it is written, the way
+//! the official tools do: the first differing line ends the script. The web
+//! IDE compares lines with their spaces trimmed, the desktop compares them
+//! exactly, a `*` in the compare file matching any one character
+//! (`--profile` decides).
 
 use crate::{Config, Machine, Profile, Program, Register};
 use std::fmt;
@@ -60,6 +62,9 @@ pub struct ScriptReport {
     pub mismatch: Option<Mismatch>,
     /// The last `echo` text still shown (cleared by `clear-echo`).
     pub echo: Option<String>,
+    /// Why the script stopped before its end without a mismatch: a
+    /// breakpoint reached or a `!` terminator, in the desktop's words.
+    pub stopped: Option<String>,
     /// VM steps run.
     pub steps: u64,
 }
@@ -94,6 +99,9 @@ pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptE
         written: Vec::new(),
         mismatch: None,
         echo: None,
+        stopped: None,
+        breakpoints: Vec::new(),
+        last_command: None,
     };
     run.block(&commands)?;
     if let Some(out) = &run.output {
@@ -108,6 +116,7 @@ pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptE
         lines: run.written.len(),
         mismatch: run.mismatch,
         echo: run.echo,
+        stopped: run.stopped,
         steps: run.machine.as_ref().map_or(0, Machine::steps),
     })
 }
@@ -123,6 +132,8 @@ struct Command {
     line: usize,
     col: usize,
     kind: Kind,
+    /// The terminator after it (`,` `;` `!`), if any.
+    end: Option<char>,
 }
 
 #[derive(Debug, Clone)]
@@ -141,7 +152,7 @@ enum Tok {
     Word(String),
     Quoted(String),
     /// `,` `;` `!`
-    End,
+    End(char),
     Open,
     Close,
 }
@@ -212,7 +223,7 @@ fn tokenize(file: &str, text: &str) -> Result<Vec<(Tok, usize, usize)>, ScriptEr
             let t = match c {
                 '{' => Tok::Open,
                 '}' => Tok::Close,
-                _ => Tok::End,
+                end => Tok::End(end),
             };
             toks.push((t, l0, c0));
         } else {
@@ -262,7 +273,7 @@ fn parse_block(
             return Ok(out);
         };
         match tok {
-            Tok::End => *pos += 1,
+            Tok::End(_) => *pos += 1,
             Tok::Close if nested => {
                 *pos += 1;
                 return Ok(out);
@@ -313,7 +324,16 @@ fn parse_block(
                     }
                     _ => Kind::Words(words),
                 };
-                out.push(Command { line, col, kind });
+                let end = match toks.get(*pos) {
+                    Some((Tok::End(c), _, _)) if matches!(kind, Kind::Words(_)) => Some(*c),
+                    _ => None,
+                };
+                out.push(Command {
+                    line,
+                    col,
+                    kind,
+                    end,
+                });
             }
         }
     }
@@ -462,7 +482,24 @@ struct Run {
     written: Vec<String>,
     mismatch: Option<Mismatch>,
     echo: Option<String>,
+    stopped: Option<String>,
+    breakpoints: Vec<Breakpoint>,
+    /// The command index, in its function, of the instruction the last
+    /// `vmstep` ran (what `line` prints).
+    last_command: Option<u32>,
 }
+
+/// A `breakpoint VAR VALUE`: the script stops when VAR shows VALUE after a
+/// step, once until VAR shows something else.
+#[derive(Debug, Clone)]
+struct Breakpoint {
+    var: String,
+    value: String,
+    reached: bool,
+}
+
+/// Variables whose value is text.
+const TEXT_VARS: [&str; 2] = ["currentFunction", "line"];
 
 impl Run {
     fn err_at(&self, line: usize, col: usize, message: String) -> ScriptError {
@@ -477,7 +514,7 @@ impl Run {
     /// Run commands; stops early (Ok) once a line has mismatched.
     fn block(&mut self, commands: &[Command]) -> Result<(), ScriptError> {
         for c in commands {
-            if self.mismatch.is_some() {
+            if self.done() {
                 return Ok(());
             }
             let file = self.file.clone();
@@ -488,20 +525,34 @@ impl Run {
                 message: m,
             };
             match &c.kind {
-                Kind::Words(words) => self.simple(words).map_err(fail)?,
-                Kind::Repeat(count, body) if is_vmstep(body) => {
+                Kind::Words(words) => {
+                    self.simple(words).map_err(fail)?;
+                    // A `;` or `!` ends a step of the script: breakpoints
+                    // are tested there, and `!` stops the script.
+                    if matches!(c.end, Some(';' | '!')) {
+                        self.test_breakpoints().map_err(fail)?;
+                    }
+                    if c.end == Some('!') && self.stopped.is_none() {
+                        self.stopped = Some("Script reached a '!' terminator".into());
+                    }
+                }
+                Kind::Repeat(count, body) if is_vmstep(body) && self.breakpoints.is_empty() => {
                     // `repeat N { vmstep; }`: N steps in one run, at the
                     // emulator's own speed (a run of N steps is N runs of
                     // one, step for step).
                     let n = count.unwrap_or(MAX_OPEN_LOOP);
-                    if n > 0 && self.mismatch.is_none() {
-                        self.machine().map_err(fail)?.run(Some(n));
+                    if n > 0 && !self.done() {
+                        let m = self.machine().map_err(fail)?;
+                        m.run(Some(n - 1));
+                        let last = m.next_command_index();
+                        m.run(Some(1));
+                        self.last_command = last;
                     }
                 }
                 Kind::Repeat(count, body) => {
                     let n = count.unwrap_or(MAX_OPEN_LOOP);
                     for _ in 0..n {
-                        if self.mismatch.is_some() || (count.is_none() && self.ended()) {
+                        if self.done() || (count.is_none() && self.ended()) {
                             break;
                         }
                         self.block(body)?;
@@ -509,7 +560,7 @@ impl Run {
                 }
                 Kind::While(cond, body) => {
                     let mut n = 0;
-                    while self.mismatch.is_none() && self.holds(cond).map_err(fail)? {
+                    while !self.done() && self.holds(cond).map_err(fail)? {
                         if n == MAX_OPEN_LOOP || self.ended() {
                             break;
                         }
@@ -520,6 +571,45 @@ impl Run {
             }
         }
         Ok(())
+    }
+
+    /// A mismatch, a breakpoint or a `!` stopped the script.
+    fn done(&self) -> bool {
+        self.mismatch.is_some() || self.stopped.is_some()
+    }
+
+    /// Stop at the first breakpoint whose variable now shows its value
+    /// (each stops once until its variable shows something else), as the
+    /// desktop's GUI does after each step of a script.
+    fn test_breakpoints(&mut self) -> Result<(), String> {
+        for k in 0..self.breakpoints.len() {
+            let var = self.breakpoints[k].var.clone();
+            let shows = self.text(&var)? == self.breakpoints[k].value;
+            let b = &mut self.breakpoints[k];
+            if shows && !b.reached {
+                b.reached = true;
+                if self.stopped.is_none() {
+                    self.stopped = Some("Breakpoint reached".into());
+                }
+            } else if !shows {
+                b.reached = false;
+            }
+        }
+        Ok(())
+    }
+
+    /// A variable's value as the desktop prints it.
+    fn text(&mut self, var: &str) -> Result<String, String> {
+        let last = self.last_command;
+        let m = self.machine()?;
+        Ok(match var {
+            "currentFunction" => m.current_function().to_string(),
+            "line" => {
+                let index = last.or_else(|| m.next_command_index()).unwrap_or(0);
+                format!("{}.{index}", m.current_function())
+            }
+            _ => self.read(var)?.to_string(),
+        })
     }
 
     fn ended(&self) -> bool {
@@ -581,7 +671,11 @@ impl Run {
                     .iter()
                     .map(|w| Column::parse(w))
                     .collect::<Result<_, _>>()?;
-                for c in self.columns.iter().filter(|c| c.var != "currentFunction") {
+                for c in self
+                    .columns
+                    .iter()
+                    .filter(|c| !TEXT_VARS.contains(&c.var.as_str()))
+                {
                     var(&c.var)?;
                 }
                 let line = format!(
@@ -598,9 +692,9 @@ impl Run {
                 arity(0)?;
                 let mut cells = Vec::new();
                 for c in self.columns.clone() {
-                    if c.var == "currentFunction" {
-                        let name = self.machine()?.current_function().to_string();
-                        cells.push(c.text_cell(&name));
+                    if TEXT_VARS.contains(&c.var.as_str()) {
+                        let text = self.text(&c.var)?;
+                        cells.push(c.text_cell(&text));
                         continue;
                     }
                     let v = self.read(&c.var)?;
@@ -620,7 +714,31 @@ impl Run {
             }
             "vmstep" => {
                 arity(0)?;
-                self.machine()?.run(Some(1));
+                let m = self.machine()?;
+                let last = m.next_command_index();
+                m.run(Some(1));
+                self.last_command = last;
+            }
+            "breakpoint" => {
+                arity(2)?;
+                if !TEXT_VARS.contains(&words[1].as_str()) {
+                    var(&words[1])?;
+                }
+                let new = !self
+                    .breakpoints
+                    .iter()
+                    .any(|b| b.var == words[1] && b.value == words[2]);
+                if new {
+                    self.breakpoints.push(Breakpoint {
+                        var: words[1].clone(),
+                        value: words[2].clone(),
+                        reached: false,
+                    });
+                }
+            }
+            "clear-breakpoints" => {
+                arity(0)?;
+                self.breakpoints.clear();
             }
             "echo" => {
                 arity(1)?;
@@ -695,7 +813,7 @@ impl Run {
             // them as they are, so a line that differs only in spaces fails.
             let same = match self.profile {
                 Profile::Web => want.trim() == line.trim(),
-                Profile::Desktop => want == line,
+                Profile::Desktop => matches_template(&line, &want),
             };
             if !same {
                 self.mismatch = Some(Mismatch {
@@ -707,4 +825,15 @@ impl Run {
         }
         self.written.push(line);
     }
+}
+
+/// The desktop's comparison of an output line with its compare line: the
+/// same length, and every character the same except where the compare line
+/// has a `*`, which matches any one.
+fn matches_template(line: &str, template: &str) -> bool {
+    line.chars().count() == template.chars().count()
+        && line
+            .chars()
+            .zip(template.chars())
+            .all(|(c, t)| t == '*' || c == t)
 }

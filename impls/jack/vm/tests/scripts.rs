@@ -237,3 +237,103 @@ fn current_function_names_the_running_function_and_the_caller_at_a_desktop_funct
         "|currentFunct|\n| Sys.f      |\n| Sys.f      |\n| Sys.init   |\n| Sys.init   |\n| Sys.init   |\n| Sys.init   |\n"
     );
 }
+
+#[test]
+fn line_names_the_current_function_and_the_index_of_the_command_the_step_ran() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Sys.vm"),
+        "function Sys.init 0\ncall Sys.f 0\nlabel L\ngoto L\n\
+         function Sys.f 0\nlabel X\npush constant 0\nreturn\n",
+    )
+    .unwrap();
+    let tst = dir.path().join("LVME.tst");
+    std::fs::write(
+        &tst,
+        "load Sys.vm,\noutput-file L.out,\noutput-list line%S1.12.1;\n\
+         repeat 6 { vmstep; output; }\n",
+    )
+    .unwrap();
+    run_script(&tst, Profile::Desktop).unwrap();
+    // As the desktop prints it: the function on its call stack and the
+    // index (function line 0, labels not counted) of the command just run.
+    // The call names the caller (Sys.f's function line has not run), the
+    // return the caller and the return's own index.
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("L.out")).unwrap(),
+        "|     line     |\n| Sys.init.0   |\n| Sys.init.1   |\n| Sys.f.0      |\n| Sys.f.1      |\n\
+         | Sys.init.2   |\n| Sys.init.2   |\n"
+    );
+}
+
+/// `Count.vm` (push 1, pop temp 0, goto, in a loop) and a script `body`
+/// after its load, output file and `output-list RAM[5]%D1.3.1`: the
+/// report and the output.
+fn count_script(body: &str) -> (hack_vm::ScriptReport, String) {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("Count.vm"),
+        "label L\npush constant 1\npop temp 0\ngoto L\n",
+    )
+    .unwrap();
+    std::fs::write(
+        tmp.path().join("Count.tst"),
+        format!("load Count.vm, output-file Count.out, output-list RAM[5]%D1.3.1;\n{body}"),
+    )
+    .unwrap();
+    let report = run_script(&tmp.path().join("Count.tst"), Profile::Desktop).unwrap();
+    let out = std::fs::read_to_string(tmp.path().join("Count.out")).unwrap();
+    (report, out)
+}
+
+#[test]
+fn a_breakpoint_stops_the_script_after_the_step_that_reaches_it() {
+    // RAM[5] becomes 1 at the second step: the `output;` after it never runs.
+    let (report, out) = count_script("breakpoint RAM[5] 1;\nrepeat 10 { vmstep; output; }\n");
+    assert_eq!(report.stopped.as_deref(), Some("Breakpoint reached"));
+    assert_eq!(report.steps, 2);
+    assert_eq!(out, "|RAM[5|\n|   0 |\n");
+    // Cleared, it stops nothing; a breakpoint on another value neither.
+    let (report, _) = count_script(
+        "breakpoint RAM[5] 1, clear-breakpoints, breakpoint RAM[5] 7;\nrepeat 10 { vmstep; }\n",
+    );
+    assert_eq!((report.stopped, report.steps), (None, 10));
+    // On a text variable, by its text: the goto (push 0, pop 1).
+    let (report, _) = count_script("breakpoint line __implicit.2;\nrepeat 10 { vmstep; }\n");
+    assert_eq!(report.stopped.as_deref(), Some("Breakpoint reached"));
+    assert_eq!(report.steps, 3);
+}
+
+#[test]
+fn a_bang_terminator_stops_the_script() {
+    let (report, out) = count_script("vmstep! output;\n");
+    assert_eq!(
+        report.stopped.as_deref(),
+        Some("Script reached a '!' terminator")
+    );
+    assert_eq!((report.steps, out.as_str()), (1, "|RAM[5|\n"));
+}
+
+#[test]
+fn a_star_in_a_desktop_compare_line_matches_any_one_character() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("Add.vm"),
+        "push constant 7\npush constant 8\nadd\n",
+    )
+    .unwrap();
+    let tst = dir.path().join("AddVME.tst");
+    std::fs::write(
+        &tst,
+        "load Add.vm,\noutput-file Add.out,\ncompare-to Add.cmp,\noutput-list RAM[256]%D1.6.1;\n\
+         set sp 256,\nrepeat 3 { vmstep; }\noutput;\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("Add.cmp"), "|RAM[256]|\n|     *5 |\n").unwrap();
+    let r = run_script(&tst, Profile::Desktop).unwrap();
+    assert!(r.mismatch.is_none(), "{:?}", r.mismatch);
+    // Still the same length: a star stands for one character, not more.
+    std::fs::write(dir.path().join("Add.cmp"), "|RAM[256]|\n|    *5 |\n").unwrap();
+    let r = run_script(&tst, Profile::Desktop).unwrap();
+    assert_eq!(r.mismatch.map(|m| m.line), Some(2));
+}
