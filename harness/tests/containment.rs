@@ -156,6 +156,39 @@ fn a_wrong_count_is_named_with_the_field() {
     );
 }
 
+/// A line without an end, on an answer or on the handshake, is a protocol
+/// failure once it passes the harness's bound, long before any watchdog,
+/// and holds at most that bound; a stderr line without an end is read and
+/// dropped past its first kilobytes, and the answers after it count.
+#[test]
+fn a_line_without_an_end_is_refused_at_its_bound() {
+    let f = contained_run(&misbehaving("long-line").unwrap(), 5);
+    assert_eq!(f.kind, FailureKind::Protocol);
+    assert!(
+        f.to_string().contains("a line longer than 67108864 bytes"),
+        "{f}"
+    );
+    let e = misbehaving("long-handshake").err().expect("no handshake");
+    let f = failure(&e);
+    assert_eq!(f.kind, FailureKind::Protocol);
+    assert!(
+        f.to_string()
+            .contains("its handshake line: it wrote a line longer than"),
+        "{f}"
+    );
+    let pipe = misbehaving("long-stderr").unwrap();
+    let report = diff_set(
+        &[Cast::builtin().open("ref-f316").unwrap().as_ref(), &pipe],
+        &doubles(),
+        RunOptions::default(),
+    );
+    // The sixth answer is where `long-stderr` behaves: it has no fault.
+    assert_eq!(report.failures().count(), 0, "{report:?}");
+    let tail = pipe.stderr_tail();
+    assert!(tail.iter().any(|l| l == "my-port: warming up"), "{tail:?}");
+    assert!(tail.iter().all(|l| l.len() < 5000), "kept in excerpt");
+}
+
 /// A test fault: ref-f316, except that it panics on the vector `on`
 /// (`panics`) or never answers it (`loops`).
 struct Faulty {

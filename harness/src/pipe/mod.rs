@@ -120,6 +120,11 @@ impl Pipe {
         &self.hello
     }
 
+    /// The last lines the adapter wrote on stderr, each cut to an excerpt.
+    pub fn stderr_tail(&self) -> Vec<String> {
+        self.adapter.stderr_tail()
+    }
+
     fn num(&self, s: Scalar) -> Num {
         match (s.triple, self.hello.numbers) {
             (Some(t), _) => Num::F316(t),

@@ -21,6 +21,14 @@ use std::time::{Duration, Instant};
 /// Lines of stderr kept for a failure's message.
 const STDERR_LINES: usize = 12;
 
+/// The longest line read from an adapter's stdout (a handshake, an answer
+/// or a batch's closing line): an answer with a whole pixel's op trace is
+/// a few megabytes. A longer line is the adapter's failure.
+pub const MAX_LINE_BYTES: usize = 64 << 20;
+
+/// The most of one stderr line kept (the rest is read and dropped).
+const STDERR_LINE_BYTES: usize = 4096;
+
 /// How long to wait for a process that closed its stdout to exit, and for
 /// its last stderr lines, before reporting it.
 const EXIT_GRACE: Duration = Duration::from_secs(2);
@@ -232,8 +240,16 @@ impl Adapter {
         )?;
         let adapter = Adapter { shared };
         let hello = match hello_rx.recv_timeout(handshake) {
-            Ok(Some(line)) => return Ok((adapter, line)),
-            Ok(None) | Err(mpsc::RecvTimeoutError::Disconnected) => StartError::Failed {
+            Ok(Ok(line)) => return Ok((adapter, line)),
+            Ok(Err(Some((kind, why)))) => {
+                adapter.shared.stop("a bad handshake");
+                StartError::Failed {
+                    kind,
+                    message: format!("its handshake line: {why}"),
+                    stderr: adapter.shared.stderr_tail(),
+                }
+            }
+            Ok(Err(None)) | Err(mpsc::RecvTimeoutError::Disconnected) => StartError::Failed {
                 kind: FailureKind::EarlyExit,
                 message: format!(
                     "it {} before writing its handshake line",
@@ -308,13 +324,63 @@ impl Drop for Adapter {
     }
 }
 
+/// How [`read_bounded`] ended.
+#[derive(Debug, PartialEq)]
+enum Bounded {
+    /// The end of the stream, with nothing read.
+    End,
+    /// A line (its newline, if any, kept).
+    Line,
+    /// A line longer than the bound: its first `limit` bytes are in the
+    /// buffer, and the rest of it was read and dropped when `skipped`.
+    TooLong,
+}
+
+/// Read one line into `buf`, keeping at most `limit` bytes of it. With
+/// `skip`, the rest of a longer line is read and dropped (in the reader's
+/// own buffer, never held); without, reading stops at the bound.
+fn read_bounded(
+    from: &mut impl BufRead,
+    buf: &mut Vec<u8>,
+    limit: usize,
+    skip: bool,
+) -> std::io::Result<Bounded> {
+    buf.clear();
+    let mut too_long = false;
+    loop {
+        let chunk = from.fill_buf()?;
+        if chunk.is_empty() {
+            return Ok(match (buf.is_empty(), too_long) {
+                (_, true) => Bounded::TooLong,
+                (true, false) => Bounded::End,
+                (false, false) => Bounded::Line,
+            });
+        }
+        let newline = chunk.iter().position(|&b| b == b'\n');
+        let take = newline.map_or(chunk.len(), |i| i + 1);
+        let room = limit.saturating_sub(buf.len());
+        buf.extend_from_slice(&chunk[..take.min(room)]);
+        too_long |= take > room;
+        from.consume(take);
+        if newline.is_some() {
+            return Ok(if too_long {
+                Bounded::TooLong
+            } else {
+                Bounded::Line
+            });
+        }
+        if too_long && !skip {
+            return Ok(Bounded::TooLong);
+        }
+    }
+}
+
 fn keep_stderr(shared: &Shared, stderr: impl Read) {
     let mut lines = BufReader::new(stderr);
     let mut buf = Vec::new();
     loop {
-        buf.clear();
-        match lines.read_until(b'\n', &mut buf) {
-            Ok(0) | Err(_) => return,
+        match read_bounded(&mut lines, &mut buf, STDERR_LINE_BYTES, true) {
+            Ok(Bounded::End) | Err(_) => return,
             Ok(_) => {
                 let line = String::from_utf8_lossy(&buf).trim_end().to_string();
                 let mut tail = lock(&shared.stderr);
@@ -327,36 +393,60 @@ fn keep_stderr(shared: &Shared, stderr: impl Read) {
     }
 }
 
-/// Read one line into `buf`: `Ok(false)` at the end of the output.
-fn next_line(out: &mut BufReader<ChildStdout>, buf: &mut String) -> Result<bool, String> {
+/// The handshake line, or why there is none: the output ended (`None`) or
+/// its first line failed.
+type Hello = Result<String, Option<(FailureKind, String)>>;
+
+/// Read one line into `buf`: `Ok(false)` at the end of the output. A line
+/// that cannot be read is a crash; one past [`MAX_LINE_BYTES`] or not
+/// UTF-8 breaks the protocol.
+fn next_line(
+    out: &mut BufReader<ChildStdout>,
+    buf: &mut String,
+) -> Result<bool, (FailureKind, String)> {
     buf.clear();
-    match out.read_line(buf) {
-        Ok(0) => Ok(false),
-        Ok(_) => {
-            let trimmed = buf.trim_end_matches(['\n', '\r']).len();
-            buf.truncate(trimmed);
-            Ok(true)
+    let mut bytes = std::mem::take(buf).into_bytes();
+    let read = read_bounded(out, &mut bytes, MAX_LINE_BYTES, false).map_err(|e| {
+        (
+            FailureKind::Crash,
+            format!("its output could not be read: {e}"),
+        )
+    })?;
+    match read {
+        Bounded::End => return Ok(false),
+        Bounded::TooLong => {
+            return Err((
+                FailureKind::Protocol,
+                format!(
+                    "it wrote a line longer than {MAX_LINE_BYTES} bytes (the harness's bound for one line of the protocol)"
+                ),
+            ))
         }
-        Err(e) => Err(format!("its output could not be read: {e}")),
+        Bounded::Line => {}
     }
+    *buf = String::from_utf8(bytes).map_err(|_| {
+        (
+            FailureKind::Protocol,
+            "it wrote a line that is not UTF-8".to_string(),
+        )
+    })?;
+    let trimmed = buf.trim_end_matches(['\n', '\r']).len();
+    buf.truncate(trimmed);
+    Ok(true)
 }
 
-fn reader(
-    shared: &Shared,
-    stdout: ChildStdout,
-    hello: Sender<Option<String>>,
-    pending: Receiver<Pending>,
-) {
+fn reader(shared: &Shared, stdout: ChildStdout, hello: Sender<Hello>, pending: Receiver<Pending>) {
     let mut out = BufReader::with_capacity(1 << 16, stdout);
     let mut buf = String::new();
-    match next_line(&mut out, &mut buf) {
-        Ok(true) => {
-            let _ = hello.send(Some(buf.clone()));
-        }
-        _ => {
-            let _ = hello.send(None);
-            return;
-        }
+    let first = match next_line(&mut out, &mut buf) {
+        Ok(true) => Ok(buf.clone()),
+        Ok(false) => Err(None),
+        Err(e) => Err(Some(e)),
+    };
+    let ended = first.is_err();
+    let _ = hello.send(first);
+    if ended {
+        return;
     }
     while let Ok(p) = pending.recv() {
         let (answers, failure) = read_batch(shared, &mut out, &mut buf, &p);
@@ -423,7 +513,7 @@ fn read_batch(
                     )),
                 );
             }
-            Err(e) => return (answers, Some((FailureKind::Crash, e))),
+            Err(failure) => return (answers, Some(failure)),
         }
         let request = p.requests.get(k).or(p.requests.last());
         let Some(request) = request else {

@@ -1,6 +1,8 @@
 """A pipe adapter that answers `double` requests correctly, then fails at
 its sixth answer the way MODE says (the harness's containment tests):
-early-exit, crash, hang, garbage, wrong-id, wrong-count."""
+early-exit, crash, hang, garbage, wrong-id, wrong-count, long-line (an
+answer line without an end), long-handshake, long-stderr (an 80 MiB stderr
+line, then correct answers)."""
 import json
 import os
 import sys
@@ -10,6 +12,24 @@ mode = sys.argv[1]
 if mode == "early-exit":
     print("my-port: cannot open port.cfg", file=sys.stderr)
     sys.exit(3)
+
+
+def endless(stream):
+    """Write to `stream` for ever, with no newline."""
+    chunk = "x" * (1 << 20)
+    while True:
+        stream.write(chunk)
+
+
+if mode == "long-handshake":
+    endless(sys.stdout)
+if mode == "long-stderr":
+    # 80 MiB on one stderr line, then a normal run.
+    chunk = "e" * (1 << 20)
+    for _ in range(80):
+        sys.stderr.write(chunk)
+    sys.stderr.write("\nmy-port: warming up\n")
+    sys.stderr.flush()
 print(json.dumps({"protocol": 1, "name": "misbehaving", "numbers": "float316",
                   "levels": ["ops"], "trace": False}), flush=True)
 answered = 0
@@ -36,6 +56,8 @@ while True:
                 continue
             if mode == "wrong-id":
                 answer["id"] += 7
+            if mode == "long-line":
+                endless(sys.stdout)
         print(json.dumps(answer))
         answered += 1
     count = batch["count"] + (1 if mode == "wrong-count" else 0)
