@@ -70,13 +70,21 @@ pub struct ScriptReport {
 }
 
 /// Most iterations of a `repeat` without a count or of a `while`: such a
-/// loop also stops when the program has ended.
+/// loop also stops when the program has ended, and one that reaches this
+/// many iterations first is an error (the official tools would run on for
+/// ever).
 const MAX_OPEN_LOOP: u64 = 100_000_000;
+
+/// The largest `repeat` count: the desktop reads it as a Java `int`.
+const MAX_REPEAT: u64 = i32::MAX as u64;
+
+/// The deepest nesting of `repeat` and `while` blocks.
+const MAX_NESTING: usize = 64;
 
 /// Run the script at `path` under `profile`.
 pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| ScriptError {
+    let text = common::input::read_text(path).map_err(|e| ScriptError {
         file: name.clone(),
         line: 1,
         col: 1,
@@ -102,16 +110,17 @@ pub fn run_script(path: &Path, profile: Profile) -> Result<ScriptReport, ScriptE
         stopped: None,
         breakpoints: Vec::new(),
         last_command: None,
+        script: path.file_name().map(PathBuf::from).unwrap_or_default(),
     };
     run.block(&commands)?;
-    if let Some(out) = &run.output {
+    if let Some((out, line, col)) = &run.output {
         let mut text = run.written.join("\n");
         text.push('\n');
         std::fs::write(out, text)
-            .map_err(|e| run.err_at(0, 0, format!("cannot write {}: {e}", out.display())))?;
+            .map_err(|e| run.err_at(*line, *col, format!("cannot write {}: {e}", out.display())))?;
     }
     Ok(ScriptReport {
-        output_file: run.output,
+        output_file: run.output.map(|(path, _, _)| path),
         compare_file: run.compare.map(|(p, _)| p),
         lines: run.written.len(),
         mismatch: run.mismatch,
@@ -247,16 +256,19 @@ fn tokenize(file: &str, text: &str) -> Result<Vec<(Tok, usize, usize)>, ScriptEr
 fn parse(file: &str, text: &str) -> Result<Vec<Command>, ScriptError> {
     let toks = tokenize(file, text)?;
     let mut pos = 0;
-    let commands = parse_block(file, &toks, &mut pos, false)?;
+    let commands = parse_block(file, &toks, &mut pos, 0)?;
     Ok(commands)
 }
 
+/// The commands from `pos` to the end of the block `depth` blocks deep (0:
+/// the script itself).
 fn parse_block(
     file: &str,
     toks: &[(Tok, usize, usize)],
     pos: &mut usize,
-    nested: bool,
+    depth: usize,
 ) -> Result<Vec<Command>, ScriptError> {
+    let nested = depth > 0;
     let err = |line, col, message: String| ScriptError {
         file: file.to_string(),
         line,
@@ -290,6 +302,13 @@ fn parse_block(
                     *pos += 1;
                 }
                 let opens = matches!(toks.get(*pos), Some((Tok::Open, _, _)));
+                if opens && depth == MAX_NESTING {
+                    return Err(err(
+                        line,
+                        col,
+                        format!("blocks nested deeper than {MAX_NESTING}"),
+                    ));
+                }
                 let kind = match (words[0].as_str(), opens) {
                     ("repeat", true) => {
                         *pos += 1;
@@ -299,10 +318,19 @@ fn parse_block(
                                 err(line, col, format!("repeat count {n:?} is not a number"))
                             })?),
                         };
+                        if let Some(n) = count.filter(|&n| n > MAX_REPEAT) {
+                            return Err(err(
+                                line,
+                                col,
+                                format!(
+                                    "repeat count {n} is above {MAX_REPEAT}, the desktop's largest"
+                                ),
+                            ));
+                        }
                         if words.len() > 2 {
                             return Err(err(line, col, "repeat takes at most one count".into()));
                         }
-                        Kind::Repeat(count, parse_block(file, toks, pos, true)?)
+                        Kind::Repeat(count, parse_block(file, toks, pos, depth + 1)?)
                     }
                     ("while", true) => {
                         *pos += 1;
@@ -313,7 +341,7 @@ fn parse_block(
                                 "while needs a condition like RAM[0] <> 262".into(),
                             )
                         })?;
-                        Kind::While(cond, parse_block(file, toks, pos, true)?)
+                        Kind::While(cond, parse_block(file, toks, pos, depth + 1)?)
                     }
                     (_, true) => {
                         return Err(err(
@@ -476,7 +504,8 @@ struct Run {
     profile: Profile,
     machine: Option<Machine>,
     columns: Vec<Column>,
-    output: Option<PathBuf>,
+    /// The output file, with the line and column of its command.
+    output: Option<(PathBuf, usize, usize)>,
     /// The compare file and its lines.
     compare: Option<(PathBuf, Vec<String>)>,
     written: Vec<String>,
@@ -487,6 +516,8 @@ struct Run {
     /// The command index, in its function, of the instruction the last
     /// `vmstep` ran (what `line` prints).
     last_command: Option<u32>,
+    /// The script's own file name (an output file must not be it).
+    script: PathBuf,
 }
 
 /// A `breakpoint VAR VALUE`: the script stops when VAR shows VALUE after a
@@ -526,7 +557,7 @@ impl Run {
             };
             match &c.kind {
                 Kind::Words(words) => {
-                    self.simple(words).map_err(fail)?;
+                    self.simple(words, c.line, c.col).map_err(fail)?;
                     // A `;` or `!` ends a step of the script: breakpoints
                     // are tested there, and `!` stops the script.
                     if matches!(c.end, Some(';' | '!')) {
@@ -547,6 +578,9 @@ impl Run {
                         let last = m.next_command_index();
                         m.run(Some(1));
                         self.last_command = last;
+                        if count.is_none() && !self.ended() {
+                            return Err(fail(open_loop("repeat")));
+                        }
                     }
                 }
                 Kind::Repeat(count, body) => {
@@ -557,12 +591,18 @@ impl Run {
                         }
                         self.block(body)?;
                     }
+                    if count.is_none() && !self.done() && !self.ended() {
+                        return Err(fail(open_loop("repeat")));
+                    }
                 }
                 Kind::While(cond, body) => {
                     let mut n = 0;
                     while !self.done() && self.holds(cond).map_err(fail)? {
-                        if n == MAX_OPEN_LOOP || self.ended() {
+                        if self.ended() {
                             break;
+                        }
+                        if n == MAX_OPEN_LOOP {
+                            return Err(fail(open_loop("while")));
                         }
                         self.block(body)?;
                         n += 1;
@@ -622,7 +662,8 @@ impl Run {
             .ok_or_else(|| "no program loaded (use load first)".to_string())
     }
 
-    fn simple(&mut self, words: &[String]) -> Result<(), String> {
+    /// Run the simple command `words`, written at `line` and `col`.
+    fn simple(&mut self, words: &[String], line: usize, col: usize) -> Result<(), String> {
         let arg = |i: usize| words.get(i).map(String::as_str);
         let arity = |n: usize| {
             if words.len() == n + 1 {
@@ -640,8 +681,8 @@ impl Run {
                         if path.is_dir() {
                             Program::load_dir(&path)
                         } else {
-                            let text = std::fs::read_to_string(&path)
-                                .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+                            let text =
+                                common::input::read_text(&path).map_err(|e| e.to_string())?;
                             Program::from_sources(&[(p, text)])
                         }
                     }
@@ -656,13 +697,23 @@ impl Run {
             }
             "output-file" => {
                 arity(1)?;
-                self.output = Some(self.dir.join(&words[1]));
+                let name = self.output_name(&words[1])?;
+                if self
+                    .compare
+                    .as_ref()
+                    .is_some_and(|(c, _)| c.file_name() == Some(name))
+                {
+                    return Err(format!("output-file {name:?} is the compare file"));
+                }
+                self.output = Some((self.dir.join(name), line, col));
             }
             "compare-to" => {
                 arity(1)?;
                 let path = self.dir.join(&words[1]);
-                let text = std::fs::read_to_string(&path)
-                    .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+                if self.output.as_ref().is_some_and(|(o, _, _)| *o == path) {
+                    return Err(format!("compare-to {:?} is the output file", words[1]));
+                }
+                let text = common::input::read_text(&path).map_err(|e| e.to_string())?;
                 let lines = text.lines().map(str::to_string).collect();
                 self.compare = Some((path, lines));
             }
@@ -753,6 +804,32 @@ impl Run {
         Ok(())
     }
 
+    /// The file name an `output-file` may write: a plain name in the
+    /// script's folder that is neither the script nor a program, script
+    /// or compare file (`.vm`, `.tst`, `.cmp`).
+    fn output_name<'a>(&self, name: &'a str) -> Result<&'a std::ffi::OsStr, String> {
+        let path = Path::new(name);
+        let plain = path.components().count() == 1
+            && matches!(
+                path.components().next(),
+                Some(std::path::Component::Normal(_))
+            );
+        let Some(file) = path.file_name().filter(|_| plain) else {
+            return Err(format!(
+                "output-file {name:?} is not a file name in the script's folder"
+            ));
+        };
+        let kept = path
+            .extension()
+            .is_some_and(|e| ["vm", "tst", "cmp", "jack"].iter().any(|k| e == *k));
+        if kept || path == self.script {
+            return Err(format!(
+                "output-file {name:?} would overwrite a program, script or compare file"
+            ));
+        }
+        Ok(file)
+    }
+
     fn address(&mut self, v: &Var) -> Result<i32, String> {
         let m = self.machine()?;
         Ok(match *v {
@@ -836,4 +913,12 @@ fn matches_template(line: &str, template: &str) -> bool {
             .chars()
             .zip(template.chars())
             .all(|(c, t)| t == '*' || c == t)
+}
+
+/// The error of an open loop that reached [`MAX_OPEN_LOOP`] iterations
+/// with the program still running.
+fn open_loop(what: &str) -> String {
+    format!(
+        "this {what} ran {MAX_OPEN_LOOP} times and the program has not ended: stopped (the harness's bound for a loop without a count)"
+    )
 }

@@ -337,3 +337,74 @@ fn a_star_in_a_desktop_compare_line_matches_any_one_character() {
     let r = run_script(&tst, Profile::Desktop).unwrap();
     assert_eq!(r.mismatch.map(|m| m.line), Some(2));
 }
+
+/// A hostile script is refused with its line and column, never read
+/// without bound, run for ever or allowed to overwrite what it reads.
+#[test]
+fn a_script_is_bounded_in_what_it_reads_nests_repeats_and_writes() {
+    let tmp = tempfile::tempdir().unwrap();
+    std::fs::write(
+        tmp.path().join("Count.vm"),
+        "label L\npush constant 1\npop temp 0\ngoto L\n",
+    )
+    .unwrap();
+    let tst = tmp.path().join("Bad.tst");
+    let error = |text: &str| {
+        std::fs::write(&tst, text).unwrap();
+        run_script(&tst, Profile::Desktop)
+            .map(|r| format!("ran: {:?}", r.mismatch))
+            .unwrap_or_else(|e| e.to_string())
+    };
+    for (text, expected) in [
+        ("load /dev/zero;", "1:1: /dev/zero is not a regular file"),
+        (
+            "load Count.vm, compare-to /dev/zero;",
+            "1:16: /dev/zero is not a regular file",
+        ),
+        (
+            "load Count.vm;\nrepeat 4000000000 { vmstep; }",
+            "2:1: repeat count 4000000000 is above 2147483647",
+        ),
+        (
+            "load Count.vm, output-file Bad.tst;",
+            "1:16: output-file \"Bad.tst\" would overwrite",
+        ),
+        (
+            "load Count.vm, output-file Count.vm;",
+            "would overwrite a program, script or compare file",
+        ),
+        (
+            "load Count.vm, output-file ../x.out;",
+            "is not a file name in the script's folder",
+        ),
+        (
+            "load Count.vm, output-file /tmp/x.out;",
+            "is not a file name in the script's folder",
+        ),
+        (
+            "load Count.vm, compare-to Count.out, output-file Count.out;",
+            "output-file \"Count.out\" is the compare file",
+        ),
+        (
+            "load Count.vm;\nrepeat { vmstep; }",
+            "2:1: this repeat ran 100000000 times and the program has not ended",
+        ),
+    ] {
+        if text.contains("compare-to Count.out") {
+            std::fs::write(tmp.path().join("Count.out"), "").unwrap();
+        }
+        let got = error(text);
+        assert!(got.contains(expected), "{text}: {got}");
+    }
+    // 100,000 nested blocks: refused at the 65th, not a stack overflow.
+    let nested = format!("load Count.vm;\n{}", "repeat 1 {\n".repeat(100_000));
+    assert!(
+        error(&nested).contains("66:1: blocks nested deeper than 64"),
+        "{}",
+        error(&nested)
+    );
+    // A write that fails is located at its output-file command.
+    std::fs::create_dir(tmp.path().join("Out.out")).unwrap();
+    let got = error("load Count.vm,\n  output-file Out.out;\nvmstep;");
+    assert!(got.contains("Bad.tst:2:3: cannot write"), "{got}");
+}
