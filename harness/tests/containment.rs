@@ -156,6 +156,44 @@ fn a_wrong_count_is_named_with_the_field() {
     );
 }
 
+/// An adapter that exits leaving a child that holds its stdout is the crash
+/// at its exit, not a hang at the watchdog, and the child is killed with
+/// the adapter's process group.
+#[test]
+fn an_adapter_whose_child_holds_its_stdout_crashes_at_its_exit() {
+    let pipe = misbehaving("fork-child").unwrap();
+    let started = std::time::Instant::now();
+    let f = contained_run(&pipe, 5);
+    assert_eq!(f.kind, FailureKind::Crash, "{f}");
+    assert!(
+        f.to_string()
+            .contains("exited with status 1 after answering 5"),
+        "{f}"
+    );
+    assert!(
+        started.elapsed() < Duration::from_secs(3),
+        "before the watchdog"
+    );
+    let child: u32 = f
+        .stderr
+        .iter()
+        .find_map(|l| l.strip_prefix("child ")?.parse().ok())
+        .expect("the child's pid on stderr");
+    // Killed (a zombie until init reaps it, then gone).
+    let deadline = std::time::Instant::now() + Duration::from_secs(5);
+    loop {
+        let state = std::fs::read_to_string(format!("/proc/{child}/stat")).unwrap_or_default();
+        if state.is_empty() || state.contains(") Z ") {
+            break;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "still running: {state}"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
 /// A line without an end, on an answer or on the handshake, is a protocol
 /// failure once it passes the harness's bound, long before any watchdog,
 /// and holds at most that bound; a stderr line without an end is read and

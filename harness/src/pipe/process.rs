@@ -95,6 +95,7 @@ impl Shared {
         }
         let mut child = lock(&self.child);
         let _ = child.kill();
+        kill_group(&child);
     }
 
     /// The last lines of stderr, once the process has closed it (or after
@@ -117,6 +118,34 @@ impl Shared {
                 Err(e) => return format!("cannot be waited for: {e}"),
             }
             std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+}
+
+/// Kill what is left of the adapter's process group (it leads its own):
+/// a child it forked may hold its stdout open after it exits.
+fn kill_group(child: &Child) {
+    #[cfg(target_os = "linux")]
+    if let Some(pid) = rustix::process::Pid::from_raw(child.id() as i32) {
+        let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = child;
+}
+
+/// Watch for the adapter's own exit: then kill its process group, so that
+/// a child holding its stdout lets the reader see the end (and the crash)
+/// instead of a hang. Ends when the adapter has exited or was stopped.
+fn reap(shared: &Shared) {
+    loop {
+        std::thread::sleep(Duration::from_millis(20));
+        let mut child = lock(&shared.child);
+        match child.try_wait() {
+            Ok(None) if lock(&shared.queue).stopped.is_none() => {}
+            _ => {
+                kill_group(&child);
+                return;
+            }
         }
     }
 }
@@ -171,6 +200,9 @@ impl Adapter {
         if let Some(dir) = dir {
             command.current_dir(dir);
         }
+        // A group of its own, so that stopping it stops what it forked.
+        #[cfg(target_os = "linux")]
+        std::os::unix::process::CommandExt::process_group(&mut command, 0);
         let mut child = command.spawn().map_err(|e| {
             let place = dir
                 .map(|d| format!(" in {}", d.display()))
@@ -224,6 +256,8 @@ impl Adapter {
                 }
             }),
         )?;
+        let watched = Arc::clone(&shared);
+        spawn("reaper", Box::new(move || reap(&watched)))?;
         let keep = Arc::clone(&shared);
         spawn(
             "stderr",

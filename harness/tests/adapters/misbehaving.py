@@ -2,7 +2,8 @@
 its sixth answer the way MODE says (the harness's containment tests):
 early-exit, crash, hang, garbage, wrong-id, wrong-count, long-line (an
 answer line without an end), long-handshake, long-stderr (an 80 MiB stderr
-line, then correct answers)."""
+line, then correct answers), fork-child (exits leaving a child that holds
+its stdout)."""
 import json
 import os
 import sys
@@ -58,6 +59,12 @@ while True:
                 answer["id"] += 7
             if mode == "long-line":
                 endless(sys.stdout)
+            if mode == "fork-child":
+                # A child that inherits stdout and outlives this process.
+                import subprocess
+                child = subprocess.Popen(["sleep", "3600"])
+                print("child %d" % child.pid, file=sys.stderr, flush=True)
+                os._exit(1)
         print(json.dumps(answer))
         answered += 1
     count = batch["count"] + (1 if mode == "wrong-count" else 0)
