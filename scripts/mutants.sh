@@ -57,6 +57,7 @@ if [ "$which" = all ] || [ "$which" = gates ]; then
         --timeout 300 --build-timeout 1500 \
         --cargo-test-arg=--lib --cargo-test-arg=--test --cargo-test-arg=gates \
         --cargo-test-arg=--test --cargo-test-arg=merge \
-        --cargo-test-arg=--test --cargo-test-arg=check || status=$?
+        --cargo-test-arg=--test --cargo-test-arg=check \
+        --cargo-test-arg=--test --cargo-test-arg=nightly_testfloat || status=$?
 fi
 exit "$status"
