@@ -10,19 +10,21 @@ mod differential;
 mod jack_source;
 mod pipe_reader;
 mod sets;
+mod tst_script;
 
 pub use cast_file::{cast_file, project_file};
 pub use differential::f316_vs_jack;
 pub use jack_source::{jack_source, vm_source};
 pub use pipe_reader::pipe_reader;
 pub use sets::{scene, vector_set};
+pub use tst_script::tst_script;
 
 /// A target's property: panics when the input breaks it.
 pub type Check = fn(&[u8]);
 
 /// The targets by name, as `fuzz/fuzz_targets/NAME.rs` and the corpus
 /// folders `fuzz/corpus/NAME` call them.
-pub const TARGETS: [(&str, Check); 7] = [
+pub const TARGETS: [(&str, Check); 8] = [
     ("jack_source", jack_source),
     ("vm_source", vm_source),
     ("vector_set", vector_set),
@@ -30,4 +32,5 @@ pub const TARGETS: [(&str, Check); 7] = [
     ("cast_file", cast_file),
     ("f316_vs_jack", f316_vs_jack),
     ("pipe_reader", pipe_reader),
+    ("tst_script", tst_script),
 ];

@@ -216,6 +216,11 @@ proptest! {
         check_of("pipe_reader")(&bytes);
     }
 
+    #[test]
+    fn mutated_tst_scripts(bytes in mutated("tst_script", 8)) {
+        check_of("tst_script")(&bytes);
+    }
+
     /// Output that is not the protocol at all.
     #[test]
     fn arbitrary_adapter_outputs(bytes in prop::collection::vec(any::<u8>(), 0..512)) {
