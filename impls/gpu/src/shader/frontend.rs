@@ -126,8 +126,62 @@ fn is_missing_entry_point(errors: &glsl::ParseErrors) -> bool {
     matches!(errors.errors.as_slice(), [only] if only.to_string() == "Missing entry point")
 }
 
+/// The most variable memory (private, function and workgroup) a user's
+/// shader may declare for one invocation. A driver compiles an array into
+/// code of its size: a GLSL `float big[100000]` kept lavapipe compiling for
+/// minutes, through gigabytes, before the shader's first dispatch.
+pub const MAX_VARIABLE_BYTES: u64 = 64 << 10;
+
+/// Refuse a module whose variables pass [`MAX_VARIABLE_BYTES`], naming the
+/// largest.
+fn check_variables(module: &Module, name: &str) -> Result<(), GpuError> {
+    let gctx = module.to_ctx();
+    let bytes = |ty: naga::Handle<naga::Type>| match module.types[ty].inner {
+        naga::TypeInner::Array {
+            size: naga::ArraySize::Constant(n),
+            stride,
+            ..
+        } => u64::from(n.get()) * u64::from(stride),
+        ref other => u64::from(other.size(gctx)),
+    };
+    let globals = module
+        .global_variables
+        .iter()
+        .filter(|(_, v)| {
+            matches!(
+                v.space,
+                naga::AddressSpace::Private
+                    | naga::AddressSpace::Function
+                    | naga::AddressSpace::WorkGroup
+            )
+        })
+        .map(|(_, v)| (v.name.as_deref(), bytes(v.ty)));
+    let functions = module
+        .functions
+        .iter()
+        .map(|(_, f)| f)
+        .chain(module.entry_points.iter().map(|e| &e.function));
+    let locals = functions.flat_map(|f| {
+        f.local_variables
+            .iter()
+            .map(|(_, v)| (v.name.as_deref(), bytes(v.ty)))
+    });
+    let vars: Vec<(Option<&str>, u64)> = globals.chain(locals).collect();
+    let total: u64 = vars.iter().map(|(_, b)| b).sum();
+    match vars.iter().max_by_key(|(_, b)| *b) {
+        Some((largest, size)) if total > MAX_VARIABLE_BYTES => Err(GpuError::Shader {
+            diagnostic: format!(
+                "{name}: error: the shader's variables take {total} bytes per invocation                  (`{}` {size}), more than the harness's bound of {MAX_VARIABLE_BYTES}: a                  driver compiles such an array into code of its size (docs/bounds.md)",
+                largest.unwrap_or("an unnamed variable")
+            ),
+        }),
+        _ => Ok(()),
+    }
+}
+
 /// Install the loop guard (unless `limit` is `None`) and validate.
 fn finish(mut module: Module, limit: Option<u32>, wrapped: &Wrapped) -> Result<Module, GpuError> {
+    check_variables(&module, wrapped.name)?;
     if let Some(limit) = limit {
         let guarded = guard::install(&mut module, limit);
         debug_assert!(guarded, "the wrappers declare the loop guard's variables");
@@ -158,6 +212,30 @@ fn blank_version(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn glsl_with(declaration: &str) -> Result<Front, GpuError> {
+        let text = format!(
+            "{declaration}\nvoid mainImage(out vec4 c, in vec2 p) {{ big[0] = p.x; c = vec4(big[0]); }}\n"
+        );
+        let source = ShaderSource::from_text("big.glsl", &text, Language::Glsl);
+        front(&source, ShaderNumbers::F32, Some(1000))
+    }
+
+    /// A large array is refused before any driver compiles it, naming the
+    /// variable; a Shadertoy-sized one is not.
+    #[test]
+    fn a_shader_declaring_a_huge_array_is_refused_naming_it() {
+        assert!(glsl_with("float big[1000];").is_ok());
+        let Err(e) = glsl_with("float big[1000000];") else {
+            panic!("accepted")
+        };
+        let text = e.to_string();
+        assert!(
+            text.contains("big.glsl: error: the shader's variables take 4000")
+                && text.contains("`big`"),
+            "{text}"
+        );
+    }
 
     fn glsl_source(text: &str) -> ShaderSource {
         ShaderSource::from_text("user.glsl", text, Language::Glsl)
