@@ -34,6 +34,11 @@ pub fn run(args: CompileArgs) -> anyhow::Result<ExitCode> {
         }
         Err(other) => return Err(other.into()),
     };
+    if let Some(error) = unloadable(&args.src_dir, &classes) {
+        eprintln!("{error}");
+        eprintln!("1 compile error(s)");
+        return Ok(ExitCode::from(2));
+    }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create {}", args.out.display()))?;
     // All classes or none: a path in the way must not leave a partial
@@ -52,4 +57,35 @@ pub fn run(args: CompileArgs) -> anyhow::Result<ExitCode> {
         args.out.display()
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// A line of the compiled code that the VM refuses to load, as an error at
+/// the Jack position it comes from (`let x = 40000;` compiles, as the
+/// official compilers compile it, to a `push constant` the VM refuses). A
+/// call to a class outside the directory is no error here: the directory
+/// may be part of a program.
+fn unloadable(src_dir: &std::path::Path, classes: &[jack_compiler::VmClass]) -> Option<String> {
+    let files: Vec<(String, String)> = classes
+        .iter()
+        .map(|c| (c.file_name(), c.code.clone()))
+        .collect();
+    let Err(hack_vm::LoadError::Syntax {
+        file,
+        line,
+        message,
+    }) = hack_vm::Program::from_sources(&files)
+    else {
+        return None;
+    };
+    if message.starts_with("Undefined function") {
+        return None;
+    }
+    let class = classes.iter().find(|c| c.file_name() == file)?;
+    let pos = class.jack_pos(line)?;
+    Some(format!(
+        "{}:{}:{}: {message} (the VM code it compiles to, {file} line {line}, would not load)",
+        src_dir.join(format!("{}.jack", class.class_name)).display(),
+        pos.line,
+        pos.col
+    ))
 }
