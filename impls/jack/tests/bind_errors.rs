@@ -136,3 +136,13 @@ fn a_ready_table_names_what_is_wrong() {
         assert!(!e.contains("untagged"), "{e}");
     }
 }
+
+#[test]
+fn a_class_the_program_does_not_have_is_named() {
+    // `new = "alloc"` calls nothing, so only the class check can see it.
+    let e = bind_error(open_edited("class = \"V3\"", "class = \"NoSuchClass\""));
+    assert_eq!(e.field, "vec3.class");
+    assert!(e.message.contains("no class NoSuchClass"), "{e}");
+    let e = bind_error(open_edited("class = \"Num\"", "class = \"Nums\""));
+    assert_eq!(e.field, "float.class");
+}

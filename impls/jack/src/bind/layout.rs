@@ -111,6 +111,12 @@ impl ObjectLayout {
                 ),
             ));
         }
+        if signatures.has_class(&layout.class) == Some(false) {
+            return Err(BindError::new(
+                &format!("{field}.class"),
+                format!("the program has no class {}", layout.class),
+            ));
+        }
         if let Some(n) = signatures.field_count(&layout.class) {
             if n != layout.fields.len() {
                 return Err(BindError::new(

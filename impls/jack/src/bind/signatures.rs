@@ -115,6 +115,13 @@ impl Signatures {
         self.fields.get(class).copied()
     }
 
+    /// Whether the program has `class`, when its Jack sources are known
+    /// (`None` from VM code alone, where a class without functions leaves
+    /// no trace).
+    pub fn has_class(&self, class: &str) -> Option<bool> {
+        (!self.fields.is_empty()).then(|| self.fields.contains_key(class))
+    }
+
     /// Why `name` cannot be called: it does not exist; the functions of its
     /// class, if any, are listed.
     pub fn missing(&self, name: &str) -> String {
