@@ -194,6 +194,27 @@ fn an_adapter_whose_child_holds_its_stdout_crashes_at_its_exit() {
     }
 }
 
+/// Answers in the wrong order are named by their id, even where the answer
+/// that came has another type than the one expected (a `gt`'s boolean for
+/// a `double`'s triple).
+#[test]
+fn answers_out_of_order_are_an_id_error_whatever_their_type() {
+    let mut set = doubles();
+    set.vectors[6] = Vector::Op(OpVector {
+        category: "gt".into(),
+        op: Op::Gt,
+        a: F316::new(0, 130, 9000),
+        b: Some(F316::new(0, 131, 9000)),
+    });
+    let pipe = misbehaving("swap").unwrap();
+    let reference = Cast::builtin().open("ref-f316").unwrap();
+    let report = diff_set(&[reference.as_ref(), &pipe], &set, RunOptions::default());
+    let (_, e) = report.failures().next().expect("the adapter failed");
+    let f = failure(e);
+    assert_eq!((f.kind, f.index), (FailureKind::Protocol, 5), "{f}");
+    assert!(f.to_string().contains("field `id`: 6, expected 5"), "{f}");
+}
+
 /// A line without an end, on an answer or on the handshake, is a protocol
 /// failure once it passes the harness's bound, long before any watchdog,
 /// and holds at most that bound; a stderr line without an end is read and

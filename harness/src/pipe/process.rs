@@ -554,7 +554,19 @@ fn read_batch(
             return (answers, protocol(k, "an empty batch".into()));
         };
         match protocol::read_line(buf, &request.expect) {
-            Err(e) => return (answers, protocol(k, e.to_string())),
+            // An answer to another request reads as the wrong type for this
+            // one: say what is really wrong, its id.
+            Err(e) => {
+                let expected = p.first_id + k as u64;
+                let message = match answer_id(buf) {
+                    Some(id) if id != expected && k < n => format!(
+                        "field `id`: {id}, expected {expected} (answers come in request order); the line: `{}`",
+                        protocol::excerpt(buf)
+                    ),
+                    _ => e.to_string(),
+                };
+                return (answers, protocol(k, message));
+            }
             Ok(Line::End { batch, count }) => {
                 let problem = if batch != p.batch {
                     Some(format!(
@@ -602,4 +614,12 @@ fn read_batch(
             }
         }
     }
+}
+
+/// The `id` of an answer line that may not parse as the answer expected.
+fn answer_id(line: &str) -> Option<u64> {
+    serde_json::from_str::<serde_json::Value>(line)
+        .ok()?
+        .get("id")?
+        .as_u64()
 }

@@ -3,7 +3,8 @@ its sixth answer the way MODE says (the harness's containment tests):
 early-exit, crash, hang, garbage, wrong-id, wrong-count, long-line (an
 answer line without an end), long-handshake, long-stderr (an 80 MiB stderr
 line, then correct answers), fork-child (exits leaving a child that holds
-its stdout)."""
+its stdout), swap (the sixth and seventh answers in the wrong order); a
+request with a second operand (`gt`) is answered false."""
 import json
 import os
 import sys
@@ -39,10 +40,17 @@ while True:
     if not header:
         break
     batch = json.loads(header)
-    for _ in range(batch["count"]):
-        q = json.loads(sys.stdin.readline())
+    requests = [json.loads(sys.stdin.readline()) for _ in range(batch["count"])]
+    if mode == "swap" and answered <= 5 < answered + len(requests) - 1:
+        # The sixth and seventh answers in the wrong order.
+        i = 5 - answered
+        requests[i], requests[i + 1] = requests[i + 1], requests[i]
+    for q in requests:
         s, e, m = q["a"]
-        answer = {"id": q["id"], "value": [s, e + 1 if e > 0 else e, m]}
+        if "b" in q:
+            answer = {"id": q["id"], "value": False}
+        else:
+            answer = {"id": q["id"], "value": [s, e + 1 if e > 0 else e, m]}
         if answered == 5:
             sys.stdout.flush()
             if mode == "crash":
