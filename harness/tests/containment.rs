@@ -162,17 +162,13 @@ fn a_wrong_count_is_named_with_the_field() {
 #[test]
 fn an_adapter_whose_child_holds_its_stdout_crashes_at_its_exit() {
     let pipe = misbehaving("fork-child").unwrap();
-    let started = std::time::Instant::now();
+    // (A hang would be the 3 s watchdog's, not a crash.)
     let f = contained_run(&pipe, 5);
     assert_eq!(f.kind, FailureKind::Crash, "{f}");
     assert!(
         f.to_string()
             .contains("exited with status 1 after answering 5"),
         "{f}"
-    );
-    assert!(
-        started.elapsed() < Duration::from_secs(3),
-        "before the watchdog"
     );
     let child: u32 = f
         .stderr
