@@ -241,15 +241,23 @@ impl Pipe {
         }
     }
 
-    /// Why it cannot answer `batch`: a level its handshake does not declare.
-    fn unsupported(&self, batch: &[Vector]) -> Option<ImplError> {
-        let v = batch.iter().find(|v| !self.supports(v.level()))?;
-        Some(ImplError::Unsupported(format!(
-            "the {} level (its handshake declares {:?})",
-            v.level(),
-            self.hello.levels
-        )))
+    /// Send `batch` for its answers alone, unless it holds a level the
+    /// handshake does not declare.
+    fn send_for_eval(&self, batch: &[Vector]) -> Result<Option<Sent>, ImplError> {
+        if let Some(v) = batch.iter().find(|v| !self.supports(v.level())) {
+            return Err(ImplError::Unsupported(format!(
+                "the {} level (its handshake declares {:?})",
+                v.level(),
+                self.hello.levels
+            )));
+        }
+        self.send(batch, false)
     }
+}
+
+/// The outcomes of answers asked for without traces.
+fn outcomes(answered: Vec<process::Answered>) -> Vec<Outcome<Answer>> {
+    answered.into_iter().map(|(o, _)| o).collect()
 }
 
 /// A batch sent: where its reply comes, and how long it may take (its own
@@ -286,14 +294,8 @@ impl Implementation for Pipe {
     }
 
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
-        if let Some(e) = self.unsupported(batch) {
-            return Err(e);
-        }
-        Ok(self
-            .ask(batch, false)?
-            .into_iter()
-            .map(|(o, _)| o)
-            .collect())
+        let sent = self.send_for_eval(batch)?;
+        self.receive(batch, sent).map(outcomes)
     }
 
     /// One process answers the batches in turn.
@@ -306,15 +308,13 @@ impl Implementation for Pipe {
     fn eval_in_order(&self, batches: &[&[Vector]], done: &mut dyn FnMut(usize, BatchAnswers)) {
         let mut waiting = std::collections::VecDeque::new();
         let mut answer = |k: usize, sent: Result<Option<Sent>, ImplError>| {
-            let answers = sent.and_then(|s| self.receive(batches[k], s));
-            done(k, answers.map(|a| a.into_iter().map(|(o, _)| o).collect()));
+            done(
+                k,
+                sent.and_then(|s| self.receive(batches[k], s)).map(outcomes),
+            );
         };
         for (k, batch) in batches.iter().enumerate() {
-            let sent = match self.unsupported(batch) {
-                Some(e) => Err(e),
-                None => self.send(batch, false),
-            };
-            waiting.push_back((k, sent));
+            waiting.push_back((k, self.send_for_eval(batch)));
             if waiting.len() > SENT_AHEAD {
                 if let Some((j, sent)) = waiting.pop_front() {
                     answer(j, sent);

@@ -371,8 +371,8 @@ enum Bounded {
 }
 
 /// Read one line into `buf`, keeping at most `limit` bytes of it. With
-/// `skip`, the rest of a longer line is read and dropped (in the reader's
-/// own buffer, never held); without, reading stops at the bound.
+/// `skip`, the rest of a longer line is read and dropped (a chunk at a
+/// time, never held); without, reading stops at the bound.
 fn read_bounded(
     from: &mut impl BufRead,
     buf: &mut Vec<u8>,
@@ -380,33 +380,24 @@ fn read_bounded(
     skip: bool,
 ) -> std::io::Result<Bounded> {
     buf.clear();
-    let mut too_long = false;
-    loop {
-        let chunk = from.fill_buf()?;
-        if chunk.is_empty() {
-            return Ok(match (buf.is_empty(), too_long) {
-                (_, true) => Bounded::TooLong,
-                (true, false) => Bounded::End,
-                (false, false) => Bounded::Line,
-            });
-        }
-        let newline = chunk.iter().position(|&b| b == b'\n');
-        let take = newline.map_or(chunk.len(), |i| i + 1);
-        let room = limit.saturating_sub(buf.len());
-        buf.extend_from_slice(&chunk[..take.min(room)]);
-        too_long |= take > room;
-        from.consume(take);
-        if newline.is_some() {
-            return Ok(if too_long {
-                Bounded::TooLong
-            } else {
-                Bounded::Line
-            });
-        }
-        if too_long && !skip {
-            return Ok(Bounded::TooLong);
+    if from.take(limit as u64 + 1).read_until(b'\n', buf)? == 0 {
+        return Ok(Bounded::End);
+    }
+    if buf.len() <= limit || buf.last() == Some(&b'\n') {
+        return Ok(Bounded::Line);
+    }
+    buf.truncate(limit);
+    if skip {
+        let mut rest = Vec::new();
+        loop {
+            rest.clear();
+            let n = from.take(1 << 16).read_until(b'\n', &mut rest)?;
+            if n == 0 || rest.last() == Some(&b'\n') {
+                break;
+            }
         }
     }
+    Ok(Bounded::TooLong)
 }
 
 fn keep_stderr(shared: &Shared, stderr: impl Read) {

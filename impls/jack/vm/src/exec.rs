@@ -214,6 +214,13 @@ pub(crate) fn desktop_that_ok(that: u16, i: u16, flags: u8) -> bool {
     (floor..=THAT_END).contains(&at)
 }
 
+/// Desktop: a `that` pointer that a fused `pop pointer 1` may store itself
+/// (in its range, not from word 0: 0 is left to the plain command).
+#[inline(always)]
+fn desktop_that_base_ok(v: i16) -> bool {
+    (HEAP_START..=THAT_END).contains(&i32::from(v))
+}
+
 /// Desktop: the values `pop pointer 0` accepts (the heap, or not above 0).
 #[inline(always)]
 pub(crate) fn desktop_this_value_ok(v: i16) -> bool {
@@ -481,7 +488,7 @@ impl Machine {
             // which passes the desktop's test without setting THAT_ZERO.
             macro_rules! desktop_that_store {
                 ($v:expr) => {
-                    if function_step && !(HEAP_START..=THAT_END).contains(&i32::from($v)) {
+                    if function_step && !desktop_that_base_ok($v) {
                         deopt!();
                     }
                 };
@@ -557,7 +564,7 @@ impl Machine {
                     let at = usize::from(sp);
                     let saved = (w[at], w[at + 1]);
                     let a = push_push_op!(Bin::Add, $index, $base);
-                    if function_step && !(HEAP_START..=THAT_END).contains(&i32::from(a)) {
+                    if function_step && !desktop_that_base_ok(a) {
                         (w[at], w[at + 1]) = saved;
                         sp = at as u16;
                         deopt!();

@@ -573,11 +573,7 @@ impl Run {
                     // one, step for step).
                     let n = count.unwrap_or(MAX_OPEN_LOOP);
                     if n > 0 && !self.done() {
-                        let m = self.machine().map_err(fail)?;
-                        m.run(Some(n - 1));
-                        let last = m.next_command_index();
-                        m.run(Some(1));
-                        self.last_command = last;
+                        self.vmsteps(n).map_err(fail)?;
                         if count.is_none() && !self.ended() {
                             return Err(fail(open_loop("repeat")));
                         }
@@ -610,6 +606,17 @@ impl Run {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// Run `n` (at least 1) steps, noting the command the last one runs
+    /// (what `line` prints): a run of `n` steps is `n` runs of one.
+    fn vmsteps(&mut self, n: u64) -> Result<(), String> {
+        let m = self.machine()?;
+        m.run(Some(n - 1));
+        let last = m.next_command_index();
+        m.run(Some(1));
+        self.last_command = last;
         Ok(())
     }
 
@@ -765,10 +772,7 @@ impl Run {
             }
             "vmstep" => {
                 arity(0)?;
-                let m = self.machine()?;
-                let last = m.next_command_index();
-                m.run(Some(1));
-                self.last_command = last;
+                self.vmsteps(1)?;
             }
             "breakpoint" => {
                 arity(2)?;
