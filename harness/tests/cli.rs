@@ -224,26 +224,24 @@ fn jack_compile_then_run_prints_the_count_the_end_and_the_screen() {
 
 #[test]
 fn jack_compile_errors_name_file_line_and_column() {
-    let src =
-        jack_main("class Main {\n  function void main() {\n    let x = ;\n    return;\n  }\n}\n");
-    let out = src.path().join("out");
-    let o = jack(
-        "compile",
-        src.path(),
-        &["--out", &out.display().to_string()],
-    );
+    let compile = |main: &str| {
+        let src = jack_main(main);
+        let out = src.path().join("out");
+        let o = jack(
+            "compile",
+            src.path(),
+            &["--out", &out.display().to_string()],
+        );
+        (o, out.join("Main.vm").exists())
+    };
+    let (o, _) =
+        compile("class Main {\n  function void main() {\n    let x = ;\n    return;\n  }\n}\n");
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("Main.jack:3:"), "{}", text(&o));
     // Code the VM would not load is an error at its Jack position, and
     // nothing is written; a call into a class outside the folder is not.
-    let src = jack_main(
+    let (o, written) = compile(
         "class Main {\n  function void main() {\n    var int x;\n    let x = 40000;\n    do Other.f();\n    return;\n  }\n}\n",
-    );
-    let out = src.path().join("out");
-    let o = jack(
-        "compile",
-        src.path(),
-        &["--out", &out.display().to_string()],
     );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(
@@ -251,16 +249,10 @@ fn jack_compile_errors_name_file_line_and_column() {
         "{}",
         text(&o)
     );
-    assert!(!out.join("Main.vm").exists());
-    let src = jack_main(
-        "class Main {\n  function void main() {\n    do Other.f();\n    return;\n  }\n}\n",
-    );
-    let o = jack(
-        "compile",
-        src.path(),
-        &["--out", &src.path().join("out").display().to_string()],
-    );
-    assert!(o.status.success(), "{}", text(&o));
+    assert!(!written);
+    let (o, written) =
+        compile("class Main {\n  function void main() {\n    do Other.f();\n    return;\n  }\n}\n");
+    assert!(o.status.success() && written, "{}", text(&o));
 }
 
 /// A copy of the project 8 test folder `name` (its .tst, .cmp and .vm files).

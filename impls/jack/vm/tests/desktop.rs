@@ -373,22 +373,30 @@ fn a_printing_recursion_overflows_the_desktop_stack_at_step_3252() {
     assert_eq!(stack.to_string(), "Sys.init > Main.main > Main.f x 296");
 }
 
+/// The interpreter, then compiled code.
+const ENGINES: [hack_vm::Engine; 2] = [hack_vm::Engine::Interp, hack_vm::Engine::Native];
+
+/// A machine for `program` under `profile` on `engine`.
+fn on_engine(program: &Arc<Program>, profile: Profile, engine: hack_vm::Engine) -> Machine {
+    Machine::new(
+        program.clone(),
+        Config {
+            profile,
+            engine,
+            ..Config::default()
+        },
+    )
+}
+
 /// `text` (one file, Main.vm) under `profile` on the interpreter and on
 /// compiled code: both end the same way after the same steps, which are
 /// returned with the exit.
 fn on_both_engines(profile: Profile, text: &str) -> (Exit, u64) {
     let program = Program::from_sources(&[("Main.vm", text)]).unwrap();
-    let runs: Vec<(Exit, u64)> = [hack_vm::Engine::Interp, hack_vm::Engine::Native]
+    let runs: Vec<(Exit, u64)> = ENGINES
         .into_iter()
         .map(|engine| {
-            let mut m = Machine::new(
-                program.clone(),
-                Config {
-                    profile,
-                    engine,
-                    ..Config::default()
-                },
-            );
+            let mut m = on_engine(&program, profile, engine);
             let e = m.run(Some(10_000));
             (e, m.steps())
         })
@@ -558,15 +566,9 @@ fn after_a_pop_pointer_1_of_0_that_reaches_from_word_0_until_a_return() {
 fn a_calls_ret_word_is_a_program_address_and_a_return_sets_r13_and_r14() {
     let text = "function Sys.init 0\ncall Main.f 0\nreturn\n\
                 function Main.f 0\npush constant 7\nlabel L\nreturn\n";
-    for engine in [hack_vm::Engine::Interp, hack_vm::Engine::Native] {
-        let mut m = Machine::new(
-            Program::from_sources(&[("Main.vm", text)]).unwrap(),
-            Config {
-                profile: Profile::Desktop,
-                engine,
-                ..Config::default()
-            },
-        );
+    let program = Program::from_sources(&[("Main.vm", text)]).unwrap();
+    for engine in ENGINES {
+        let mut m = on_engine(&program, Profile::Desktop, engine);
         // Sys.init's function line, the call, f's function line and its
         // push: f's frame is at 256 (the entry has none).
         assert!(matches!(m.run(Some(4)), Exit::Budget { .. }));
@@ -600,14 +602,7 @@ fn a_refused_array_read_leaves_the_stack_as_the_plain_commands_do() {
                 pop temp 0\npush constant 0\nreturn\n";
     let program = Program::from_sources(&[("Main.vm", text)]).unwrap();
     let run = |engine, one_by_one: bool| {
-        let mut m = Machine::new(
-            program.clone(),
-            Config {
-                profile: Profile::Desktop,
-                engine,
-                ..Config::default()
-            },
-        );
+        let mut m = on_engine(&program, Profile::Desktop, engine);
         m.call("Main.f", &[0, 0], Some(0)).unwrap();
         let exit = if one_by_one {
             loop {

@@ -35,6 +35,24 @@ fn script_of(dir: &Path, tmp: &Path) -> PathBuf {
     tmp.join(format!("{name}VME.tst"))
 }
 
+/// A fresh temporary folder holding `files` (name, text).
+fn folder(files: &[(&str, &str)]) -> tempfile::TempDir {
+    let tmp = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        std::fs::write(tmp.path().join(name), text).unwrap();
+    }
+    tmp
+}
+
+/// A program that loops for ever: push 1, pop temp 0, goto.
+const COUNT_VM: &str = "label L\npush constant 1\npop temp 0\ngoto L\n";
+
+/// 7 + 8, and a script comparing RAM[256] after its three steps with
+/// `Add.cmp` (which each test writes).
+const ADD_VM: &str = "push constant 7\npush constant 8\nadd\n";
+const ADD_TST: &str = "load Add.vm,\noutput-file Add.out,\ncompare-to Add.cmp,\n\
+                       output-list RAM[256]%D1.6.1;\nset sp 256,\nrepeat 3 { vmstep; }\noutput;\n";
+
 #[test]
 fn the_project_7_and_8_scripts_pass_under_both_profiles() {
     let dirs = test_dirs();
@@ -96,12 +114,7 @@ fn a_wrong_compare_file_fails_at_its_first_differing_line() {
 
 #[test]
 fn scripts_with_loops_echo_and_every_format() {
-    let tmp = tempfile::tempdir().unwrap();
-    std::fs::write(
-        tmp.path().join("Count.vm"),
-        "label L\npush constant 1\npop temp 0\ngoto L\n",
-    )
-    .unwrap();
+    let tmp = folder(&[("Count.vm", COUNT_VM)]);
     std::fs::write(
         tmp.path().join("Count.tst"),
         "load Count.vm, output-file Count.out, echo \"counting\";\n\
@@ -150,18 +163,7 @@ fn a_broken_script_names_its_line_and_column() {
 
 #[test]
 fn a_compare_line_that_differs_only_in_spaces_fails_on_the_desktop_only() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("Add.vm"),
-        "push constant 7\npush constant 8\nadd\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.path().join("AddVME.tst"),
-        "load Add.vm,\noutput-file Add.out,\ncompare-to Add.cmp,\noutput-list RAM[256]%D1.6.1;\n\
-         set sp 256,\nrepeat 3 { vmstep; }\noutput;\n",
-    )
-    .unwrap();
+    let dir = folder(&[("Add.vm", ADD_VM), ("AddVME.tst", ADD_TST)]);
     let tst = dir.path().join("AddVME.tst");
     // The header line with a space more at its end.
     std::fs::write(dir.path().join("Add.cmp"), "|RAM[256]| \n|     15 |\n").unwrap();
@@ -208,19 +210,18 @@ fn a_repeat_of_vmstep_is_the_same_run_as_its_steps_one_by_one() {
 
 #[test]
 fn current_function_names_the_running_function_and_the_caller_at_a_desktop_function_line() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("Sys.vm"),
-        "function Sys.init 0\ncall Sys.f 0\nlabel L\ngoto L\nfunction Sys.f 0\npush constant 0\nreturn\n",
-    )
-    .unwrap();
+    let dir = folder(&[
+        (
+            "Sys.vm",
+            "function Sys.init 0\ncall Sys.f 0\nlabel L\ngoto L\nfunction Sys.f 0\npush constant 0\nreturn\n",
+        ),
+        (
+            "FVME.tst",
+            "load Sys.vm,\noutput-file F.out,\noutput-list currentFunction%S1.10.1;\n\
+             repeat 6 { vmstep; output; }\n",
+        ),
+    ]);
     let tst = dir.path().join("FVME.tst");
-    std::fs::write(
-        &tst,
-        "load Sys.vm,\noutput-file F.out,\noutput-list currentFunction%S1.10.1;\n\
-         repeat 6 { vmstep; output; }\n",
-    )
-    .unwrap();
     let out = |profile| {
         run_script(&tst, profile).unwrap();
         std::fs::read_to_string(dir.path().join("F.out")).unwrap()
@@ -240,21 +241,19 @@ fn current_function_names_the_running_function_and_the_caller_at_a_desktop_funct
 
 #[test]
 fn line_names_the_current_function_and_the_index_of_the_command_the_step_ran() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("Sys.vm"),
-        "function Sys.init 0\ncall Sys.f 0\nlabel L\ngoto L\n\
-         function Sys.f 0\nlabel X\npush constant 0\nreturn\n",
-    )
-    .unwrap();
-    let tst = dir.path().join("LVME.tst");
-    std::fs::write(
-        &tst,
-        "load Sys.vm,\noutput-file L.out,\noutput-list line%S1.12.1;\n\
-         repeat 6 { vmstep; output; }\n",
-    )
-    .unwrap();
-    run_script(&tst, Profile::Desktop).unwrap();
+    let dir = folder(&[
+        (
+            "Sys.vm",
+            "function Sys.init 0\ncall Sys.f 0\nlabel L\ngoto L\n\
+             function Sys.f 0\nlabel X\npush constant 0\nreturn\n",
+        ),
+        (
+            "LVME.tst",
+            "load Sys.vm,\noutput-file L.out,\noutput-list line%S1.12.1;\n\
+             repeat 6 { vmstep; output; }\n",
+        ),
+    ]);
+    run_script(&dir.path().join("LVME.tst"), Profile::Desktop).unwrap();
     // As the desktop prints it: the function on its call stack and the
     // index (function line 0, labels not counted) of the command just run.
     // The call names the caller (Sys.f's function line has not run), the
@@ -270,17 +269,8 @@ fn line_names_the_current_function_and_the_index_of_the_command_the_step_ran() {
 /// after its load, output file and `output-list RAM[5]%D1.3.1`: the
 /// report and the output.
 fn count_script(body: &str) -> (hack_vm::ScriptReport, String) {
-    let tmp = tempfile::tempdir().unwrap();
-    std::fs::write(
-        tmp.path().join("Count.vm"),
-        "label L\npush constant 1\npop temp 0\ngoto L\n",
-    )
-    .unwrap();
-    std::fs::write(
-        tmp.path().join("Count.tst"),
-        format!("load Count.vm, output-file Count.out, output-list RAM[5]%D1.3.1;\n{body}"),
-    )
-    .unwrap();
+    let tst = format!("load Count.vm, output-file Count.out, output-list RAM[5]%D1.3.1;\n{body}");
+    let tmp = folder(&[("Count.vm", COUNT_VM), ("Count.tst", &tst)]);
     let report = run_script(&tmp.path().join("Count.tst"), Profile::Desktop).unwrap();
     let out = std::fs::read_to_string(tmp.path().join("Count.out")).unwrap();
     (report, out)
@@ -316,19 +306,8 @@ fn a_bang_terminator_stops_the_script() {
 
 #[test]
 fn a_star_in_a_desktop_compare_line_matches_any_one_character() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("Add.vm"),
-        "push constant 7\npush constant 8\nadd\n",
-    )
-    .unwrap();
+    let dir = folder(&[("Add.vm", ADD_VM), ("AddVME.tst", ADD_TST)]);
     let tst = dir.path().join("AddVME.tst");
-    std::fs::write(
-        &tst,
-        "load Add.vm,\noutput-file Add.out,\ncompare-to Add.cmp,\noutput-list RAM[256]%D1.6.1;\n\
-         set sp 256,\nrepeat 3 { vmstep; }\noutput;\n",
-    )
-    .unwrap();
     std::fs::write(dir.path().join("Add.cmp"), "|RAM[256]|\n|     *5 |\n").unwrap();
     let r = run_script(&tst, Profile::Desktop).unwrap();
     assert!(r.mismatch.is_none(), "{:?}", r.mismatch);
@@ -342,12 +321,7 @@ fn a_star_in_a_desktop_compare_line_matches_any_one_character() {
 /// without bound, run for ever or allowed to overwrite what it reads.
 #[test]
 fn a_script_is_bounded_in_what_it_reads_nests_repeats_and_writes() {
-    let tmp = tempfile::tempdir().unwrap();
-    std::fs::write(
-        tmp.path().join("Count.vm"),
-        "label L\npush constant 1\npop temp 0\ngoto L\n",
-    )
-    .unwrap();
+    let tmp = folder(&[("Count.vm", COUNT_VM)]);
     let tst = tmp.path().join("Bad.tst");
     let error = |text: &str| {
         std::fs::write(&tst, text).unwrap();

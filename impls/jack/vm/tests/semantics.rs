@@ -174,6 +174,18 @@ fn memory_outside_ram_reads_minus_one_and_drops_writes() {
     );
 }
 
+/// `src` (one file, `Sys.vm`) loaded under the web profile on `engine`.
+fn web_machine(src: &str, engine: hack_vm::Engine) -> Machine {
+    Machine::new(
+        Program::from_sources(&[("Sys.vm", src)]).unwrap(),
+        Config {
+            profile: Profile::Web,
+            engine,
+            ..Config::default()
+        },
+    )
+}
+
 /// A push at SP = 0 writes its value into SP, then SP becomes 1, as the
 /// web IDE's push does (it keeps SP's old value for the increment); the
 /// next push writes RAM[1]. Both engines.
@@ -182,14 +194,7 @@ fn a_push_at_sp_0_leaves_sp_1() {
     let src = "function Sys.init 0\npush constant 0\npop pointer 1\npush constant 0\npop that 0\n\
                push constant 7\npush constant 5\nlabel L\ngoto L\n";
     for engine in [hack_vm::Engine::Interp, hack_vm::Engine::Native] {
-        let mut m = Machine::new(
-            Program::from_sources(&[("Sys.vm", src)]).unwrap(),
-            Config {
-                profile: Profile::Web,
-                engine,
-                ..Config::default()
-            },
-        );
+        let mut m = web_machine(src, engine);
         assert!(
             matches!(m.run(Some(100)), Exit::Budget { .. }),
             "{engine:?}"
@@ -204,14 +209,7 @@ fn web_on_both_engines(src: &str, budget: u64) -> (String, u64) {
     let runs: Vec<(String, u64)> = [hack_vm::Engine::Interp, hack_vm::Engine::Native]
         .into_iter()
         .map(|engine| {
-            let mut m = Machine::new(
-                Program::from_sources(&[("Sys.vm", src)]).unwrap(),
-                Config {
-                    profile: Profile::Web,
-                    engine,
-                    ..Config::default()
-                },
-            );
+            let mut m = web_machine(src, engine);
             let exit = m.run(Some(budget));
             (exit.to_string(), m.steps())
         })
