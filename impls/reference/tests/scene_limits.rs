@@ -53,7 +53,7 @@ fn an_empty_object_and_broken_json_are_refused_where_they_are() {
 fn a_camera_without_direction_is_refused() {
     let e = load("f", r#"{"camera":{"position":[0,0,0],"look_at":[0,0,0]}}"#).unwrap_err();
     assert!(e.contains("camera.look_at"), "{e}");
-    let e = load("g", r#"{"camera":{"up":[0,1.5,4]}}"#).unwrap_err();
+    let e = load("j", r#"{"camera":{"up":[0,1.5,4]}}"#).unwrap_err();
     assert!(e.contains("camera.up"), "{e}");
     let mut s = Scene::default();
     s.camera.look_at = s.camera.position;
