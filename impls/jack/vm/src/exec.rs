@@ -82,8 +82,9 @@ fn words(ram: &mut Ram) -> &mut Words {
         .expect("the RAM has RAM_SIZE words")
 }
 
-/// Why the loop stopped early (the call stack is added by the caller).
-enum Halt {
+/// Why the loop stopped early (the call stack is added by the caller);
+/// also what a built-in called from compiled code stopped with.
+pub(crate) enum Halt {
     Exit(Exit),
     Error(String),
     Os(Stop),
@@ -177,7 +178,7 @@ const ARG_OOB: &str = "Argument offset out of bounds";
 const LOCAL_OOB: &str = "Local offset out of bounds";
 const THIS_UNINIT: &str = "The this segment cannot be accessed since it was not initialized";
 const THAT_UNINIT: &str = "The that segment cannot be accessed since it was not initialized";
-const STACK_OVERFLOW: &str = "Stack overflow";
+pub(crate) const STACK_OVERFLOW: &str = "Stack overflow";
 /// Desktop: a `return` with LCL = 0 (the entry function, which has no frame).
 const NOWHERE_TO_RETURN: &str = "Nowhere to return to";
 /// Desktop: a `this i` or `that i` outside the segment's range.
@@ -249,7 +250,7 @@ fn desktop_operands_ok<const N: usize>(operands: [Operand; N], seg: &[u16; 8], f
 /// Desktop: the highest SP at a built-in call (its arguments pushed) that
 /// leaves room for the call's 5-word frame and the pushed result, each
 /// push keeping SP <= 2047.
-const BUILTIN_LAST_BASE: u16 = STACK_LAST - 6;
+pub(crate) const BUILTIN_LAST_BASE: u16 = STACK_LAST - 6;
 
 impl Machine {
     /// Run instructions of `code` (its fused array if `fused`, else its plain
@@ -1111,9 +1112,16 @@ impl Machine {
         self.nargs = nargs;
         self.flags = flags;
         self.profile_mark = profile_mark;
-        let Some(mut halt) = halt else {
-            return Flow::Limit;
-        };
+        match halt {
+            Some(halt) => self.end_at(halt),
+            None => Flow::Limit,
+        }
+    }
+
+    /// The end of a run that stopped at `halt`, in the state the machine
+    /// stopped in (registers, pc and steps stored).
+    pub(crate) fn end_at(&mut self, mut halt: Halt) -> Flow {
+        let function_step = Timing::of(self.os.profile()).function_step;
         match halt {
             Halt::OsInFrame(stop, n) => {
                 self.desktop_builtin_frame(u16::from(n));

@@ -160,6 +160,8 @@ fn expression() -> impl Strategy<Value = Vec<String>> {
                     "lt",
                     "call Math.multiply 2",
                     "call Math.divide 2",
+                    "call Math.min 2",
+                    "call Math.max 2",
                     "call Main.g 2",
                     "call Main.m 2",
                     "call Main.s 2",
@@ -173,7 +175,9 @@ fn expression() -> impl Strategy<Value = Vec<String>> {
                     "not",
                     "call Main.r 1",
                     "call Main.m 1",
-                    "call Math.abs 1"
+                    "call Math.abs 1",
+                    "call Math.sqrt 1",
+                    "call Memory.peek 1"
                 ])
             )
                 .prop_map(|(a, op)| [a, vec![op.to_string()]].concat()),
@@ -536,6 +540,40 @@ fn budget_stops_deep_in_the_program_agree() {
     agree_on(&body, 300, &[0, 0], &[false, true], &budgets);
 }
 
+/// Built-ins called from compiled code where the interpreter's rules
+/// decide: a `Memory.poke` of each register (of SP too, so that the
+/// built-in's push lands where SP then says: a register, the stack's end,
+/// past RAM), a built-in's error, and built-ins with SP at either end of
+/// the stack, under both profiles, with budget stops on the way.
+#[test]
+fn builtins_that_move_registers_or_stop_agree() {
+    let budgets = [0, 3, 5];
+    for a in 0..5 {
+        for v in [0, 1, 2, 3, 4, 256, 2047, 24577] {
+            let body = format!(
+                "push constant 7\npush constant {a}\npush constant {v}\ncall Memory.poke 2\n\
+                 pop temp 0\npush constant 3\ncall Math.abs 1\npop temp 1"
+            );
+            agree_on(&body, 0, &[1, 2], &[false, true], &budgets);
+        }
+    }
+    let unsettled = "push constant 0\nif-goto X\npush constant 1\nlabel X";
+    for sp in [256, 257, 258, 2039, 2040, 2041, 2042, 2045, 2046, 2047] {
+        let body = format!(
+            "{unsettled}\npush constant {sp}\npop constant 0\npush constant 9\npush constant 4\n\
+             call Math.max 2\npop temp 0\npush constant 5\ncall Output.printChar 1\npop temp 1"
+        );
+        agree_on(&body, 0, &[0, 0], &[false, true], &budgets);
+    }
+    for error in [
+        "push constant 1\nneg\ncall Math.sqrt 1",
+        "push constant 3\ncall Sys.error 1",
+    ] {
+        let body = format!("push constant 1\npop temp 0\n{error}\npop temp 1\npush constant 2");
+        agree_on(&body, 0, &[0, 0], &[false, true], &budgets);
+    }
+}
+
 #[test]
 fn a_broken_translation_is_caught() {
     // Most seeds find a wrong `sub` within 256 cases, not all: the runner
@@ -571,9 +609,22 @@ fn command() -> impl Strategy<Value = String> {
         3 => (seg.clone(), 0u16..4).prop_map(|(s, i)| format!("pop {s} {i}")),
         1 => (0u16..2).prop_map(|p| format!("push pointer {p}")),
         2 => (0u16..2).prop_map(|p| format!("pop pointer {p}")),
-        1 => value.prop_map(|v| format!("pop constant {}", v % 6)),
+        1 => value.clone().prop_map(|v| format!("pop constant {}", v % 6)),
         4 => prop::sample::select(vec!["add", "sub", "neg", "eq", "gt", "lt", "and", "or", "not"]).prop_map(String::from),
         1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1", "call Main.s 2", "call Main.w 2"]).prop_map(String::from),
+        // Built-ins, which compiled code calls through the host: reads and
+        // writes of any word, the heap, strings, the screen, an error.
+        2 => prop::sample::select(vec![
+            "call Memory.peek 1", "call Memory.poke 2", "call Math.min 2", "call Math.max 2",
+            "call Math.sqrt 1", "call Memory.alloc 1", "call Array.new 1", "call String.new 1",
+            "call String.length 1", "call String.appendChar 2", "call Output.printChar 1",
+            "call Output.printInt 1", "call Screen.drawPixel 2", "call Keyboard.keyPressed 0",
+            "call Sys.error 1",
+        ]).prop_map(String::from),
+        // A poke of a register (SP, LCL, ARG, THIS, THAT) or a word near them.
+        1 => (0u16..7, value).prop_map(|(a, v)| format!(
+            "push constant {a}\npush constant {v}\ncall Memory.poke 2"
+        )),
         // A write k words above SP (read through RAM[0]) by an inlined
         // setter: onto its arguments, its frame (RET, the saved registers)
         // or its own stack.

@@ -17,9 +17,11 @@ pub(crate) enum Kind {
     Straight,
     /// `goto` or `if-goto`: ends the block.
     Jump,
-    /// A call of a VM function or a return: compiled inline, ends the block.
+    /// A call of a VM function, a return, or a call of a built-in that
+    /// does not block (through a host call, `builtin::call`): compiled,
+    /// ends the block.
     CallOrReturn,
-    /// Left to the interpreter (built-ins, halt, load-time failures, the
+    /// Left to the interpreter (blocking built-ins, halt, load-time failures, the
     /// entry function's checked accesses, `pop constant` outside plain RAM,
     /// a `function` line with more than [`MAX_INLINE_LOCALS`] locals):
     /// the block ends before it, and compiled code exits there.
@@ -30,6 +32,7 @@ pub(crate) fn kind(op: Op) -> Kind {
     match op {
         Op::Goto(_) | Op::IfGoto(_) => Kind::Jump,
         Op::Call { .. } | Op::Return => Kind::CallOrReturn,
+        Op::CallBuiltin { builtin, .. } if !builtin.blocks() => Kind::CallOrReturn,
         Op::CallBuiltin { .. } | Op::Halt | Op::Fail(_) | Op::EntryAccess { .. } => {
             Kind::Interpreted
         }
@@ -232,7 +235,7 @@ pub(crate) fn static_depths(
 pub(crate) struct Budget {
     /// The block tests the budget on every entry: the function's first
     /// block, a loop's head (the target of a backward jump), a call's
-    /// continuation. Other blocks are reached only forward from a block
+    /// continuation (a built-in's too). Other blocks are reached only forward from a block
     /// whose test covered them (or from the dispatcher, which tests).
     pub tested: bool,
     /// The most steps from the block's start to the next block that tests
@@ -264,7 +267,7 @@ pub(crate) fn budgets(
         match code[b.end as usize - 1] {
             Op::Goto(t) => vec![at(t)],
             Op::IfGoto(t) => vec![at(t), at(b.end)],
-            Op::Return | Op::Call { .. } => Vec::new(),
+            Op::Return | Op::Call { .. } | Op::CallBuiltin { .. } => Vec::new(),
             _ if ((b.end - start) as usize) < index.len() => vec![at(b.end)],
             _ => Vec::new(),
         }
@@ -274,7 +277,9 @@ pub(crate) fn budgets(
             continue;
         }
         match code[b.end as usize - 1] {
-            Op::Call { .. } if ((b.end - start) as usize) < index.len() => {
+            Op::Call { .. } | Op::CallBuiltin { .. }
+                if ((b.end - start) as usize) < index.len() =>
+            {
                 tested[at(b.end)] = true;
             }
             _ => {}

@@ -15,9 +15,10 @@
 //! function profile is on.
 
 mod blocks;
+mod builtin;
 mod translate;
 
-use crate::exec::Flow;
+use crate::exec::{Flow, Halt};
 use crate::machine::{Frame, Machine, Watcher, MAX_DEPTH, THAT_ZERO};
 use crate::program::{Code, FnId, Op, Program};
 use crate::timing::{self, Timing};
@@ -26,7 +27,7 @@ use cranelift_codegen::settings::{self, Configurable};
 use cranelift_frontend::FunctionBuilderContext;
 use cranelift_jit::{JITBuilder, JITModule};
 use cranelift_module::{default_libcall_names, FuncId, Linkage, Module};
-use jack_os::{Profile, RAM_SIZE};
+use jack_os::{Os, Profile, Ram, RAM_SIZE};
 use std::time::{Duration, Instant};
 
 /// Which engine runs a [`Machine`].
@@ -97,6 +98,9 @@ pub(crate) enum Fault {
 pub(crate) const RETURNED: i32 = -1;
 /// Code: continue in compiled code at `Ctx::pc` of function `Ctx::cur`.
 pub(crate) const CONTINUE: i32 = -2;
+/// Code: a built-in called from compiled code ended the run, with
+/// `Ctx::stopped`.
+pub(crate) const STOPPED: i32 = -3;
 /// The block index a compiled call passes: the registers come as the
 /// entry's other arguments, not in the context.
 pub(crate) const CALLED: i64 = -1;
@@ -139,6 +143,13 @@ pub(crate) struct Ctx {
     pub flags: u8,
     pub cur: u32,
     pub pc: u32,
+    /// The OS and the RAM, for built-ins called from compiled code
+    /// (`builtin::call`); `ram` points into `ram_obj`'s words.
+    pub os: *mut Os,
+    pub ram_obj: *mut Ram,
+    /// What a built-in called from compiled code stopped the run with
+    /// (with the code [`STOPPED`]).
+    pub stopped: Option<Halt>,
 }
 
 /// A compiled function: (context, block index or [`CALLED`], and for a
@@ -378,12 +389,12 @@ impl Machine {
             let (owner, block) = native.block_at[self.pc as usize];
             // (Compiled code leaves the desktop's `that` from word 0 to
             // the interpreter: it never runs with THAT_ZERO set.)
-            if block != NO_BLOCK
-                && owner == self.cur
-                && self.flags & THAT_ZERO == 0
-                && self.enter_native(native, block, stop_at, watched) == CONTINUE
-            {
-                continue;
+            if block != NO_BLOCK && owner == self.cur && self.flags & THAT_ZERO == 0 {
+                match self.enter_native(native, block, stop_at, watched) {
+                    Err(halt) => return self.end_at(halt),
+                    Ok(CONTINUE) => continue,
+                    Ok(_) => {}
+                }
             }
             if self.steps >= stop_at {
                 return Flow::Limit;
@@ -397,8 +408,18 @@ impl Machine {
     /// Run compiled code from block `block` of the current function, with
     /// `watched` (a flag per function) the functions whose calls it leaves
     /// to the interpreter.
-    fn enter_native(&mut self, native: &Native, block: u32, stop_at: u64, watched: &[bool]) -> i32 {
-        let w = self.ram.words_mut();
+    /// Its code (`Err`: a built-in it called ended the run).
+    fn enter_native(
+        &mut self,
+        native: &Native,
+        block: u32,
+        stop_at: u64,
+        watched: &[bool],
+    ) -> Result<i32, Halt> {
+        let ram_obj: *mut Ram = &mut self.ram;
+        // SAFETY: `ram_obj` was just made from `self.ram`, which nothing
+        // else borrows while compiled code runs.
+        let w = unsafe { (*ram_obj).words_mut() };
         let reg = |i: usize| w[i] as u16;
         let mut ctx = Ctx {
             ram: std::ptr::null_mut(),
@@ -423,6 +444,9 @@ impl Machine {
             frames_limit: 0,
             frames_base: self.frames.len() as u64,
             watch: watched.as_ptr().cast(),
+            os: &mut self.os,
+            ram_obj,
+            stopped: None,
         };
         ctx.frames_limit = ctx
             .frames_cap
@@ -450,6 +474,9 @@ impl Machine {
         self.cur = ctx.cur;
         self.nargs = ctx.nargs;
         self.flags = ctx.flags;
-        exit.code
+        match ctx.stopped {
+            Some(halt) => Err(halt),
+            None => Ok(exit.code),
+        }
     }
 }

@@ -18,8 +18,9 @@
 //! wherever an instruction meets a case that
 //! only the interpreter handles (a register or an address outside RAM
 //! through a computed address, a failed segment check, a division by zero,
-//! a built-in), it stores the exact state before that instruction and
-//! exits. Within a block the operand stack lives in SSA values (see
+//! a blocking built-in), it stores the exact state before that instruction
+//! and exits. Other built-ins end their block and run through a host call
+//! (`builtin::call`), after which compiled code goes on. Within a block the operand stack lives in SSA values (see
 //! [`Stack`]): each pushed word reaches RAM once, with its last value, where
 //! the block ends or leaves, or before an access that might touch it; the
 //! entry test shows that the block's `local` and `argument` words lie below
@@ -28,14 +29,15 @@
 //! from its segment's host address.
 
 use super::blocks::{self, Block, Budget, Kind, MAX_INLINE_LOCALS};
-use super::{Ctx, Fault, CALLED, CONTINUE, RETURNED};
+use super::{builtin, Ctx, Fault, CALLED, CONTINUE, RETURNED};
+use crate::exec::BUILTIN_LAST_BASE;
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
-use crate::timing::{Timing, STACK_BASE};
+use crate::timing::{Timing, STACK_BASE, STACK_LAST};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{
-    self, types, AliasRegionData, BlockArg, FuncRef, InstBuilder, JumpTableData, MemFlagsData,
-    Value,
+    self, types, AbiParam, AliasRegionData, BlockArg, FuncRef, InstBuilder, JumpTableData,
+    MemFlagsData, Value,
 };
 use cranelift_frontend::{FunctionBuilder, Variable};
 use jack_os::{Profile, RAM_SIZE};
@@ -1441,6 +1443,7 @@ impl Translator<'_, '_> {
                 callee, nargs, ret, ..
             } => self.call(FnId::from(callee), nargs, ret, s, before, blk),
             Op::Return => self.ret(s, before, blk),
+            Op::CallBuiltin { builtin, nargs } => self.builtin(builtin, nargs, s, before, blk),
             Op::Function { n_vars, .. } => {
                 // The locals, zeroed (the block's entry test covers them).
                 for _ in 0..n_vars {
@@ -1450,6 +1453,68 @@ impl Translator<'_, '_> {
             }
             _ => unreachable!("interpreted instructions end blocks before them"),
         }
+    }
+
+    /// `call Class.builtin n` (not a blocking one) through a host call
+    /// (`builtin::call`): the block ends, its state goes to the context,
+    /// and compiled code goes on with the next block, or leaves where the
+    /// built-in moved a register or ended the run. The interpreter makes
+    /// the call where its pops or its push would not be plain stack words,
+    /// or (desktop) where its frame would not fit.
+    fn builtin(
+        &mut self,
+        builtin: jack_os::Builtin,
+        n: u8,
+        s: &mut Stack,
+        before: &Before,
+        blk: &Block,
+    ) {
+        let sp = s.sp(self);
+        let lo = i64::from(STACK_BASE) + i64::from(n);
+        let hi = if self.env.timing.stack_check {
+            i64::from(BUILTIN_LAST_BASE)
+        } else {
+            (i64::from(STACK_LAST) - 1 + i64::from(n)).min(i64::from(STACK_LAST))
+        };
+        let d = self.b.ins().iadd_imm_s(sp, -lo);
+        let ok = self
+            .b
+            .ins()
+            .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, hi - lo);
+        self.guard(ok, before);
+        self.end_block(s, before.steps0, blk);
+        self.store_state();
+        let mut sig = ir::Signature::new(self.b.func.signature.call_conv);
+        sig.params.extend([AbiParam::new(T64), AbiParam::new(T32)]);
+        sig.returns.push(AbiParam::new(T32));
+        let sig = self.b.import_signature(sig);
+        let host = builtin::call as unsafe extern "C" fn(*mut Ctx, u32) -> i32;
+        let host = self.b.ins().iconst(T64, host as usize as i64);
+        let what = builtin::what(builtin, n, self.env.profile);
+        let what = self.c32(i64::from(what));
+        let call = self.b.ins().call_indirect(sig, host, &[self.ctx, what]);
+        let code = self.b.inst_results(call)[0];
+        let steps = self
+            .b
+            .ins()
+            .load(T64, self.mem.ctx, self.ctx, field(offset_of!(Ctx, steps)));
+        self.b.def_var(self.v.steps, steps);
+        let (cont, out) = (self.b.create_block(), self.b.create_block());
+        let done = self
+            .b
+            .ins()
+            .icmp_imm_s(IntCC::Equal, code, i64::from(builtin::DONE));
+        self.b.ins().brif(done, cont, NONE, out, NONE);
+        self.b.switch_to_block(out);
+        self.b.set_cold_block(out);
+        // The state is the one the built-in left in the context.
+        self.load_state();
+        let pc = self.c32(i64::from(before.pc + 1));
+        self.leave_with(code, pc);
+        self.b.switch_to_block(cont);
+        let sp = self.b.ins().iadd_imm_s(sp, 1 - i64::from(n));
+        self.b.def_var(self.v.sp, sp);
+        self.jump_to(before.pc + 1);
     }
 
     /// `Math.divide` of a non-zero divisor under the OS profile.
