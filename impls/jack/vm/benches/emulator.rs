@@ -11,9 +11,12 @@
 
 #[path = "../tests/support/corpus.rs"]
 mod corpus;
+#[path = "../tests/support/corpus_runs.rs"]
+mod corpus_runs;
 #[path = "../tests/support/raymarcher.rs"]
 mod support;
 
+use corpus_runs::load_corpus;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use hack_vm::{Config, Engine, Exit, Machine, Program};
 use rayon::prelude::*;
@@ -105,62 +108,6 @@ fn jack_raymarcher(c: &mut Criterion) {
     g.finish();
 }
 
-/// VM instructions per corpus run: about 20 M (0.01-0.05 s a run).
-const CORPUS_STEPS: u64 = 20_000_000;
-
-/// A corpus program loaded, with the size of a run of about
-/// [`CORPUS_STEPS`] (rounds of `Main.run`, or steps from the start).
-struct Loaded {
-    entry: &'static corpus::Entry,
-    program: Arc<Program>,
-    size: u64,
-}
-
-fn load_corpus() -> Vec<Loaded> {
-    corpus::CORPUS
-        .iter()
-        .map(|entry| {
-            let profile = hack_vm::Profile::Desktop;
-            let program = entry.program(profile);
-            let size = match entry.work {
-                corpus::Work::Main => CORPUS_STEPS,
-                corpus::Work::Rounds => {
-                    let mut m = entry.machine(&program, profile, Engine::Native);
-                    entry.start(&mut m, 1);
-                    let exit = m.run(None);
-                    assert!(matches!(exit, Exit::Returned(_)), "{}: {exit}", entry.name);
-                    (CORPUS_STEPS / m.steps()).clamp(1, 32767)
-                }
-            };
-            Loaded {
-                entry,
-                program,
-                size,
-            }
-        })
-        .collect()
-}
-
-/// One run of `l` on `engine` (compiled code compiled beforehand): its
-/// steps.
-fn corpus_run(l: &Loaded, engine: Engine) -> u64 {
-    let mut m = l
-        .entry
-        .machine(&l.program, hack_vm::Profile::Desktop, engine);
-    let size = i16::try_from(l.size).unwrap_or(i16::MAX);
-    l.entry.start(&mut m, size);
-    let exit = match l.entry.work {
-        corpus::Work::Main => m.run(Some(l.size)),
-        corpus::Work::Rounds => m.run(None),
-    };
-    assert!(
-        matches!(exit, Exit::Returned(_) | Exit::Budget { .. }),
-        "{}: {exit}",
-        l.entry.name
-    );
-    m.steps()
-}
-
 /// Each corpus program on each engine, under criterion.
 fn corpus_programs(c: &mut Criterion) {
     let loaded = load_corpus();
@@ -171,9 +118,9 @@ fn corpus_programs(c: &mut Criterion) {
     for l in &loaded {
         let _ = l.program.compile_native(hack_vm::Profile::Desktop);
         for engine in [Engine::Interp, Engine::Native] {
-            g.throughput(Throughput::Elements(corpus_run(l, engine)));
+            g.throughput(Throughput::Elements(l.run(engine)));
             g.bench_function(format!("{}, {engine:?}", l.entry.name), |b| {
-                b.iter(|| corpus_run(l, engine))
+                b.iter(|| l.run(engine))
             });
         }
     }
@@ -222,7 +169,7 @@ fn corpus_table(_: &mut Criterion) {
         let _ = l.program.compile_native(hack_vm::Profile::Desktop);
         row(
             l.entry.name,
-            engines.map(|engine| best_rate(|| corpus_run(l, engine))),
+            engines.map(|engine| best_rate(|| l.run(engine))),
         );
     }
 }

@@ -7,8 +7,16 @@
 //! its own, not yet compiled, so that its row includes its interpreted
 //! start and the compiling). With `main ENGINE` (`auto`, `native` or
 //! `interp`) it runs instead the whole `Main.main` (SPACE scripted, as the
-//! whole-program test does) on that engine alone.
+//! whole-program test does) on that engine alone. With `corpus [NAME]
+//! [ENGINE]` it runs each program of the benchmark corpus (or NAME) for
+//! about a CPU second on each engine (or ENGINE), one after another, and
+//! prints their rates: a process that runs one program on one engine is
+//! what a profiler needs.
 
+#[path = "../tests/support/corpus.rs"]
+mod corpus;
+#[path = "../tests/support/corpus_runs.rs"]
+mod corpus_runs;
 #[path = "../tests/support/raymarcher.rs"]
 mod support;
 
@@ -44,7 +52,40 @@ fn whole_main(engine: Engine) {
     );
 }
 
+/// The corpus programs named `name` (all if None) on `engines`, each run
+/// repeated for about a CPU second.
+fn corpus_rates(name: Option<&str>, engines: &[Engine]) {
+    let programs = corpus_runs::load_corpus()
+        .into_iter()
+        .filter(|l| name.is_none_or(|n| n == l.entry.name));
+    for loaded in programs {
+        let _ = loaded.program.compile_native(Profile::Desktop);
+        for &engine in engines {
+            let started = cpu_seconds();
+            let mut steps = 0;
+            while cpu_seconds() - started < 1.0 {
+                steps += loaded.run(engine);
+            }
+            let cpu = cpu_seconds() - started;
+            println!(
+                "{} on {engine:?}: {:.0} M VM instructions per CPU second",
+                loaded.entry.name,
+                steps as f64 / cpu / 1e6
+            );
+        }
+    }
+}
+
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("corpus") {
+        let name = std::env::args().nth(2).filter(|n| n != "all");
+        let engines = match std::env::args().nth(3) {
+            Some(e) => vec![e.parse().expect("ENGINE is auto, native or interp")],
+            None => vec![Engine::Interp, Engine::Native],
+        };
+        corpus_rates(name.as_deref(), &engines);
+        return;
+    }
     if std::env::args().nth(1).as_deref() == Some("main") {
         let engine = std::env::args().nth(2).unwrap_or_else(|| "native".into());
         whole_main(engine.parse().expect("ENGINE is auto, native or interp"));

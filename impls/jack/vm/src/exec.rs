@@ -188,7 +188,7 @@ const THAT_RANGE: &str = "'That' segment must be in the Heap or Screen range";
 
 /// The desktop's heap (2048..=16383) and the end of its `that` range (the
 /// keyboard word, 24576).
-const HEAP_START: i32 = 2048;
+pub(crate) const HEAP_START: i32 = 2048;
 const HEAP_END: i32 = 16383;
 const THAT_END: i32 = 24576;
 
@@ -250,7 +250,7 @@ fn desktop_operands_ok<const N: usize>(operands: [Operand; N], seg: &[u16; 8], f
 /// Desktop: the highest SP at a built-in call (its arguments pushed) that
 /// leaves room for the call's 5-word frame and the pushed result, each
 /// push keeping SP <= 2047.
-pub(crate) const BUILTIN_LAST_BASE: u16 = STACK_LAST - 6;
+const BUILTIN_LAST_BASE: u16 = STACK_LAST - 6;
 
 impl Machine {
     /// Run instructions of `code` (its fused array if `fused`, else its plain

@@ -543,8 +543,9 @@ fn budget_stops_deep_in_the_program_agree() {
 /// Built-ins called from compiled code where the interpreter's rules
 /// decide: a `Memory.poke` of each register (of SP too, so that the
 /// built-in's push lands where SP then says: a register, the stack's end,
-/// past RAM), a built-in's error, and built-ins with SP at either end of
-/// the stack, under both profiles, with budget stops on the way.
+/// past RAM), `Memory.peek` and `poke` at the ends of the words they may
+/// touch, a built-in's error, and built-ins with SP at either end of the
+/// stack, under both profiles, with budget stops on the way.
 #[test]
 fn builtins_that_move_registers_or_stop_agree() {
     let budgets = [0, 3, 5];
@@ -564,6 +565,16 @@ fn builtins_that_move_registers_or_stop_agree() {
              call Math.max 2\npop temp 0\npush constant 5\ncall Output.printChar 1\npop temp 1"
         );
         agree_on(&body, 0, &[0, 0], &[false, true], &budgets);
+    }
+    // Memory.peek and poke at each end of the words they may touch (the
+    // heap and the screen on the desktop, which stops outside them; any
+    // word on the web).
+    for a in [0, 4, 5, 2047, 2048, 24576, 24577, 32767] {
+        let body = format!(
+            "push constant {a}\npush constant 9\ncall Memory.poke 2\npop temp 0\n\
+             push constant {a}\ncall Memory.peek 1\npop temp 1"
+        );
+        agree_on(&body, 0, &[0, 0], &[false, true], &[0]);
     }
     for error in [
         "push constant 1\nneg\ncall Math.sqrt 1",

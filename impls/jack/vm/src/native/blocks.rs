@@ -5,6 +5,7 @@
 //! test at the block's entry covers every stack access inside it.
 
 use crate::program::Op;
+use jack_os::Builtin;
 
 /// A frame's locals are zeroed by straight-line stores up to this many; a
 /// `function` line or a call that zeroes more is left to the interpreter.
@@ -32,6 +33,7 @@ pub(crate) fn kind(op: Op) -> Kind {
     match op {
         Op::Goto(_) | Op::IfGoto(_) => Kind::Jump,
         Op::Call { .. } | Op::Return => Kind::CallOrReturn,
+        Op::CallBuiltin { builtin, .. } if inline_builtin(builtin) => Kind::Straight,
         Op::CallBuiltin { builtin, .. } if !builtin.blocks() => Kind::CallOrReturn,
         Op::CallBuiltin { .. } | Op::Halt | Op::Fail(_) | Op::EntryAccess { .. } => {
             Kind::Interpreted
@@ -44,6 +46,25 @@ pub(crate) fn kind(op: Op) -> Kind {
         _ => Kind::Straight,
     }
 }
+
+/// Whether compiled code runs built-in `b` itself, in its block: the
+/// arithmetic ones, and `Memory.peek`/`poke` of a word that needs no
+/// rule (else it leaves for the interpreter there).
+pub(crate) fn inline_builtin(b: Builtin) -> bool {
+    matches!(
+        b,
+        Builtin::MathAbs
+            | Builtin::MathMin
+            | Builtin::MathMax
+            | Builtin::MemoryPeek
+            | Builtin::MemoryPoke
+    )
+}
+
+/// How far above SP before its pops a built-in call reaches: the desktop
+/// writes its frame there (5 words) and then pushes its result, and stops
+/// with "Stack overflow" where they do not fit.
+const BUILTIN_REACH: i32 = 6;
 
 /// Stack words an instruction pops, then pushes (calls and returns:
 /// only what the block-entry test must cover).
@@ -80,6 +101,7 @@ fn stack_effect(op: Op) -> (i32, i32) {
         | Op::Divide => (2, 1),
         Op::Neg | Op::Not => (1, 1),
         Op::Function { n_vars, .. } => (0, i32::from(n_vars)),
+        Op::CallBuiltin { nargs, .. } => (i32::from(nargs), 1),
         _ => (0, 0),
     }
 }
@@ -89,6 +111,9 @@ fn stack_effect(op: Op) -> (i32, i32) {
 pub(crate) fn depth_range(ops: &[Op]) -> (i32, i32) {
     let (mut depth, mut min_depth, mut max_depth) = (0i32, 0i32, 0i32);
     for &op in ops {
+        if let Op::CallBuiltin { .. } = op {
+            max_depth = max_depth.max(depth + BUILTIN_REACH);
+        }
         let (pops, pushes) = stack_effect(op);
         depth -= pops;
         min_depth = min_depth.min(depth);
@@ -206,7 +231,6 @@ pub(crate) fn static_depths(
         let op = code[pc as usize];
         let after = d + match op {
             Op::Call { nargs, .. } => 1 - i32::from(nargs),
-            Op::CallBuiltin { nargs, .. } => 1 - i32::from(nargs),
             Op::EntryAccess { push, .. } => {
                 if push {
                     1

@@ -30,17 +30,17 @@
 
 use super::blocks::{self, Block, Budget, Kind, MAX_INLINE_LOCALS};
 use super::{builtin, Ctx, Fault, CALLED, CONTINUE, RETURNED};
-use crate::exec::BUILTIN_LAST_BASE;
+use crate::exec::HEAP_START;
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
 use crate::program::{FnId, Op, Program};
-use crate::timing::{Timing, STACK_BASE, STACK_LAST};
+use crate::timing::{Timing, STACK_BASE};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{
     self, types, AbiParam, AliasRegionData, BlockArg, FuncRef, InstBuilder, JumpTableData,
     MemFlagsData, Value,
 };
 use cranelift_frontend::{FunctionBuilder, Variable};
-use jack_os::{Profile, RAM_SIZE};
+use jack_os::{Profile, KBD, RAM_SIZE};
 use std::mem::offset_of;
 
 const T16: ir::Type = types::I16;
@@ -1443,6 +1443,9 @@ impl Translator<'_, '_> {
                 callee, nargs, ret, ..
             } => self.call(FnId::from(callee), nargs, ret, s, before, blk),
             Op::Return => self.ret(s, before, blk),
+            Op::CallBuiltin { builtin, .. } if blocks::inline_builtin(builtin) => {
+                self.inline_builtin(builtin, s, before)
+            }
             Op::CallBuiltin { builtin, nargs } => self.builtin(builtin, nargs, s, before, blk),
             Op::Function { n_vars, .. } => {
                 // The locals, zeroed (the block's entry test covers them).
@@ -1455,12 +1458,61 @@ impl Translator<'_, '_> {
         }
     }
 
+    /// A built-in that compiled code runs itself (`blocks::inline_builtin`);
+    /// a `Memory.peek` or `poke` of a word outside plain RAM (desktop:
+    /// outside the heap and the screen) leaves for the interpreter.
+    fn inline_builtin(&mut self, builtin: jack_os::Builtin, s: &mut Stack, before: &Before) {
+        use jack_os::Builtin::*;
+        let r = match builtin {
+            MathAbs => {
+                let x = s.pop(self);
+                self.b.ins().iabs(x)
+            }
+            MathMin | MathMax => {
+                let y = s.pop(self);
+                let x = s.pop(self);
+                if builtin == MathMin {
+                    self.b.ins().smin(x, y)
+                } else {
+                    self.b.ins().smax(x, y)
+                }
+            }
+            MemoryPeek | MemoryPoke => {
+                let v = (builtin == MemoryPoke).then(|| s.pop(self));
+                let a = s.pop(self);
+                let ok = match self.env.profile {
+                    Profile::Web => self.is_plain(a),
+                    Profile::Desktop => {
+                        let d = self.b.ins().iadd_imm_s(a, -i64::from(HEAP_START));
+                        let last = KBD as i64 - i64::from(HEAP_START);
+                        self.b
+                            .ins()
+                            .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, last)
+                    }
+                };
+                self.guard(ok, before);
+                // The word may be one of the stack words held in registers.
+                s.flush(self);
+                let r = match v {
+                    Some(v) => {
+                        self.store_word(a, v);
+                        self.c16(0)
+                    }
+                    None => self.load_word(a),
+                };
+                s.forget();
+                r
+            }
+            _ => unreachable!("only the built-ins blocks::inline_builtin names"),
+        };
+        s.push(r);
+    }
+
     /// `call Class.builtin n` (not a blocking one) through a host call
     /// (`builtin::call`): the block ends, its state goes to the context,
     /// and compiled code goes on with the next block, or leaves where the
-    /// built-in moved a register or ended the run. The interpreter makes
-    /// the call where its pops or its push would not be plain stack words,
-    /// or (desktop) where its frame would not fit.
+    /// built-in moved a register or ended the run. The block's stack test
+    /// covers the pops, the push and (desktop) the built-in's frame.
     fn builtin(
         &mut self,
         builtin: jack_os::Builtin,
@@ -1470,18 +1522,6 @@ impl Translator<'_, '_> {
         blk: &Block,
     ) {
         let sp = s.sp(self);
-        let lo = i64::from(STACK_BASE) + i64::from(n);
-        let hi = if self.env.timing.stack_check {
-            i64::from(BUILTIN_LAST_BASE)
-        } else {
-            (i64::from(STACK_LAST) - 1 + i64::from(n)).min(i64::from(STACK_LAST))
-        };
-        let d = self.b.ins().iadd_imm_s(sp, -lo);
-        let ok = self
-            .b
-            .ins()
-            .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, hi - lo);
-        self.guard(ok, before);
         self.end_block(s, before.steps0, blk);
         self.store_state();
         let mut sig = ir::Signature::new(self.b.func.signature.call_conv);
