@@ -4,7 +4,7 @@
 //! `START_ADDRESS`, spec section 6).
 
 use crate::context::{decimal, Ctx};
-use crate::font::{glyph, GLYPH_COLS};
+use crate::font::glyph;
 use crate::{Profile, Stop};
 
 /// Rows 0..=22.
@@ -72,12 +72,8 @@ impl Ctx<'_> {
         if let Some(g) = glyph(k) {
             self.clear_char();
             let (x, y) = (self.os.col * 8, self.cell_top());
-            for (dy, bits) in (0..).zip(g.iter()) {
-                for dx in 0..GLYPH_COLS as i32 {
-                    if bits >> dx & 1 == 1 {
-                        self.plot(x + dx, y + dy, true);
-                    }
-                }
+            for (dy, &bits) in (0..).zip(g.iter()) {
+                self.set_row_bits(512 * (y + dy) + x, bits);
             }
         }
         self.os.col += 1;

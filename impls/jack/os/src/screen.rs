@@ -10,6 +10,9 @@ use crate::Profile;
 
 /// Words of screen memory.
 const SCREEN_WORDS: i32 = 8192;
+/// Pixels of screen memory: pixel (x, y) is bit `x % 16` of word
+/// `32y + x / 16`, so its linear index is `512y + x`.
+const SCREEN_PIXELS: i32 = SCREEN_WORDS * 16;
 /// Largest radius drawCircle accepts.
 const MAX_RADIUS: i32 = 181;
 
@@ -31,6 +34,43 @@ impl Ctx<'_> {
         let old = self.ram.read(addr);
         self.ram
             .write(addr, if black { old | bit } else { old & !bit });
+    }
+
+    /// The screen's words.
+    fn screen_words(&mut self) -> &mut [i16] {
+        &mut self.ram.words_mut()[crate::SCREEN..crate::SCREEN + SCREEN_WORDS as usize]
+    }
+
+    /// Set or clear the pixels of linear indices `from..=to` (see
+    /// [`SCREEN_PIXELS`]) that are on the screen, a word at a time: what
+    /// [`Ctx::plot`] of each would do.
+    fn fill_pixels(&mut self, from: i32, to: i32, black: bool) {
+        let (from, to) = (from.max(0), to.min(SCREEN_PIXELS - 1));
+        if from > to {
+            return;
+        }
+        let (first, last) = (from / 16, to / 16);
+        let words = self.screen_words();
+        for w in first..=last {
+            let lo = if w == first { from % 16 } else { 0 };
+            let hi = if w == last { to % 16 } else { 15 };
+            let mask = ((0xFFFF_u32 << lo) & (0xFFFF_u32 >> (15 - hi))) as u16 as i16;
+            let word = &mut words[w as usize];
+            *word = if black { *word | mask } else { *word & !mask };
+        }
+    }
+
+    /// Set the pixels of linear indices `from..from + 8` whose bit is set
+    /// in `bits` (lowest first) that are on the screen: a glyph's row.
+    pub(crate) fn set_row_bits(&mut self, from: i32, bits: u8) {
+        let shifted = u32::from(bits) << from.rem_euclid(16);
+        let first = from.div_euclid(16);
+        let words = self.screen_words();
+        for (w, part) in [(first, shifted as u16), (first + 1, (shifted >> 16) as u16)] {
+            if part != 0 && (0..SCREEN_WORDS).contains(&w) {
+                words[w as usize] |= part as i16;
+            }
+        }
     }
 
     /// `Screen.drawPixel(x, y)` in the current colour: ERR7 out of bounds
@@ -87,10 +127,8 @@ impl Ctx<'_> {
             self.error(9);
             return;
         }
-        for x in x1..=x2 {
-            for y in y1..=y2 {
-                self.plot(x, y, black);
-            }
+        for y in y1..=y2 {
+            self.fill_pixels(512 * y + x1, 512 * y + x2, black);
         }
     }
 

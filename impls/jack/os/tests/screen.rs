@@ -167,3 +167,40 @@ fn web_clear_screen_wipes_a_high_heap_head() {
     d.ok("Screen.clearScreen", &[]);
     d.ok("Memory.alloc", &[1]);
 }
+
+proptest::proptest! {
+    /// drawRectangle, which fills a word at a time, sets or clears exactly
+    /// the pixels that plotting each (x, y) of the rectangle would: the
+    /// screen's words, over a screen already patterned, with corners up to
+    /// the web IDE's (512, 256) (whose pixels wrap to the next row's start
+    /// or fall past the screen).
+    #[test]
+    fn rectangles_fill_exactly_their_pixels(
+        (x1, x2) in (0i16..=512, 0i16..=512),
+        (y1, y2) in (0i16..=256, 0i16..=256),
+        black in proptest::bool::ANY,
+        web in proptest::bool::ANY,
+    ) {
+        let profile = if web { Profile::Web } else { Profile::Desktop };
+        let mut m = Machine::new(profile);
+        let pattern = |w: i32| (w.wrapping_mul(40503) >> 3) as i16;
+        for w in 0..8192 {
+            m.ram.write(16384 + w, pattern(w));
+        }
+        let mut expected: Vec<i16> = (0..8192).map(pattern).collect();
+        for y in i32::from(y1)..=i32::from(y2) {
+            for x in i32::from(x1)..=i32::from(x2) {
+                let word = 32 * y + x / 16;
+                if let Some(e) = expected.get_mut(word as usize) {
+                    let bit = 1i16 << (x % 16);
+                    *e = if black { *e | bit } else { *e & !bit };
+                }
+            }
+        }
+        m.ok("Screen.setColor", &[i16::from(black)]);
+        m.ok("Screen.drawRectangle", &[x1, y1, x2, y2]);
+        let screen: Vec<i16> = (0..8192).map(|w| m.ram.read(16384 + w)).collect();
+        proptest::prop_assert!(screen == expected, "the screen differs");
+        proptest::prop_assert_eq!(m.ram.read(24576), 0);
+    }
+}

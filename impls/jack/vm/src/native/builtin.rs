@@ -15,7 +15,8 @@ use jack_os::{Profile, RAM_SIZE};
 
 /// Code: the call was made and its value pushed; the registers are as
 /// they were, so compiled code goes on (SP is its value less the
-/// arguments plus one, the step count is in the context).
+/// arguments plus one, the step count is in the context; the context's
+/// registers are not written).
 pub(crate) const DONE: i32 = -4;
 
 /// The `what` word compiled code passes: the built-in's index in
@@ -24,18 +25,28 @@ pub(crate) fn what(builtin: jack_os::Builtin, nargs: u8, profile: Profile) -> u3
     builtin as u32 | u32::from(nargs) << 8 | u32::from(matches!(profile, Profile::Desktop)) << 16
 }
 
-/// Run the built-in `what` (see [`what`]) for compiled code, whose state
-/// is in `ctx` (SP with the arguments pushed). Returns [`DONE`];
-/// [`CONTINUE`] where the built-in wrote a register (the state in the
-/// context, the push made, compiled code re-entered at the next
-/// instruction with its entry tests); or [`STOPPED`] with
-/// `Ctx::stopped` where the run ends.
+/// Run the built-in `what` (see [`what`]) for compiled code, with the
+/// registers `regs` (SP with the arguments pushed, LCL, ARG and THIS, 16
+/// bits each from the lowest), THAT and the step count `steps` (the call's
+/// own step included); the step count after it goes to `Ctx::steps`.
+/// Returns [`DONE`]; [`CONTINUE`] where the built-in wrote a register (the
+/// registers in the context, the push made, compiled code re-entered at
+/// the next instruction with its entry tests); or [`STOPPED`] with
+/// `Ctx::stopped` (the registers in the context) where the run ends. The
+/// registers come as arguments, not through the context, since a load of
+/// the words compiled code has just stored one by one would wait for them.
 ///
 /// # Safety
 /// `ctx` is the context `Machine::enter_native` made, its `os` and
 /// `ram_obj` pointing at the running machine's, and SP at least 256 plus
 /// the argument count.
-pub(crate) unsafe extern "C" fn call(ctx: *mut Ctx, what: u32) -> i32 {
+pub(crate) unsafe extern "C" fn call(
+    ctx: *mut Ctx,
+    what: u32,
+    regs: u64,
+    that: u32,
+    steps: u64,
+) -> i32 {
     // SAFETY: as the caller promises.
     let ctx = unsafe { &mut *ctx };
     let (os, ram) = unsafe { (&mut *ctx.os, &mut *ctx.ram_obj) };
@@ -46,23 +57,30 @@ pub(crate) unsafe extern "C" fn call(ctx: *mut Ctx, what: u32) -> i32 {
     } else {
         Profile::Web
     });
-    let sp = ctx.sp - n;
-    let regs = [sp, ctx.lcl, ctx.arg, ctx.this, ctx.that];
+    let top = regs as u16;
+    let sp = top - n;
+    let regs = [
+        sp,
+        (regs >> 16) as u16,
+        (regs >> 32) as u16,
+        (regs >> 48) as u16,
+        that as u16,
+    ];
     let w = ram.words_mut();
     let mut args = [0i16; 8];
-    args[..usize::from(n)].copy_from_slice(&w[usize::from(sp)..usize::from(ctx.sp)]);
+    args[..usize::from(n)].copy_from_slice(&w[usize::from(sp)..usize::from(top)]);
     for (word, r) in w.iter_mut().zip(regs) {
         *word = r as i16;
     }
+    ctx.steps = steps;
     let c = os.call(builtin, &args[..usize::from(n)], ram, &mut ctx.steps);
     let w = ram.words_mut();
-    let now = [0, 1, 2, 3, 4].map(|i| w[i] as u16);
-    if c.stop.is_none() && now == regs {
+    let moved = (0..5).any(|i| w[i] as u16 != regs[i]);
+    if c.stop.is_none() && !moved {
         w[usize::from(sp)] = c.value;
-        ctx.sp = sp + 1;
         return DONE;
     }
-    [ctx.sp, ctx.lcl, ctx.arg, ctx.this, ctx.that] = now;
+    [ctx.sp, ctx.lcl, ctx.arg, ctx.this, ctx.that] = [0, 1, 2, 3, 4].map(|i| w[i] as u16);
     let pushed = match &c.stop {
         // Desktop: the run ends inside the built-in, its result not pushed.
         Some(_) if timing.function_step => Ok(()),

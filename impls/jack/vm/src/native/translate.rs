@@ -1523,16 +1523,29 @@ impl Translator<'_, '_> {
     ) {
         let sp = s.sp(self);
         self.end_block(s, before.steps0, blk);
-        self.store_state();
         let mut sig = ir::Signature::new(self.b.func.signature.call_conv);
-        sig.params.extend([AbiParam::new(T64), AbiParam::new(T32)]);
+        sig.params
+            .extend([T64, T32, T64, T32, T64].map(AbiParam::new));
         sig.returns.push(AbiParam::new(T32));
         let sig = self.b.import_signature(sig);
-        let host = builtin::call as unsafe extern "C" fn(*mut Ctx, u32) -> i32;
+        let host = builtin::call as unsafe extern "C" fn(*mut Ctx, u32, u64, u32, u64) -> i32;
         let host = self.b.ins().iconst(T64, host as usize as i64);
         let what = builtin::what(builtin, n, self.env.profile);
         let what = self.c32(i64::from(what));
-        let call = self.b.ins().call_indirect(sig, host, &[self.ctx, what]);
+        let mut regs = self.b.ins().uextend(T64, sp);
+        for (var, shift) in [(self.v.lcl, 16), (self.v.arg, 32), (self.v.this, 48)] {
+            let x = self.b.use_var(var);
+            let x = self.b.ins().uextend(T64, x);
+            let x = self.b.ins().ishl_imm_u(x, shift);
+            regs = self.b.ins().bor(regs, x);
+        }
+        let that = self.b.use_var(self.v.that);
+        let that = self.b.ins().uextend(T32, that);
+        let steps = self.b.use_var(self.v.steps);
+        let call = self
+            .b
+            .ins()
+            .call_indirect(sig, host, &[self.ctx, what, regs, that, steps]);
         let code = self.b.inst_results(call)[0];
         let steps = self
             .b
@@ -1547,8 +1560,17 @@ impl Translator<'_, '_> {
         self.b.ins().brif(done, cont, NONE, out, NONE);
         self.b.switch_to_block(out);
         self.b.set_cold_block(out);
-        // The state is the one the built-in left in the context.
-        self.load_state();
+        // The registers are the ones the built-in left in the context.
+        for (var, o) in [
+            (self.v.sp, offset_of!(Ctx, sp)),
+            (self.v.lcl, offset_of!(Ctx, lcl)),
+            (self.v.arg, offset_of!(Ctx, arg)),
+            (self.v.this, offset_of!(Ctx, this)),
+            (self.v.that, offset_of!(Ctx, that)),
+        ] {
+            let x = self.b.ins().load(T16, self.mem.ctx, self.ctx, field(o));
+            self.b.def_var(var, x);
+        }
         let pc = self.c32(i64::from(before.pc + 1));
         self.leave_with(code, pc);
         self.b.switch_to_block(cont);
