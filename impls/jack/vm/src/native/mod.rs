@@ -251,10 +251,14 @@ impl Native {
         }
         sig.returns.push(AbiParam::new(types::I32));
         sig.returns.push(AbiParam::new(types::I64));
-        let ids: Vec<FuncId> = (0..program.functions.len())
-            .map(|i| {
+        // Named for the VM functions, which is how Cranelift's perf map
+        // (written when `perf record` runs the process) names their code.
+        let ids: Vec<FuncId> = program
+            .functions
+            .iter()
+            .map(|f| {
                 module
-                    .declare_function(&format!("vm{i}"), Linkage::Local, &sig)
+                    .declare_function(&f.name, Linkage::Local, &sig)
                     .map_err(|e| format!("cranelift: {e}"))
             })
             .collect::<Result<_, _>>()?;
