@@ -24,19 +24,26 @@
 use crate::implementation::{Answer, ImplError, Implementation, Numbers};
 use common::{Op, OpValue, Outcome, TraceRecord};
 use serde::{Deserialize, Serialize};
+use std::collections::{HashMap, VecDeque};
 use std::fmt;
 use vectors::{OpVector, Vector};
 
 /// The first point where two traces part.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FirstDivergence {
-    /// Index of the first differing record.
+    /// Index of the first differing record (in A's trace).
     pub index: usize,
+    /// Index of B's record, where it is not `index`: the traces run in
+    /// different orders, and B's record is the one computing the same
+    /// operation on the same operands (or B's first record with no equal).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub b_index: Option<usize>,
     /// The last record on which both agree, for context.
     pub previous: Option<TraceRecord>,
-    /// A's record there (`None`: A's trace ended).
+    /// A's record there (`None`: every record of A has its equal in B).
     pub a: Option<TraceRecord>,
-    /// B's record there (`None`: B's trace ended).
+    /// B's record there (`None`: B has no record on the same operands, and
+    /// every record it has is paired).
     pub b: Option<TraceRecord>,
 }
 
@@ -150,7 +157,7 @@ impl Localization {
         }
         let record = |r: &Option<TraceRecord>| {
             r.as_ref()
-                .map_or_else(|| "(trace ended)".to_string(), ToString::to_string)
+                .map_or_else(|| "(no such record)".to_string(), ToString::to_string)
         };
         match (&self.first, &self.after_last) {
             (Some(first), _) => format!(
@@ -194,51 +201,72 @@ fn nested(outer: &TraceRecord, inner: &TraceRecord) -> bool {
 }
 
 /// Diff two traces: the first divergent record and the origin.
+///
+/// Records are paired by what they compute, not by position: each record
+/// of A is paired with B's earliest unpaired record of the same operation
+/// on the same operands (`add` and `mul` in either order), so a port that
+/// computes a dot product's products before its sums pairs its `mul`s with
+/// the reference's. The first divergence is A's first record whose
+/// partner gives another result; it is also where the origin search
+/// starts, descending into the operations that record calls while one of
+/// them differs too. Where no record has such a partner, it is A's first
+/// record that B never computes, beside B's first that A never computes:
+/// the operands differ there. A record only one side traces (a port that
+/// traces fewer operations) is not a divergence by itself. Where both
+/// traces run in the same order this is the record-by-record diff.
 pub fn diff_traces(
     a: &[TraceRecord],
     b: &[TraceRecord],
 ) -> (Option<FirstDivergence>, Option<Origin>) {
-    let Some(index) = (0..a.len().max(b.len())).find(|&i| match (a.get(i), b.get(i)) {
-        (Some(x), Some(y)) => !x.same_computation(y),
-        _ => true,
-    }) else {
-        return (None, None);
+    let a_partner = pair_by_operands(a, b);
+    let b_partner = pair_by_operands(b, a);
+    let differs = |i: usize| a_partner[i].is_some_and(|j| a[i].result != b[j].result);
+    let b_unpaired = b_partner.iter().position(Option::is_none);
+    let origin_start = (0..a.len()).find(|&i| differs(i));
+    let (index, b_index) = match origin_start {
+        Some(i) => (i, a_partner[i]),
+        None => match (a_partner.iter().position(Option::is_none), b_unpaired) {
+            (None, None) => return (None, None),
+            (Some(i), j) => (i, j),
+            // Every record of A has its equal in B: B computes more.
+            (None, Some(j)) => (a.len(), Some(j)),
+        },
     };
     let first = FirstDivergence {
         index,
-        previous: index.checked_sub(1).map(|i| a[i].clone()),
+        b_index: b_index.filter(|&j| j != index),
+        previous: (0..index)
+            .rev()
+            .find(|&i| a_partner[i].is_some())
+            .map(|i| a[i].clone()),
         a: a.get(index).cloned(),
-        b: b.get(index).cloned(),
+        b: b_index.map(|j| b[j].clone()),
     };
-    let same_args_different_result = |i: usize| match (a.get(i), b.get(i)) {
-        (Some(x), Some(y)) => x.op == y.op && x.args == y.args && x.result != y.result,
-        _ => false,
+    // Whether record `inner` runs inside `outer`, by either side's paths.
+    let inside = |outer: usize, inner: usize| {
+        nested(&a[outer], &a[inner])
+            || matches!((a_partner[outer], a_partner[inner]),
+                (Some(o), Some(n)) if nested(&b[o], &b[n]))
     };
-    // The first record given identical operands that differs, at or after
-    // the first divergence while the traces still line up.
-    let start = (index..a.len().min(b.len()))
-        .take_while(|&i| a[i].op == b[i].op)
-        .find(|&i| same_args_different_result(i));
-    let origin = start.map(|mut at| {
-        // Descend into the operations it calls (they follow it in
-        // pre-order) while one of them is also at fault.
+    let origin = origin_start.map(|mut at| {
         loop {
-            let deeper = (at + 1..a.len().min(b.len()))
-                .take_while(|&j| nested(&a[at], &a[j]) || nested(&b[at], &b[j]))
-                .find(|&j| same_args_different_result(j));
+            let deeper = (at + 1..a.len())
+                .take_while(|&k| inside(at, k))
+                .find(|&k| differs(k));
             match deeper {
-                Some(j) => at = j,
+                Some(k) => at = k,
                 None => break,
             }
         }
+        let partner = &b[a_partner[at].unwrap_or_default()];
         Origin {
             index: at,
             op: a[at].op,
             args: a[at].args.clone(),
             a: a[at].result,
-            b: b[at].result,
+            b: partner.result,
             path: if a[at].path.is_empty() {
-                b[at].path.clone()
+                partner.path.clone()
             } else {
                 a[at].path.clone()
             },
@@ -255,6 +283,22 @@ fn operands_key(r: &TraceRecord) -> (Op, Vec<common::F316>) {
         args.sort_by_key(|v| (v.s, v.e, v.m));
     }
     (r.op, args)
+}
+
+/// For each record of `a`, the earliest record of `b` not yet taken that
+/// computes the same operation on the same operands.
+fn pair_by_operands(a: &[TraceRecord], b: &[TraceRecord]) -> Vec<Option<usize>> {
+    let mut by_key: HashMap<(Op, Vec<common::F316>), VecDeque<usize>> = HashMap::new();
+    for (j, r) in b.iter().enumerate() {
+        by_key.entry(operands_key(r)).or_default().push_back(j);
+    }
+    a.iter()
+        .map(|r| {
+            by_key
+                .get_mut(&operands_key(r))
+                .and_then(VecDeque::pop_front)
+        })
+        .collect()
 }
 
 /// Replay `own` (a side's trace) through `tracer`: the first record whose
@@ -499,7 +543,21 @@ impl fmt::Display for Localization {
             }
             return Ok(());
         };
-        writeln!(f, "first divergent operation: record {}", first.index)?;
+        if !self.differs() {
+            writeln!(
+                f,
+                "the answers agree: the traces differ, but the difference does not reach the answer"
+            )?;
+        }
+        match first.b_index {
+            None => writeln!(f, "first divergent operation: record {}", first.index)?,
+            Some(j) => writeln!(
+                f,
+                "first divergent operation: record {} of {}, record {j} of {} \
+                 (records are paired by operation and operands)",
+                first.index, self.a, self.b
+            )?,
+        }
         match &first.previous {
             Some(p) => writeln!(f, "  last match  {p}")?,
             None => writeln!(f, "  (it is the first record)")?,
@@ -507,7 +565,7 @@ impl fmt::Display for Localization {
         for (label, r) in [(&self.a, &first.a), (&self.b, &first.b)] {
             match r {
                 Some(r) => writeln!(f, "  {label:w$}  {r}")?,
-                None => writeln!(f, "  {label:w$}  (trace ended)")?,
+                None => writeln!(f, "  {label:w$}  (no such record)")?,
             }
         }
         if let (None, Some(r)) = (&self.origin, &self.replayed) {
@@ -555,5 +613,138 @@ impl fmt::Display for Localization {
                 "origin: no operation differs on identical operands (the operands differ first)"
             ),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use common::F316;
+
+    fn n(m: i16) -> F316 {
+        F316::new(0, 127, m)
+    }
+
+    fn rec(op: Op, args: &[i16], result: i16, path: &[&str]) -> TraceRecord {
+        TraceRecord {
+            op,
+            args: args.iter().map(|&m| n(m)).collect(),
+            result: Outcome::Value(OpValue::Num(n(result))),
+            path: path.iter().map(ToString::to_string).collect(),
+        }
+    }
+
+    /// A dot product of (1, 2, 3) and (4, 5, 6), the reference's way: each
+    /// product summed as it comes.
+    fn interleaved(fault: Option<i16>) -> Vec<TraceRecord> {
+        let sum = fault.unwrap_or(14);
+        vec![
+            rec(Op::Mul, &[1, 4], 4, &["dot"]),
+            rec(Op::Mul, &[2, 5], 10, &["dot"]),
+            rec(Op::Add, &[4, 10], sum, &["dot"]),
+            rec(Op::Mul, &[3, 6], 18, &["dot"]),
+            rec(Op::Add, &[sum, 18], sum + 18, &["dot"]),
+        ]
+    }
+
+    /// The same dot product with the three products first, as a user's
+    /// port wrote it.
+    fn products_first(fault: Option<i16>) -> Vec<TraceRecord> {
+        let sum = fault.unwrap_or(14);
+        vec![
+            rec(Op::Mul, &[1, 4], 4, &["Vec.dot"]),
+            rec(Op::Mul, &[2, 5], 10, &["Vec.dot"]),
+            rec(Op::Mul, &[3, 6], 18, &["Vec.dot"]),
+            rec(Op::Add, &[10, 4], sum, &["Vec.dot"]),
+            rec(Op::Add, &[18, sum], sum + 18, &["Vec.dot"]),
+        ]
+    }
+
+    #[test]
+    fn traces_in_different_orders_with_the_same_operations_agree() {
+        assert_eq!(
+            diff_traces(&interleaved(None), &products_first(None)),
+            (None, None)
+        );
+        assert_eq!(
+            diff_traces(&products_first(None), &interleaved(None)),
+            (None, None)
+        );
+    }
+
+    #[test]
+    fn a_fault_is_paired_with_the_same_operation_whatever_the_order() {
+        let (first, origin) = diff_traces(&interleaved(None), &products_first(Some(15)));
+        let first = first.expect("a divergence");
+        // The reference's first add, paired with the port's first add (its
+        // record 3), not with the port's third mul at the same position.
+        assert_eq!((first.index, first.b_index), (2, Some(3)));
+        assert_eq!(first.a.as_ref().map(|r| r.op), Some(Op::Add));
+        assert_eq!(first.b.as_ref().map(|r| r.op), Some(Op::Add));
+        let origin = origin.expect("an origin");
+        assert_eq!((origin.op, origin.index), (Op::Add, 2));
+        assert_eq!(origin.b, Outcome::Value(OpValue::Num(n(15))));
+    }
+
+    #[test]
+    fn traces_in_the_same_order_diff_record_by_record() {
+        let (first, origin) = diff_traces(&interleaved(None), &interleaved(Some(15)));
+        let first = first.expect("a divergence");
+        assert_eq!((first.index, first.b_index), (2, None));
+        assert_eq!(first.previous, Some(interleaved(None)[1].clone()));
+        assert_eq!(origin.map(|o| o.index), Some(2));
+    }
+
+    #[test]
+    fn a_longer_trace_diverges_where_the_shorter_ends() {
+        let long = interleaved(None);
+        let (first, origin) = diff_traces(&long[..3], &long);
+        let first = first.expect("a divergence");
+        assert_eq!((first.index, first.b_index, first.a), (3, None, None));
+        assert_eq!(first.b, Some(long[3].clone()));
+        assert_eq!(origin, None);
+    }
+
+    #[test]
+    fn an_operation_only_one_side_traces_is_not_the_divergence() {
+        // The port traces its invSqrt and the sub inside it, not the muls,
+        // and its sub answers -1 where the reference's answers 2 (its
+        // result aliases an operand).
+        let reference = vec![
+            rec(Op::InvSqrt, &[1], 1, &[]),
+            rec(Op::Mul, &[1, 1], 1, &["inv_sqrt"]),
+            rec(Op::Sub, &[3, 1], 2, &["inv_sqrt"]),
+        ];
+        let mut port = vec![reference[0].clone(), reference[2].clone()];
+        port[1].result = Outcome::Value(OpValue::Num(F316::new(1, 127, 2)));
+        let (first, origin) = diff_traces(&reference, &port);
+        let first = first.expect("a divergence");
+        assert_eq!((first.index, first.b_index), (2, Some(1)));
+        assert_eq!(first.previous, Some(reference[0].clone()));
+        assert_eq!(origin.map(|o| (o.op, o.index)), Some((Op::Sub, 2)));
+        // With the port's sub right, what is left is the mul the port does
+        // not trace: shown, with nothing on the port's side, and no origin.
+        port[1] = reference[2].clone();
+        let (first, origin) = diff_traces(&reference, &port);
+        let first = first.expect("the untraced mul");
+        assert_eq!((first.index, first.b_index, first.b), (1, None, None));
+        assert_eq!(origin, None);
+    }
+
+    #[test]
+    fn the_origin_is_the_innermost_operation_at_fault() {
+        let outer = |r: i16| rec(Op::InvSqrt, &[1], r, &["pixel"]);
+        let a = vec![
+            outer(1),
+            rec(Op::Mul, &[1, 1], 1, &["pixel", "inv_sqrt"]),
+            rec(Op::Sub, &[3, 1], 2, &["pixel", "inv_sqrt"]),
+        ];
+        let mut b = a.clone();
+        b[0] = outer(5);
+        b[2] = rec(Op::Sub, &[3, 1], 6, &["pixel", "inv_sqrt"]);
+        let (first, origin) = diff_traces(&a, &b);
+        assert_eq!(first.map(|f| f.index), Some(0));
+        let origin = origin.expect("an origin");
+        assert_eq!((origin.op, origin.index), (Op::Sub, 2));
     }
 }

@@ -13,7 +13,8 @@ const FAULTY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/adapters/faulty
 
 /// A project directory whose harness.toml declares the faulty adapters:
 /// `hang` (an f32 port answering hang to everything), `crash` (a Float316
-/// ops port that crashes after 100 answers) and `no-start`.
+/// ops port that crashes after 100 answers), `no-start`, and `aliased` (a
+/// right ops port whose inv_sqrt trace shows a sub that differs).
 fn project() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let entry = |name: &str, numbers: &str, levels: &str, args: &str| {
@@ -26,6 +27,7 @@ fn project() -> tempfile::TempDir {
         entry("hang", "f32", "\"sdf\", \"pixels\"", "\"hang-f32\""),
         entry("crash", "float316", "\"ops\"", "\"crash-after\", \"100\""),
         entry("no-start", "float316", "\"ops\"", "\"no-start\""),
+        entry("aliased", "float316", "\"ops\"", "\"aliased-sub\"") + "trace = true\n",
     ]
     .concat();
     std::fs::write(dir.path().join("harness.toml"), toml).unwrap();
@@ -583,4 +585,38 @@ fn a_whole_program_that_stops_fails_the_screens_step() {
         3,
         &["port-main", "the whole program did not finish", "7"],
     );
+}
+
+/// localize compares the answers first: a trace that differs inside an
+/// operation whose answer agrees (a sub that writes its result over an
+/// operand, its sign dropped later) is shown as a difference that does not
+/// reach the answer, and localize exits 0 as diff does.
+#[test]
+fn localize_exits_0_when_the_answers_agree_and_the_traces_do_not() {
+    let p = project();
+    let args = ["--op", "inv_sqrt", "--a", "0,127,8192"];
+    let o = run(
+        p.path(),
+        &[&["localize", "ref-f316", "aliased"][..], &args].concat(),
+    );
+    assert_status(
+        &o,
+        0,
+        &[
+            "the answers agree: the traces differ, but the difference does not reach the answer",
+            "origin: sub((0,127,12288)=1.5, (0,126,8192)=0.5) at record 3 [inv_sqrt]",
+        ],
+    );
+    let o = run(p.path(), &["diff", "ref-f316", "aliased", "--level", "ops"]);
+    assert_status(&o, 0, &["no divergence"]);
+    // A divergence that reaches the answer still exits 1.
+    let faulty = [
+        "localize",
+        "ref-f316+sqrt-floor-div",
+        "aliased",
+        "--op",
+        "sqrt",
+    ];
+    let o = run(p.path(), &[&faulty[..], &["--a", "0,120,15576"]].concat());
+    assert_status(&o, 1, &["origin: sqrt((0,120,15576)"]);
 }

@@ -5,6 +5,11 @@ every command that compares, with a message that names it.
   crash-after N     a Float316 port (ops, the example port's arithmetic) that
                     answers N inputs correctly and then crashes
   no-start          a port that exits before its handshake
+  aliased-sub       a Float316 ops port with traces whose inv_sqrt is right
+                    but whose trace shows sub(1.5, 0.5) = -1 inside it (its
+                    sub writes its result over an operand, and the sign it
+                    flips is dropped later): a trace difference that does
+                    not reach the answer
 """
 import json
 import os
@@ -23,8 +28,8 @@ if mode == "hang-f32":
 else:
     import adapter  # the example adapter and its port
     handshake = {"numbers": "float316", "levels": ["ops"]}
-    crash_at = int(sys.argv[2])
-handshake.update({"protocol": 1, "name": "faulty-" + mode, "trace": False})
+    crash_at = int(sys.argv[2]) if mode == "crash-after" else None
+handshake.update({"protocol": 1, "name": "faulty-" + mode, "trace": mode == "aliased-sub"})
 out = sys.stdout
 out.write(json.dumps(handshake) + "\n")
 out.flush()
@@ -33,7 +38,14 @@ out.flush()
 def answer(request):
     if mode == "hang-f32":
         return {"id": request["id"], "outcome": "hang"}
-    return adapter.answer(request)
+    reply = adapter.answer(request)
+    if request.get("trace"):
+        args = [request["a"]] + ([request["b"]] if "b" in request else [])
+        reply["trace"] = [{"op": request["op"], "args": args, "result": reply["value"]}]
+        if request["op"] == "inv_sqrt":
+            reply["trace"].append({"op": "sub", "args": [[0, 127, 12288], [0, 126, 8192]],
+                                   "result": [1, 127, 8192], "path": ["inv_sqrt"]})
+    return reply
 
 
 answered = 0
