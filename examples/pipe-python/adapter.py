@@ -24,14 +24,15 @@ def answer(request):
     return reply
 
 
-def main():
+def main(handshake=HANDSHAKE, answer_one=answer):
+    """Write `handshake`, then answer every batch with `answer_one`."""
     out = sys.stdout
-    out.write(json.dumps(HANDSHAKE) + "\n")
+    out.write(json.dumps(handshake) + "\n")
     out.flush()
     for header in sys.stdin:
         batch = json.loads(header)
         for _ in range(batch["count"]):
-            out.write(json.dumps(answer(json.loads(sys.stdin.readline()))) + "\n")
+            out.write(json.dumps(answer_one(json.loads(sys.stdin.readline()))) + "\n")
         out.write(json.dumps({"batch": batch["batch"], "count": batch["count"]}) + "\n")
         out.flush()
 

@@ -206,6 +206,15 @@ pub struct Comparison {
     pub stats: Option<ErrorStats>,
     /// Set-level findings beyond policy (flip fraction, oracle precision).
     pub findings: Vec<String>,
+    /// Inputs outside the reference's modelled domain that were not
+    /// compared, per operation (or level): one side answered out of domain
+    /// and the other declares no domain check of its own.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub outside_domain: BTreeMap<String, usize>,
+    /// Inputs not compared because a side has no such operation (it
+    /// answered `unsupported`), per operation.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub unsupported: BTreeMap<String, usize>,
     /// The verdict: a divergence under the policy.
     pub diverged: bool,
 }
@@ -224,7 +233,9 @@ fn numbers_of(answer: &Answer) -> Vec<Num> {
         Answer::Num { value } => vec![*value],
         Answer::Sdf { sd, col } => vec![*sd, *col],
         Answer::Pixel { shade, .. } => vec![*shade],
-        Answer::Bool { .. } | Answer::Image { .. } | Answer::Dot { .. } => Vec::new(),
+        Answer::Bool { .. } | Answer::Image { .. } | Answer::Dot { .. } | Answer::Unsupported => {
+            Vec::new()
+        }
     }
 }
 
@@ -436,10 +447,35 @@ fn exact_in_f32(answers: &[Outcome<Answer>]) -> (usize, usize) {
 pub struct Sides<'a> {
     pub a_label: &'a str,
     pub a_numbers: Numbers,
+    /// Whether A checks the modelled domain itself.
+    pub a_checks_domain: bool,
     pub a: &'a [Outcome<Answer>],
     pub b_label: &'a str,
     pub b_numbers: Numbers,
+    pub b_checks_domain: bool,
     pub b: &'a [Outcome<Answer>],
+}
+
+impl Sides<'_> {
+    /// Whether the answers to one input are left out as outside the
+    /// modelled domain: one side answered out of domain and the other,
+    /// which answered anything else, declares no domain check. (Two sides
+    /// that both check, or a port answering out of domain where the
+    /// reference answers a value, are compared.)
+    fn outside_domain(&self, a: &Outcome<Answer>, b: &Outcome<Answer>) -> bool {
+        let ood = |o: &Outcome<Answer>| matches!(o, Outcome::OutOfDomain);
+        (ood(a) && !ood(b) && self.a_checks_domain && !self.b_checks_domain)
+            || (ood(b) && !ood(a) && self.b_checks_domain && !self.a_checks_domain)
+    }
+}
+
+/// What an input left out of a comparison is counted under: its
+/// operation, or its level.
+fn domain_key(input: &Vector, level: Level) -> String {
+    match input {
+        Vector::Op(v) => v.op.to_string(),
+        _ => level.to_string(),
+    }
 }
 
 /// Compare the answers of two implementations to the vectors of `set`
@@ -448,8 +484,22 @@ pub fn compare(set: &vectors::VectorSet, sides: &Sides) -> Comparison {
     let policy = Policy::for_pair(sides.a_numbers, sides.b_numbers);
     let mut stats = ErrorStats::default();
     let mut found = Vec::new();
+    let mut outside_domain = BTreeMap::new();
+    let mut unsupported = BTreeMap::new();
+    let unsupported_by = |o: &Outcome<Answer>| matches!(o, Outcome::Value(Answer::Unsupported));
     for (i, input) in set.vectors.iter().enumerate() {
         let (a, b) = (&sides.a[i], &sides.b[i]);
+        let skipped = if unsupported_by(a) || unsupported_by(b) {
+            Some(&mut unsupported)
+        } else if sides.outside_domain(a, b) {
+            Some(&mut outside_domain)
+        } else {
+            None
+        };
+        if let Some(counts) = skipped {
+            *counts.entry(domain_key(input, set.level)).or_insert(0) += 1;
+            continue;
+        }
         found.extend(match &policy {
             Policy::Exact => exact(i, input, a, b),
             Policy::Error { thresholds } => {
@@ -515,12 +565,16 @@ pub fn compare(set: &vectors::VectorSet, sides: &Sides) -> Comparison {
         level: set.level,
         set: set.name.clone(),
         policy,
-        vectors: set.vectors.len(),
+        vectors: set.vectors.len()
+            - outside_domain.values().sum::<usize>()
+            - unsupported.values().sum::<usize>(),
         divergences,
         omitted,
         groups,
         stats,
         findings,
+        outside_domain,
+        unsupported,
         diverged,
     }
 }
@@ -609,11 +663,51 @@ mod tests {
         Sides {
             a_label: "A",
             a_numbers: na,
+            a_checks_domain: true,
             a,
             b_label: "B",
             b_numbers: nb,
+            b_checks_domain: true,
             b,
         }
+    }
+
+    #[test]
+    fn inputs_outside_the_modelled_domain_are_counted_unless_both_sides_check_it() {
+        let set = ops_set(4);
+        let reference = vec![
+            Outcome::OutOfDomain,
+            Outcome::OutOfDomain,
+            num(F316::ONE),
+            num(F316::ONE),
+        ];
+        // A port without a domain check of its own: a value where the
+        // reference models none, and one wrong value.
+        let port = vec![
+            num(F316::ONE),
+            Outcome::OutOfDomain,
+            Outcome::OutOfDomain,
+            num(F316::ZERO),
+        ];
+        let mut s = sides(&reference, &port, Numbers::Float316, Numbers::Float316);
+        s.b_checks_domain = false;
+        let c = compare(&set, &s);
+        assert_eq!(c.outside_domain, BTreeMap::from([("sqrt".to_string(), 1)]));
+        // The port's own out of domain where the reference answers, and
+        // its wrong value, are divergences still.
+        let diverging: Vec<usize> = c.divergences.iter().map(|d| d.index).collect();
+        assert_eq!(diverging, [2, 3]);
+        // Either side may be the one without the check.
+        let mut s = sides(&port, &reference, Numbers::Float316, Numbers::Float316);
+        s.a_checks_domain = false;
+        assert_eq!(compare(&set, &s).outside_domain.values().sum::<usize>(), 1);
+        // Declared checks on both sides: compared as before.
+        let c = compare(
+            &set,
+            &sides(&reference, &port, Numbers::Float316, Numbers::Float316),
+        );
+        assert!(c.outside_domain.is_empty());
+        assert_eq!(c.divergences.len(), 3);
     }
 
     #[test]

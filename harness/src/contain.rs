@@ -446,6 +446,10 @@ impl Implementation for Contained {
         self.inner.adapter()
     }
 
+    fn checks_domain(&self) -> bool {
+        self.inner.checks_domain()
+    }
+
     /// In order when the inner one is; each batch still goes through
     /// [`Contained::eval`].
     fn in_order(&self) -> bool {

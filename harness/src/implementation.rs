@@ -126,6 +126,9 @@ pub enum Answer {
     /// One pixel of an image answer, as divergences of the `image` level
     /// report it (the image carries no shades).
     Dot { white: bool },
+    /// The implementation has no such operation (a port that writes
+    /// `halve` inline): the input is counted, not compared.
+    Unsupported,
 }
 
 /// A Float316 operation's result as an answer.
@@ -162,6 +165,7 @@ impl fmt::Display for Answer {
                 )
             }
             Answer::Dot { white } => f.write_str(if *white { "white" } else { "black" }),
+            Answer::Unsupported => f.write_str("unsupported"),
         }
     }
 }
@@ -224,6 +228,15 @@ pub trait Implementation: Send + Sync {
 
     /// Whether it answers vectors of `level`.
     fn supports(&self, level: Level) -> bool;
+
+    /// Whether it checks the reference's modelled domain itself, answering
+    /// out of domain where the reference does (the default: ours do). A
+    /// port without such a check (a user's program that floors any value)
+    /// is not compared on the inputs a checking side answers out of
+    /// domain: those are counted per operation instead (docs/verdict.md).
+    fn checks_domain(&self) -> bool {
+        true
+    }
 
     /// How many vectors of `level` one [`Implementation::eval`] call should
     /// get: the runner splits work into batches of this size and runs the

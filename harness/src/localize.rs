@@ -352,10 +352,18 @@ fn stray_inputs(
 }
 
 fn eval_one(imp: &dyn Implementation, input: &Vector) -> Result<Outcome<Answer>, LocalizeError> {
-    imp.eval(std::slice::from_ref(input))
+    let answer = imp
+        .eval(std::slice::from_ref(input))
         .map_err(|e| LocalizeError::Impl(imp.label(), e))?
         .pop()
-        .ok_or_else(|| LocalizeError::Impl(imp.label(), ImplError::Failed("no answer".into())))
+        .ok_or_else(|| LocalizeError::Impl(imp.label(), ImplError::Failed("no answer".into())))?;
+    match answer {
+        Outcome::Value(Answer::Unsupported) => Err(LocalizeError::Unsupported(format!(
+            "{} has no such operation: {input}",
+            imp.label()
+        ))),
+        answer => Ok(answer),
+    }
 }
 
 fn to_op_answer(r: &Outcome<OpValue>) -> Outcome<Answer> {
@@ -378,7 +386,8 @@ fn from_op_answer(r: Outcome<Answer>) -> Outcome<OpValue> {
 
 /// Replay every operation of `trace` through `imp` (ops level) and build
 /// the trace `imp` would have produced with the same operands: the same
-/// records with `imp`'s results.
+/// records with `imp`'s results (the trace's own, for an operation `imp`
+/// answers unsupported).
 pub fn replay(
     imp: &dyn Implementation,
     trace: &[TraceRecord],
@@ -401,7 +410,12 @@ pub fn replay(
         .iter()
         .zip(answers)
         .map(|(r, answer)| TraceRecord {
-            result: from_op_answer(answer),
+            // An operation `imp` does not have (it computes it inline)
+            // cannot be replayed: its record is taken as it is.
+            result: match answer {
+                Outcome::Value(Answer::Unsupported) => r.result,
+                answer => from_op_answer(answer),
+            },
             ..r.clone()
         })
         .collect())

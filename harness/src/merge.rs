@@ -192,6 +192,18 @@ fn merge_set<'a>(parts: impl Iterator<Item = &'a LevelReport>) -> Result<LevelRe
     Ok(out)
 }
 
+/// Counts per key, summed over the shards.
+fn summed<'a>(
+    parts: impl Iterator<Item = &'a BTreeMap<String, usize>>,
+) -> Result<BTreeMap<String, usize>, MergeError> {
+    let mut sum: BTreeMap<String, usize> = BTreeMap::new();
+    for (key, n) in parts.flatten() {
+        let count = sum.entry(key.clone()).or_insert(0);
+        *count = total("inputs not compared", [*count, *n])?;
+    }
+    Ok(sum)
+}
+
 /// One pair's comparisons in several shards as one: the vectors each
 /// actually compared are summed (a shard whose implementation stopped early
 /// compared fewer than it holds).
@@ -224,6 +236,8 @@ fn merge_comparison<'a>(
         }
     }
     out.groups = groups.into_values().collect();
+    out.outside_domain = summed(parts.iter().map(|c| &c.outside_domain))?;
+    out.unsupported = summed(parts.iter().map(|c| &c.unsupported))?;
     if let Some(s) = &mut out.stats {
         let stats: Vec<_> = parts.iter().filter_map(|c| c.stats.as_ref()).collect();
         s.values = total("values", stats.iter().map(|t| t.values))?;

@@ -29,8 +29,12 @@ pub struct ImplRun {
     pub numbers: Numbers,
     /// Its answers in set order, or why it gave none.
     pub answers: Answers,
-    /// Wall-clock seconds spent (summed over its batches).
+    /// Wall-clock seconds from its first batch's start to its last one's
+    /// end.
     pub seconds: f64,
+    /// Whether it checks the reference's modelled domain itself
+    /// ([`Implementation::checks_domain`]).
+    pub checks_domain: bool,
 }
 
 /// How an implementation fared on a set, without its answers.
@@ -130,7 +134,9 @@ enum Job<'a> {
 
 /// One batch's result: the implementation, the batch's start, its answers
 /// and the seconds it took.
-type Done = (usize, usize, BatchAnswers, f64);
+/// A batch's implementation, its start in the set, its answers, and when
+/// it began and ended.
+type Done = (usize, usize, BatchAnswers, (Instant, Instant));
 
 /// Join one implementation's batches, in set order, into its answers. At
 /// the first batch that failed, a contained failure keeps every answer
@@ -219,7 +225,7 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
             failed[i].fetch_min(start, Ordering::Relaxed);
         }
         bars[i].inc(chunk.len() as u64);
-        (i, start, answers, begin.elapsed().as_secs_f64())
+        (i, start, answers, (begin, Instant::now()))
     };
     let in_order = |i: usize, batches: &[(usize, &[Vector])]| -> Vec<Done> {
         let chunks: Vec<&[Vector]> = batches.iter().map(|(_, c)| *c).collect();
@@ -230,9 +236,9 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
                 return;
             };
             bars[i].inc(chunk.len() as u64);
-            let seconds = begin.elapsed().as_secs_f64();
-            done[k].get_or_insert((i, start, counted(answers, chunk), seconds));
-            begin = Instant::now();
+            let end = Instant::now();
+            done[k].get_or_insert((i, start, counted(answers, chunk), (begin, end)));
+            begin = end;
         });
         // A batch it never reported is a failure, not a gap in the answers.
         done.into_iter()
@@ -240,7 +246,8 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
             .map(|(d, &(start, _))| {
                 d.unwrap_or_else(|| {
                     let why = "its in-order evaluation gave this batch no answers".into();
-                    (i, start, Err(ImplError::Failed(why)), 0.0)
+                    let now = Instant::now();
+                    (i, start, Err(ImplError::Failed(why)), (now, now))
                 })
             })
             .collect()
@@ -258,11 +265,17 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
         None => work(),
     };
     let mut per_impl: Vec<Vec<(usize, BatchAnswers)>> = impls.iter().map(|_| Vec::new()).collect();
-    let mut seconds = vec![0.0; impls.len()];
-    for (i, start, answers, s) in results {
+    // Each implementation's span, from its first batch's start to its last
+    // one's end: its batches run side by side, so their sum overstates it.
+    let mut spans: Vec<Option<(Instant, Instant)>> = impls.iter().map(|_| None).collect();
+    for (i, start, answers, (begin, end)) in results {
         per_impl[i].push((start, answers));
-        seconds[i] += s;
+        let span = spans[i].get_or_insert((begin, end));
+        *span = (span.0.min(begin), span.1.max(end));
     }
+    let seconds = spans
+        .into_iter()
+        .map(|s| s.map_or(0.0, |(begin, end)| (end - begin).as_secs_f64()));
     impls
         .iter()
         .zip(per_impl)
@@ -281,6 +294,7 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
                 numbers: imp.numbers(),
                 answers,
                 seconds,
+                checks_domain: imp.checks_domain(),
             }
         })
         .collect()
@@ -361,9 +375,11 @@ pub fn compare_runs(set: &VectorSet, runs: &[ImplRun]) -> Vec<Comparison> {
                 &Sides {
                     a_label: &sa.label,
                     a_numbers: sa.numbers,
+                    a_checks_domain: sa.checks_domain,
                     a: &aa[..n],
                     b_label: &sb.label,
                     b_numbers: sb.numbers,
+                    b_checks_domain: sb.checks_domain,
                     b: &ab[..n],
                 },
             );

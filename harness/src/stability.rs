@@ -181,6 +181,7 @@ mod tests {
             numbers,
             answers: Ok(answers),
             seconds: 0.0,
+            checks_domain: true,
         }
     }
 

@@ -103,6 +103,25 @@ pub fn comparison(c: &Comparison) -> String {
         for finding in &c.findings {
             writeln!(out, "    FINDING: {finding}")?;
         }
+        let counts = |per: &std::collections::BTreeMap<String, usize>| {
+            let counts: Vec<String> = per.iter().map(|(what, n)| format!("{what} {n}")).collect();
+            counts.join(", ")
+        };
+        if !c.outside_domain.is_empty() {
+            writeln!(
+                out,
+                "    outside the modelled domain, not compared (one side declares no domain \
+                 check): {}",
+                counts(&c.outside_domain)
+            )?;
+        }
+        if !c.unsupported.is_empty() {
+            writeln!(
+                out,
+                "    unsupported by one side, not compared: {}",
+                counts(&c.unsupported)
+            )?;
+        }
         let total: usize = c.groups.iter().map(|g| g.count).sum();
         let beyond: usize = c
             .groups
@@ -204,9 +223,11 @@ mod tests {
             &Sides {
                 a_label: "f32-port",
                 a_numbers: Numbers::F32,
+                a_checks_domain: true,
                 a: subject,
                 b_label: "ref-f64",
                 b_numbers: Numbers::F64,
+                b_checks_domain: true,
                 b: oracle,
             },
         ))

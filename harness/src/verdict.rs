@@ -380,6 +380,8 @@ mod tests {
                 groups: vec![group(3, false), group(5, true)],
                 stats: None,
                 findings: vec!["a finding".into()],
+                outside_domain: Default::default(),
+                unsupported: Default::default(),
                 diverged: true,
             }],
             shard: None,

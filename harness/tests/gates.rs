@@ -14,7 +14,9 @@ const FAULTY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/adapters/faulty
 /// A project directory whose harness.toml declares the faulty adapters:
 /// `hang` (an f32 port answering hang to everything), `crash` (a Float316
 /// ops port that crashes after 100 answers), `no-start`, and `aliased` (a
-/// right ops port whose inv_sqrt trace shows a sub that differs).
+/// right ops port whose inv_sqrt trace shows a sub that differs), and
+/// `unchecked` and `checked` (a port answering values outside the modelled
+/// domain, declared without and with a domain check).
 fn project() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let entry = |name: &str, numbers: &str, levels: &str, args: &str| {
@@ -28,6 +30,8 @@ fn project() -> tempfile::TempDir {
         entry("crash", "float316", "\"ops\"", "\"crash-after\", \"100\""),
         entry("no-start", "float316", "\"ops\"", "\"no-start\""),
         entry("aliased", "float316", "\"ops\"", "\"aliased-sub\"") + "trace = true\n",
+        entry("unchecked", "float316", "\"ops\"", "\"no-domain-check\""),
+        entry("checked", "float316", "\"ops\"", "\"no-domain-check\"") + "checks_domain = true\n",
     ]
     .concat();
     std::fs::write(dir.path().join("harness.toml"), toml).unwrap();
@@ -619,4 +623,29 @@ fn localize_exits_0_when_the_answers_agree_and_the_traces_do_not() {
     ];
     let o = run(p.path(), &[&faulty[..], &["--a", "0,120,15576"]].concat());
     assert_status(&o, 1, &["origin: sqrt((0,120,15576)"]);
+}
+
+/// An input outside the reference's modelled domain (floor of 2^14 or more)
+/// says nothing about a port that has no domain check: it is counted per
+/// operation and not compared, unless the entry declares a check of its
+/// own, and then it is a divergence as before.
+#[test]
+fn inputs_outside_the_domain_are_counted_for_a_port_without_a_domain_check() {
+    let p = project();
+    let o = run(
+        p.path(),
+        &["diff", "ref-f316", "unchecked", "--level", "ops"],
+    );
+    assert_status(
+        &o,
+        0,
+        &["outside the modelled domain, not compared (one side declares no domain check): floor "],
+    );
+    let o = run(
+        p.path(),
+        &["check", "--no-divergence", "ref-f316", "unchecked"],
+    );
+    assert_status(&o, 0, &[]);
+    let o = run(p.path(), &["diff", "ref-f316", "checked", "--level", "ops"]);
+    assert_status(&o, 1, &["floor / ", "outcome kind"]);
 }

@@ -269,6 +269,9 @@ impl JackAdapter {
 
     fn answer(&self, v: &Vector) -> Result<Outcome<Answer>, ImplError> {
         Ok(match v {
+            // An operation the bindings leave out (the program writes it
+            // inline): counted as unsupported, never guessed.
+            Vector::Op(o) if !self.bound.has_op(o.op) => Outcome::Value(Answer::Unsupported),
             Vector::Op(o) => self
                 .bound
                 .op(o.op, &o.args())
@@ -320,6 +323,10 @@ impl Implementation for JackAdapter {
             Level::Pixels => self.bound.has_pixel(),
             Level::Image => self.bound.has_pixel() || self.bound.captures_pixels(),
         }
+    }
+
+    fn checks_domain(&self) -> bool {
+        self.bound.checks_domain()
     }
 
     fn batch_size(&self, level: Level) -> usize {

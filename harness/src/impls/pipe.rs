@@ -8,6 +8,9 @@
 //! numbers = "float316"      # float316, f64 or f32: its group and policy
 //! levels = ["ops", "pixels"]
 //! trace = true              # optional: it answers trace requests
+//! checks_domain = true      # optional: it answers out_of_domain where the
+//!                           # reference does (else such inputs are counted,
+//!                           # not compared)
 //! command = "python3"
 //! args = ["adapter.py"]     # optional
 //! dir = "ports/python"      # optional, relative to the project file
@@ -49,6 +52,7 @@ impl Kind for PipeKind {
             ));
         }
         let trace = fields.bool("trace")?.unwrap_or(false);
+        let checks_domain = fields.bool("checks_domain")?.unwrap_or(false);
         let command = fields.required_string("command")?.to_string();
         let args = fields
             .strings("args")?
@@ -94,6 +98,7 @@ impl Kind for PipeKind {
                 numbers,
                 levels: levels.clone(),
                 trace,
+                checks_domain,
                 origin,
             },
         )
@@ -116,6 +121,7 @@ struct PipeOpener {
     numbers: Numbers,
     levels: Vec<Level>,
     trace: bool,
+    checks_domain: bool,
     /// Where it was declared, for messages.
     origin: String,
 }
@@ -133,6 +139,7 @@ impl Opener for PipeOpener {
         config.args = self.args.clone();
         config.dir = self.dir.clone();
         config.watchdog = self.watchdog;
+        config.checks_domain = self.checks_domain;
         let pipe = Pipe::open(&config)?;
         let hello = pipe.handshake();
         let disagreement = if hello.numbers != self.numbers {

@@ -18,6 +18,7 @@ use common::{Outcome, TraceRecord};
 use process::{Adapter, Reply, Request, StartError};
 use protocol::{Expect, Handshake};
 use reference::{RefImpl, Reference, Scalar};
+use std::borrow::Cow;
 use std::path::PathBuf;
 use std::time::Duration;
 use vectors::{Level, Vector};
@@ -37,6 +38,9 @@ pub struct PipeConfig {
     pub watchdog: Watchdog,
     /// How long its handshake may take.
     pub handshake: Duration,
+    /// Whether the port checks the modelled domain itself (answers
+    /// `out_of_domain` where the reference does); default no.
+    pub checks_domain: bool,
 }
 
 impl PipeConfig {
@@ -49,6 +53,7 @@ impl PipeConfig {
             dir: None,
             watchdog: Watchdog::default(),
             handshake: Duration::from_secs(60),
+            checks_domain: false,
         }
     }
 }
@@ -59,6 +64,7 @@ pub struct Pipe {
     hello: Handshake,
     adapter: Adapter,
     watchdog: Watchdog,
+    checks_domain: bool,
     /// The reference in the adapter's numbers: pixel coordinates.
     coords: Reference,
     /// ref-f316: the coordinate operations that open a pixel's trace.
@@ -110,6 +116,7 @@ impl Pipe {
             hello,
             adapter,
             watchdog: config.watchdog,
+            checks_domain: config.checks_domain,
             coords: Reference::seed(which),
             tracer: Reference::seed(RefImpl::F316),
         })
@@ -241,6 +248,28 @@ impl Pipe {
         }
     }
 
+    /// The part of `batch` the adapter is sent: the vectors of operations
+    /// its handshake lists, and which vectors were left out (`None`: none).
+    fn listed<'b>(&self, batch: &'b [Vector]) -> (Cow<'b, [Vector]>, Option<Vec<bool>>) {
+        let Some(ops) = &self.hello.ops else {
+            return (Cow::Borrowed(batch), None);
+        };
+        let unlisted: Vec<bool> = batch
+            .iter()
+            .map(|v| matches!(v, Vector::Op(o) if !ops.contains(&o.op)))
+            .collect();
+        if !unlisted.contains(&true) {
+            return (Cow::Borrowed(batch), None);
+        }
+        let listed = batch
+            .iter()
+            .zip(&unlisted)
+            .filter(|(_, &u)| !u)
+            .map(|(v, _)| v.clone())
+            .collect();
+        (Cow::Owned(listed), Some(unlisted))
+    }
+
     /// Send `batch` for its answers alone, unless it holds a level the
     /// handshake does not declare.
     fn send_for_eval(&self, batch: &[Vector]) -> Result<Option<Sent>, ImplError> {
@@ -258,6 +287,44 @@ impl Pipe {
 /// The outcomes of answers asked for without traces.
 fn outcomes(answered: Vec<process::Answered>) -> Vec<Outcome<Answer>> {
     answered.into_iter().map(|(o, _)| o).collect()
+}
+
+/// The answers to the listed part of `batch` put back in its order, with
+/// `unsupported` for each vector left out (`unlisted`); a failure's kept
+/// answers and the input it stopped at are moved the same way.
+fn with_unlisted(
+    batch: &[Vector],
+    unlisted: Option<&[bool]>,
+    answers: BatchAnswers,
+) -> BatchAnswers {
+    let Some(unlisted) = unlisted else {
+        return answers;
+    };
+    let widen = |given: Vec<Outcome<Answer>>| {
+        let mut given = given.into_iter();
+        let mut out = Vec::with_capacity(batch.len());
+        for &left_out in unlisted {
+            match left_out {
+                true => out.push(Outcome::Value(Answer::Unsupported)),
+                false => match given.next() {
+                    Some(answer) => out.push(answer),
+                    None => break,
+                },
+            }
+        }
+        out
+    };
+    match answers {
+        Ok(given) => Ok(widen(given)),
+        Err(ImplError::Contained(f)) => {
+            let mut f = *f;
+            let kept = widen(std::mem::take(&mut f.answered));
+            let mut f = f.after(kept, batch);
+            f.batch.1 = batch.len();
+            Err(f.into())
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// A batch sent: where its reply comes, and how long it may take (its own
@@ -284,6 +351,10 @@ impl Implementation for Pipe {
         self.hello.levels.contains(&level)
     }
 
+    fn checks_domain(&self) -> bool {
+        self.checks_domain
+    }
+
     fn batch_size(&self, level: Level) -> usize {
         match level {
             Level::Ops => 4096,
@@ -294,8 +365,12 @@ impl Implementation for Pipe {
     }
 
     fn eval(&self, batch: &[Vector]) -> Result<Vec<Outcome<Answer>>, ImplError> {
-        let sent = self.send_for_eval(batch)?;
-        self.receive(batch, sent).map(outcomes)
+        let (listed, unlisted) = self.listed(batch);
+        let answers = self
+            .send_for_eval(&listed)
+            .and_then(|sent| self.receive(&listed, sent))
+            .map(outcomes);
+        with_unlisted(batch, unlisted.as_deref(), answers)
     }
 
     /// One process answers the batches in turn.
@@ -306,15 +381,15 @@ impl Implementation for Pipe {
     /// Each batch is sent before the answers of the one ahead of it are
     /// awaited.
     fn eval_in_order(&self, batches: &[&[Vector]], done: &mut dyn FnMut(usize, BatchAnswers)) {
+        let listed: Vec<_> = batches.iter().map(|b| self.listed(b)).collect();
         let mut waiting = std::collections::VecDeque::new();
         let mut answer = |k: usize, sent: Result<Option<Sent>, ImplError>| {
-            done(
-                k,
-                sent.and_then(|s| self.receive(batches[k], s)).map(outcomes),
-            );
+            let (part, unlisted) = &listed[k];
+            let answers = sent.and_then(|s| self.receive(part, s)).map(outcomes);
+            done(k, with_unlisted(batches[k], unlisted.as_deref(), answers));
         };
-        for (k, batch) in batches.iter().enumerate() {
-            waiting.push_back((k, self.send_for_eval(batch)));
+        for (k, (part, _)) in listed.iter().enumerate() {
+            waiting.push_back((k, self.send_for_eval(part)));
             if waiting.len() > SENT_AHEAD {
                 if let Some((j, sent)) = waiting.pop_front() {
                     answer(j, sent);

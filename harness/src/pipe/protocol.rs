@@ -27,6 +27,9 @@ pub struct Handshake {
     pub levels: Vec<Level>,
     /// Whether it answers trace requests.
     pub trace: bool,
+    /// The operations it has, when it says (`None`: all of them); the
+    /// harness sends it no other and counts them as unsupported.
+    pub ops: Option<Vec<Op>>,
 }
 
 #[derive(Deserialize)]
@@ -37,6 +40,7 @@ struct RawHandshake {
     levels: Option<Vec<String>>,
     #[serde(default)]
     trace: bool,
+    ops: Option<Vec<String>>,
 }
 
 /// A field of a line that does not say what the protocol asks.
@@ -72,7 +76,11 @@ pub fn excerpt(line: &str) -> String {
 /// Read the adapter's handshake line.
 pub fn read_handshake(line: &str) -> Result<Handshake, LineError> {
     let raw: RawHandshake = serde_json::from_str(line).map_err(|e| {
-        diagnose::<RawHandshake>(line, e, &["protocol", "name", "numbers", "levels", "trace"])
+        diagnose::<RawHandshake>(
+            line,
+            e,
+            &["protocol", "name", "numbers", "levels", "trace", "ops"],
+        )
     })?;
     let err = |field: &str, message: String| LineError::new(Some(field), message, line);
     match raw.protocol {
@@ -102,11 +110,35 @@ pub fn read_handshake(line: &str) -> Result<Handshake, LineError> {
         .iter()
         .map(|l| l.parse::<Level>().map_err(|e| err("levels", e)))
         .collect::<Result<Vec<_>, _>>()?;
+    let ops = raw
+        .ops
+        .map(|ops| {
+            if ops.is_empty() {
+                return Err(err(
+                    "ops",
+                    "empty (leave it out when the port has every operation)".into(),
+                ));
+            }
+            ops.iter()
+                .map(|o| {
+                    Op::ALL
+                        .into_iter()
+                        .find(|op| op.to_string() == *o)
+                        .ok_or_else(|| {
+                            let names: Vec<String> =
+                                Op::ALL.iter().map(ToString::to_string).collect();
+                            err("ops", format!("`{o}` is not one of {}", names.join(", ")))
+                        })
+                })
+                .collect::<Result<Vec<_>, _>>()
+        })
+        .transpose()?;
     Ok(Handshake {
         name,
         numbers,
         levels,
         trace: raw.trace,
+        ops,
     })
 }
 
@@ -383,9 +415,12 @@ pub fn read_line(line: &str, expect: &Expect) -> Result<Line, LineError> {
                 .collect()
         })
         .transpose()?;
-    let outcome = match trap(raw.outcome.as_deref(), raw.code, "", line)? {
-        Some(t) => t,
-        None => Outcome::Value(value(&raw, expect, line)?),
+    let outcome = match raw.outcome.as_deref() {
+        Some("unsupported") => Outcome::Value(Answer::Unsupported),
+        outcome => match trap(outcome, raw.code, "", line)? {
+            Some(t) => t,
+            None => Outcome::Value(value(&raw, expect, line)?),
+        },
     };
     Ok(Line::Answer { id, outcome, trace })
 }
@@ -423,7 +458,14 @@ fn trap<T>(
         Some(other) => {
             return Err(LineError::new(
                 Some(&field("outcome")),
-                format!("`{other}` (expected value, sys_error, hang or out_of_domain)"),
+                format!(
+                    "`{other}` (expected {})",
+                    if prefix.is_empty() {
+                        "value, sys_error, hang, out_of_domain or unsupported"
+                    } else {
+                        "value, sys_error, hang or out_of_domain"
+                    }
+                ),
                 line,
             ))
         }
@@ -571,4 +613,52 @@ fn record(r: &RawRecord, i: usize, line: &str) -> Result<TraceRecord, LineError>
         result,
         path: r.path.clone(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const HELLO: &str = r#""protocol":1,"name":"p","numbers":"float316","levels":["ops"]"#;
+
+    #[test]
+    fn a_handshake_may_list_the_operations_the_port_has() {
+        let all = read_handshake(&format!("{{{HELLO}}}")).unwrap();
+        assert_eq!(all.ops, None);
+        let some = read_handshake(&format!(r#"{{{HELLO},"ops":["add","inv_sqrt"]}}"#)).unwrap();
+        assert_eq!(some.ops, Some(vec![Op::Add, Op::InvSqrt]));
+        for (ops, why) in [
+            (r#"[]"#, "empty"),
+            (r#"["add","invsqrt"]"#, "`invsqrt` is not one of gt, add"),
+            (r#""add""#, "ops"),
+        ] {
+            let e = read_handshake(&format!(r#"{{{HELLO},"ops":{ops}}}"#)).unwrap_err();
+            assert!(e.to_string().contains(why), "{ops}: {e}");
+        }
+    }
+
+    #[test]
+    fn an_answer_may_say_the_port_has_no_such_operation() {
+        let expect = Expect {
+            level: Level::Ops,
+            op: Some(Op::Halve),
+            numbers: Numbers::Float316,
+        };
+        let line = read_line(r#"{"id":3,"outcome":"unsupported"}"#, &expect).unwrap();
+        assert!(matches!(
+            line,
+            Line::Answer {
+                id: 3,
+                outcome: Outcome::Value(Answer::Unsupported),
+                ..
+            }
+        ));
+        // Only an answer can say so, not a record of a trace.
+        let record = r#"{"id":3,"value":[0,127,8192],"trace":[{"op":"halve","args":[[0,127,8192]],"outcome":"unsupported"}]}"#;
+        let e = read_line(record, &expect).unwrap_err().to_string();
+        assert!(
+            e.contains("expected value, sys_error, hang or out_of_domain"),
+            "{e}"
+        );
+    }
 }

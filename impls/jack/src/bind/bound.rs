@@ -250,6 +250,12 @@ impl BoundProgram {
         self.budgets
     }
 
+    /// Whether the program checks the modelled domain itself: its bindings
+    /// name the `Sys.error` code it calls for an operand out of domain.
+    pub fn checks_domain(&self) -> bool {
+        self.out_of_domain.is_some()
+    }
+
     /// Whether `op` is bound.
     pub fn has_op(&self, op: Op) -> bool {
         self.bound_op(op).is_some()
