@@ -8,6 +8,7 @@
 use common::{Op, OpValue, Outcome};
 use harness::implementation::{Answer, Num, Numbers};
 use harness::pipe::protocol::{excerpt, read_handshake, read_line, Expect, Line, LineError};
+use harness::pipe::{stderr_tail, stdout_lines, STDERR_LINES};
 use vectors::Level;
 
 /// Lines of one input that are read (a longer output is cut there).
@@ -23,8 +24,102 @@ const REQUESTS: [(Level, Option<Op>); 5] = [
     (Level::Image, None),
 ];
 
-/// The property of target `pipe_reader`.
+/// The property of target `pipe_reader`: the bytes as an adapter's stdout
+/// and stderr through the bounded line reader ([`line_reader`]), and their
+/// lines through the protocol's reader.
 pub fn pipe_reader(data: &[u8]) {
+    line_reader(data);
+    protocol_reader(data);
+}
+
+/// The line bounds the reader is fuzzed with, small enough that fuzzed
+/// inputs have lines at, under and past each.
+const LINE_LIMITS: [usize; 3] = [1, 16, 200];
+
+/// The bytes as an adapter's stdout and as its stderr, through the
+/// harness's bounded line reader with small bounds (and bounds at and one
+/// under the first line's length): stdout's lines are the
+/// input's lines (split at `\n`, a `\r` before it dropped), up to the first
+/// line past the bound or not UTF-8, where the reader stops with an error
+/// naming the bound or the encoding, never holding more than the bound;
+/// stderr keeps its last [`STDERR_LINES`] lines, each cut to the bound.
+pub fn line_reader(data: &[u8]) {
+    // Besides the fixed bounds, the first line's length and one less: a
+    // line exactly at the bound, and one a byte past it.
+    let first = raw_lines(data).next().map_or(0, <[u8]>::len);
+    let at_the_first = [first.max(1), first.saturating_sub(1).max(1)];
+    for limit in LINE_LIMITS.into_iter().chain(at_the_first) {
+        let (lines, failure) = stdout_lines(data, limit);
+        let (want, stop) = split_lines(data, limit);
+        assert_eq!(lines, want, "stdout, lines of at most {limit} bytes");
+        for line in &lines {
+            assert!(line.len() <= limit, "a line of {} bytes kept", line.len());
+        }
+        match (stop, failure) {
+            (None, None) => {}
+            (Some(Stop::TooLong), Some(why)) => assert!(
+                why.contains(&format!("a line longer than {limit} bytes")),
+                "{why}"
+            ),
+            (Some(Stop::NotUtf8), Some(why)) => assert!(why.contains("not UTF-8"), "{why}"),
+            (stop, failure) => panic!("expected {stop:?}, the reader said {failure:?}"),
+        }
+        let tail = stderr_tail(data, limit);
+        assert!(
+            tail.len() <= STDERR_LINES,
+            "{} stderr lines kept",
+            tail.len()
+        );
+        assert_eq!(
+            tail,
+            stderr_model(data, limit),
+            "stderr, lines cut at {limit}"
+        );
+    }
+}
+
+/// Why the model of the stdout reader stops.
+#[derive(Debug)]
+enum Stop {
+    TooLong,
+    NotUtf8,
+}
+
+/// The input's lines (their end not counted in the bound) up to the first
+/// one past `limit` or not UTF-8.
+fn split_lines(data: &[u8], limit: usize) -> (Vec<String>, Option<Stop>) {
+    let mut lines = Vec::new();
+    for raw in raw_lines(data) {
+        if raw.len() > limit {
+            return (lines, Some(Stop::TooLong));
+        }
+        match std::str::from_utf8(raw) {
+            Ok(text) => lines.push(text.trim_end_matches('\r').to_string()),
+            Err(_) => return (lines, Some(Stop::NotUtf8)),
+        }
+    }
+    (lines, None)
+}
+
+/// The last [`STDERR_LINES`] lines, each cut to `limit` bytes, read
+/// lossily, trimmed and quoted as [`excerpt`] does.
+fn stderr_model(data: &[u8], limit: usize) -> Vec<String> {
+    let all: Vec<String> = raw_lines(data)
+        .map(|raw| excerpt(String::from_utf8_lossy(&raw[..raw.len().min(limit)]).trim_end()))
+        .collect();
+    all[all.len().saturating_sub(STDERR_LINES)..].to_vec()
+}
+
+/// The bytes between line ends (`\n`); an input ending in `\n` has no
+/// empty last line.
+fn raw_lines(data: &[u8]) -> impl Iterator<Item = &[u8]> {
+    let body = data.strip_suffix(b"\n").unwrap_or(data);
+    body.split(|&b| b == b'\n')
+        .filter(move |_| !data.is_empty())
+}
+
+/// The adapter's output through the protocol's reader.
+fn protocol_reader(data: &[u8]) {
     let mut lines = data.split(|&b| b == b'\n').take(LINES).map(|l| {
         String::from_utf8_lossy(l)
             .trim_end_matches('\r')

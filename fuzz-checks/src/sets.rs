@@ -2,7 +2,8 @@
 //! by the reference implementations (a legal vector must never panic one).
 
 use common::F316;
-use reference::{RefImpl, Reference, Scene, Settings};
+use reference::{Described, RefImpl, Reference, Scene, Settings};
+use scene::Formulation;
 use vectors::{Vector, VectorSet};
 
 /// Vectors of one fuzzed set that are evaluated.
@@ -41,18 +42,68 @@ pub fn vector_set(data: &[u8]) {
     }
 }
 
-/// Any text is a scene or an error; a scene prepares for every reference
-/// implementation or fails with an error, and answers an SDF query.
+/// The most statements a checked description's lowered program may hold.
+/// The checks bound it (at most [`scene::check::MAX_USES`] node uses, each
+/// of at most [`scene::check::MAX_TRANSFORMS`] transforms and
+/// [`scene::check::MAX_CHILDREN`] children, a bounded number of
+/// materials); the shipped scenes lower to a few hundred statements. A
+/// description past it grows the program faster than its checks say.
+pub const MAX_STATEMENTS: usize = 200_000;
+
+/// Any text is a scene or an error. A scene description (a `version` at
+/// the top, docs/scenes.md) is parsed and checked by the scene crate: an
+/// error names a field or the JSON's line; a checked description lowers to
+/// a valid program of at most [`MAX_STATEMENTS`] statements for both
+/// formulations, prepares for every reference implementation or fails
+/// with an error, and answers an SDF query. Any other object is the seed
+/// scene's parameter file, which prepares or fails the same way.
 pub fn scene(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
+    if scene::is_description(text) {
+        described(text);
+        return;
+    }
     let Ok(scene) = serde_json::from_str::<Scene>(text) else {
         return;
     };
     for which in RefImpl::ALL {
         if let Ok(r) = Reference::new(which, &scene, Settings::default()) {
             r.sdf([F316::ZERO; 3]);
+        }
+    }
+}
+
+/// The property of [`scene`] for a scene description.
+fn described(text: &str) {
+    let checked = match scene::parse(text) {
+        Ok(checked) => checked,
+        Err(e) => {
+            let message = e.to_string();
+            let (place, what) = message.split_once(": ").unwrap_or(("", ""));
+            assert!(
+                !place.trim().is_empty() && !what.trim().is_empty(),
+                "an error that names no field or says nothing: {message}"
+            );
+            return;
+        }
+    };
+    for form in [Formulation::Float316, Formulation::Ieee] {
+        let program = scene::lower(&checked, form);
+        assert_eq!(program.validate(), Ok(()), "{form:?}");
+        let statements = program.statements().len();
+        assert!(
+            statements <= MAX_STATEMENTS,
+            "{form:?}: {statements} statements, more than {MAX_STATEMENTS}"
+        );
+    }
+    for which in RefImpl::ALL {
+        match Described::new(which, &checked, Settings::default()) {
+            Ok(r) => {
+                r.sdf([F316::ZERO; 3]);
+            }
+            Err(e) => assert!(!e.to_string().trim().is_empty(), "{which:?}"),
         }
     }
 }

@@ -43,12 +43,15 @@ pub fn check_png(path: &Path, what: &str) -> Result<()> {
     check_file(path, what)
 }
 
-/// Check that `path` can take a new directory: it is a directory already
-/// (replaced whole later) or does not exist.
+/// Check that `path` can take a new report directory: it does not exist,
+/// or it is a directory holding nothing but an earlier report's entries
+/// (replaced whole later; see [`crate::report::atomic::REPORT_ENTRIES`]).
 pub fn check_dir(path: &Path, what: &str) -> Result<()> {
     match std::fs::metadata(path) {
         Ok(m) if !m.is_dir() => bail!("{what}: {} exists and is not a directory", path.display()),
-        _ => Ok(()),
+        Ok(_) => crate::report::atomic::check_only_report_entries(path)
+            .map_err(|e| anyhow::anyhow!("{what}: {e}")),
+        Err(_) => Ok(()),
     }
 }
 
@@ -70,7 +73,18 @@ mod tests {
         assert!(err.to_string().contains("is not a file"), "{err}");
         let err = check_dir(&file, "--out").unwrap_err();
         assert!(err.to_string().contains("is not a directory"), "{err}");
-        check_dir(root.path(), "--out").unwrap();
+        // A folder of other files would be deleted by the report's swap.
+        let err = check_dir(root.path(), "--out").unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with(&format!("--out: {}", root.path().display()))
+                && err.to_string().contains("prev.png, which no report writes"),
+            "{err}"
+        );
+        let report = root.path().join("report");
+        std::fs::create_dir_all(report.join("repro")).unwrap();
+        std::fs::write(report.join("report.json"), "[]").unwrap();
+        check_dir(&report, "--out").unwrap();
         check_dir(&root.path().join("new"), "--out").unwrap();
     }
 }

@@ -377,3 +377,68 @@ fn the_nightly_runs_every_ignored_test() {
         );
     }
 }
+
+/// A report replaces its whole folder: `merge --out` a folder that holds
+/// the shards being merged, or `diff --report` a folder of other files,
+/// would delete them. Both are refused, naming what is in the way, and
+/// nothing is deleted (issue 35, item 8).
+#[test]
+fn a_report_never_replaces_a_folder_of_other_files_or_of_its_inputs() {
+    let root = tempfile::tempdir().unwrap();
+    let shards = root.path().join("shards");
+    let set = format!(
+        "{}/../vectors/sets/ops-small.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    for k in 0..2 {
+        let o = harness(&[
+            "diff",
+            "ref-f316",
+            "ref-f316",
+            "--vectors",
+            &set,
+            "--shard",
+            &format!("{k}/2"),
+            "--report",
+            s(&shards.join(k.to_string())),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    }
+    let zero = shards.join("0");
+    let one = shards.join("1");
+    for out in [&shards, &root.path().to_path_buf()] {
+        let o = harness(&["merge", s(&zero), s(&one), "--out", s(out)]);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(
+            text(&o).contains(&format!("--out {} holds the shard report", s(out))),
+            "{}",
+            text(&o)
+        );
+        assert_eq!(entries(&shards), vec!["0", "1"]);
+        assert_eq!(entries(&zero), vec!["report.json", "repro"]);
+    }
+    let merged = root.path().join("merged");
+    let o = harness(&["merge", s(&zero), s(&one), "--out", s(&merged)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    // A folder of the user's own files is no report's.
+    let mine = dir_with(&[("notes.txt", b"mine")]);
+    let o = harness(&[
+        "diff",
+        "ref-f316",
+        "ref-f316",
+        "--vectors",
+        &set,
+        "--report",
+        s(mine.path()),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("notes.txt, which no report writes"),
+        "{}",
+        text(&o)
+    );
+    assert_eq!(entries(mine.path()), vec!["notes.txt"]);
+    // An earlier report's folder is replaced as before.
+    let o = harness(&["merge", s(&zero), s(&one), "--out", s(&merged)]);
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+}

@@ -34,16 +34,32 @@ pub struct MergeArgs {
 /// Run `harness merge`.
 pub fn run(args: MergeArgs) -> anyhow::Result<ExitCode> {
     if let Some(dir) = &args.out {
-        crate::output::check_dir(dir, "--out")?;
-        // Writing the merged report over a shard's would lose that shard.
-        let same = |a: &std::path::Path, b: &std::path::Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y);
-        if let Some(input) = args.dirs.iter().find(|d| same(d, dir)) {
-            anyhow::bail!(
-                "--out {} is one of the shard reports being merged ({}); give another folder",
-                dir.display(),
-                input.display()
-            );
+        // The merged report replaces its folder whole: written over a
+        // shard's report, or over a folder holding one, it would delete
+        // that shard.
+        if let Ok(out) = dir.canonicalize() {
+            for input in &args.dirs {
+                let Ok(canonical) = input.canonicalize() else {
+                    continue;
+                };
+                if canonical == out {
+                    anyhow::bail!(
+                        "--out {} is one of the shard reports being merged ({}); give another folder",
+                        dir.display(),
+                        input.display()
+                    );
+                }
+                if canonical.starts_with(&out) {
+                    anyhow::bail!(
+                        "--out {} holds the shard report {} being merged: the merged report \
+                         replaces its whole folder, which would delete the shard; give another folder",
+                        dir.display(),
+                        input.display()
+                    );
+                }
+            }
         }
+        crate::output::check_dir(dir, "--out")?;
     }
     let parts = args
         .dirs

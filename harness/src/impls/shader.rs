@@ -59,18 +59,28 @@ impl Kind for ShaderKind {
             .parsed::<ShaderNumbers>("numbers")?
             .unwrap_or(ShaderNumbers::F32);
         let language = fields.parsed::<Language>("language")?;
-        if language.is_none() && Language::from_extension(&path).is_none() {
+        let Some(resolved) = language.or_else(|| Language::from_extension(&path)) else {
             return Err(fields.error(
                 "path",
                 "the extension does not say the language (.wgsl; .glsl, .frag, .fs): \
                  declare language = \"glsl\" or \"wgsl\"",
             ));
-        }
+        };
         let mut options = ShaderOptions {
             numbers,
             ..ShaderOptions::default()
         };
         if let Some(shade) = fields.parsed::<Shade>("shade")? {
+            if resolved == Language::Wgsl {
+                return Err(fields.error(
+                    "shade",
+                    format!(
+                        "{} is WGSL, whose `pixel` returns the shade itself: `shade` picks a \
+                         channel of a GLSL shader's `fragColor` (docs/shaders.md)",
+                        path.display()
+                    ),
+                ));
+            }
             options.shade = shade;
         }
         if let Some(limit) = positive(fields, "loop_limit")? {
@@ -394,5 +404,54 @@ mod tests {
         .err()
         .expect("negative limit");
         assert!(bad.to_string().contains("loop_limit"), "{bad}");
+    }
+
+    /// `shade` picks a channel of GLSL's `fragColor`; a WGSL shader returns
+    /// its shade, so the field is refused there, by its line and name.
+    #[test]
+    fn shade_on_a_wgsl_shader_is_refused() {
+        let wgsl = project(
+            "[impl.s]\nkind = \"shader\"\npath = \"examples/shaders/seed.wgsl\"\nshade = \"red\"\n",
+        )
+        .err()
+        .expect("shade on WGSL");
+        let text = wgsl.to_string();
+        assert!(
+            text.contains("harness.toml:4:")
+                && text.contains("impl.s.shade")
+                && text.contains("seed.wgsl is WGSL"),
+            "{text}"
+        );
+        let declared = project(
+            "[impl.s]\nkind = \"shader\"\npath = \"examples/shaders/seed.glsl\"\nlanguage = \"wgsl\"\nshade = \"red\"\n",
+        )
+        .err()
+        .expect("shade on a file declared WGSL");
+        assert!(declared.to_string().contains("impl.s.shade"), "{declared}");
+        assert!(
+            project("[impl.s]\nkind = \"shader\"\npath = \"examples/shaders/seed.wgsl\"\n").is_ok()
+        );
+    }
+
+    /// A WGSL shader with an entry point of its own is an entry whose
+    /// opening fails (no device needed), naming the file and the entry point.
+    #[test]
+    fn a_wgsl_shader_with_its_own_entry_point_fails_naming_it() {
+        let cast = project(
+            "[impl.own]\nkind = \"shader\"\npath = \"impls/gpu/tests/shaders/own_entry.wgsl\"\n",
+        )
+        .expect("a shader that does not pass the front end is still an entry");
+        match cast.open("own") {
+            Err(e) => {
+                let message = e.to_string();
+                assert!(
+                    message.contains(
+                        "own_entry.wgsl: error: the shader declares the entry point `main`"
+                    ),
+                    "{message}"
+                );
+            }
+            Ok(_) => panic!("opened a shader with its own entry point"),
+        }
     }
 }

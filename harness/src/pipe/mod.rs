@@ -12,6 +12,10 @@
 mod process;
 pub mod protocol;
 
+#[doc(hidden)]
+pub use process::{stderr_tail, stdout_lines};
+pub use process::{MAX_LINE_BYTES, STDERR_LINES, STDERR_LINE_BYTES};
+
 use crate::contain::{Failure, FailureKind, Watchdog};
 use crate::implementation::{Answer, BatchAnswers, ImplError, Implementation, Num, Numbers};
 use common::{Outcome, TraceRecord};

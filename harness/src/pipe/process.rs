@@ -19,7 +19,7 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 /// Lines of stderr kept for a failure's message.
-const STDERR_LINES: usize = 12;
+pub const STDERR_LINES: usize = 12;
 
 /// The longest line read from an adapter's stdout (a handshake, an answer
 /// or a batch's closing line): an answer with a whole pixel's op trace is
@@ -27,7 +27,7 @@ const STDERR_LINES: usize = 12;
 pub const MAX_LINE_BYTES: usize = 64 << 20;
 
 /// The most of one stderr line kept (the rest is read and dropped).
-const STDERR_LINE_BYTES: usize = 4096;
+pub const STDERR_LINE_BYTES: usize = 4096;
 
 /// How long to wait for a process that closed its stdout to exit, and for
 /// its last stderr lines, before reporting it.
@@ -401,14 +401,21 @@ fn read_bounded(
 }
 
 fn keep_stderr(shared: &Shared, stderr: impl Read) {
+    stderr_lines(stderr, STDERR_LINE_BYTES, &shared.stderr);
+}
+
+/// Read `stderr` to its end, keeping its last [`STDERR_LINES`] lines in
+/// `tail`, each cut to `line_bytes` bytes (the rest of a longer line is
+/// read and dropped) and then to an [`protocol::excerpt`].
+fn stderr_lines(stderr: impl Read, line_bytes: usize, tail: &Mutex<VecDeque<String>>) {
     let mut lines = BufReader::new(stderr);
     let mut buf = Vec::new();
     loop {
-        match read_bounded(&mut lines, &mut buf, STDERR_LINE_BYTES, true) {
+        match read_bounded(&mut lines, &mut buf, line_bytes, true) {
             Ok(Bounded::End) | Err(_) => return,
             Ok(_) => {
                 let line = String::from_utf8_lossy(&buf).trim_end().to_string();
-                let mut tail = lock(&shared.stderr);
+                let mut tail = lock(tail);
                 if tail.len() == STDERR_LINES {
                     tail.pop_front();
                 }
@@ -418,20 +425,52 @@ fn keep_stderr(shared: &Shared, stderr: impl Read) {
     }
 }
 
+/// What the harness keeps of an adapter's stderr `bytes` with lines cut
+/// to `line_bytes` (the harness's own bound is [`STDERR_LINE_BYTES`]):
+/// for the fuzz target `pipe_reader` (docs/fuzzing.md).
+#[doc(hidden)]
+pub fn stderr_tail(bytes: &[u8], line_bytes: usize) -> Vec<String> {
+    let tail = Mutex::new(VecDeque::new());
+    stderr_lines(bytes, line_bytes, &tail);
+    tail.into_inner()
+        .unwrap_or_else(PoisonError::into_inner)
+        .into()
+}
+
+/// The lines the harness reads from an adapter's stdout `bytes` with lines
+/// of at most `limit` bytes (the harness's own bound is
+/// [`MAX_LINE_BYTES`]), and the failure that stops them, if one does: for
+/// the fuzz target `pipe_reader` (docs/fuzzing.md).
+#[doc(hidden)]
+pub fn stdout_lines(bytes: &[u8], limit: usize) -> (Vec<String>, Option<String>) {
+    let mut out = bytes;
+    let mut buf = String::new();
+    let mut lines = Vec::new();
+    loop {
+        match next_line(&mut out, &mut buf, limit) {
+            Ok(true) => lines.push(buf.clone()),
+            Ok(false) => return (lines, None),
+            Err((_, why)) => return (lines, Some(why)),
+        }
+    }
+}
+
 /// The handshake line, or why there is none: the output ended (`None`) or
 /// its first line failed.
 type Hello = Result<String, Option<(FailureKind, String)>>;
 
-/// Read one line into `buf`: `Ok(false)` at the end of the output. A line
-/// that cannot be read is a crash; one past [`MAX_LINE_BYTES`] or not
-/// UTF-8 breaks the protocol.
+/// Read one line into `buf`, its line break (`\n`, and any `\r` before
+/// it) removed: `Ok(false)` at the end of the output. A line that cannot
+/// be read is a crash; one past `limit` bytes ([`MAX_LINE_BYTES`] for an
+/// adapter), its line break apart, or not UTF-8 breaks the protocol.
 fn next_line(
-    out: &mut BufReader<ChildStdout>,
+    out: &mut impl BufRead,
     buf: &mut String,
+    limit: usize,
 ) -> Result<bool, (FailureKind, String)> {
     buf.clear();
     let mut bytes = std::mem::take(buf).into_bytes();
-    let read = read_bounded(out, &mut bytes, MAX_LINE_BYTES, false).map_err(|e| {
+    let read = read_bounded(out, &mut bytes, limit, false).map_err(|e| {
         (
             FailureKind::Crash,
             format!("its output could not be read: {e}"),
@@ -443,7 +482,7 @@ fn next_line(
             return Err((
                 FailureKind::Protocol,
                 format!(
-                    "it wrote a line longer than {MAX_LINE_BYTES} bytes (the harness's bound for one line of the protocol)"
+                    "it wrote a line longer than {limit} bytes (the harness's bound for one line of the protocol)"
                 ),
             ))
         }
@@ -463,7 +502,7 @@ fn next_line(
 fn reader(shared: &Shared, stdout: ChildStdout, hello: Sender<Hello>, pending: Receiver<Pending>) {
     let mut out = BufReader::with_capacity(1 << 16, stdout);
     let mut buf = String::new();
-    let first = match next_line(&mut out, &mut buf) {
+    let first = match next_line(&mut out, &mut buf, MAX_LINE_BYTES) {
         Ok(true) => Ok(buf.clone()),
         Ok(false) => Err(None),
         Err(e) => Err(Some(e)),
@@ -523,7 +562,7 @@ fn read_batch(
     };
     loop {
         let k = answers.len();
-        match next_line(out, buf) {
+        match next_line(out, buf, MAX_LINE_BYTES) {
             Ok(true) => {}
             Ok(false) => {
                 let status = shared.exit_status();

@@ -62,9 +62,50 @@ fn remove_stale_siblings(target: &Path, suffix: &str) -> Result<()> {
             .and_then(|p| p.parse::<u32>().ok());
         if pid.is_some_and(|pid| pid != std::process::id() && !process_alive(pid)) {
             let path = entry.path();
-            fs::remove_dir_all(&path)
-                .with_context(|| format!("removing stale {}", path.display()))?;
+            let removed = if entry.file_type().is_ok_and(|t| t.is_dir()) {
+                fs::remove_dir_all(&path)
+            } else {
+                fs::remove_file(&path)
+            };
+            removed.with_context(|| format!("removing stale {}", path.display()))?;
         }
+    }
+    Ok(())
+}
+
+/// What a report folder holds: `report.json` and `repro/` (`harness diff
+/// --report`, `harness merge --out`), `index.html` and `images/` besides
+/// them (`harness nightly --out`). `history.jsonl` lies beside the folder,
+/// not in it.
+pub const REPORT_ENTRIES: [&str; 4] = ["report.json", "repro", "index.html", "images"];
+
+/// Refuse a `target` folder that holds anything a report does not write:
+/// the commit replaces the folder whole and deletes what it held, so a
+/// folder of the user's own files (or one holding the inputs, as `merge
+/// --out shards` would) must never be taken for an earlier report.
+pub fn check_only_report_entries(target: &Path) -> Result<()> {
+    let Ok(entries) = fs::read_dir(target) else {
+        return Ok(());
+    };
+    let mut unexpected: Vec<String> = entries
+        .filter_map(std::result::Result::ok)
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|name| !REPORT_ENTRIES.contains(&name.as_str()))
+        .collect();
+    unexpected.sort();
+    if let Some(first) = unexpected.first() {
+        bail!(
+            "{} holds {}{}, which no report writes: a report replaces its whole folder \
+             (deleting what it held), so give a new or empty folder, or an earlier \
+             report's (which holds only {})",
+            target.display(),
+            target.join(first).display(),
+            match unexpected.len() {
+                1 => String::new(),
+                n => format!(" and {} more", n - 1),
+            },
+            REPORT_ENTRIES.join(", ")
+        );
     }
     Ok(())
 }
@@ -73,12 +114,14 @@ impl StagingDir {
     /// Create an empty staging directory beside `target` (creating
     /// `target`'s parent if needed).
     /// Refuses at once a `target` that exists and is not a directory (the
-    /// commit could not replace it), and removes the staging directories
-    /// that killed runs left beside `target`.
+    /// commit could not replace it) or that holds anything but a report's
+    /// [`REPORT_ENTRIES`] (the commit would delete it), and removes the
+    /// staging directories that killed runs left beside `target`.
     pub fn new(target: &Path) -> Result<Self> {
         if target.exists() && !target.is_dir() {
             bail!("{} exists and is not a directory", target.display());
         }
+        check_only_report_entries(target)?;
         let staging = sibling(target, "staging")?;
         if let Some(parent) = staging.parent() {
             fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
@@ -107,12 +150,15 @@ impl StagingDir {
     }
 
     /// Replace `target` by the staging directory in one step; the previous
-    /// contents of `target` are then removed.
+    /// contents of `target` are then removed. A `target` that came to hold
+    /// anything but a report's entries since [`StagingDir::new`] is refused
+    /// (and kept).
     pub fn commit(mut self) -> Result<PathBuf> {
         if self.target.exists() {
             if !self.target.is_dir() {
                 bail!("{} exists and is not a directory", self.target.display());
             }
+            check_only_report_entries(&self.target)?;
             exchange(&self.staging, &self.target)?;
             // The staging path now holds the previous report.
             self.committed = true;
@@ -164,9 +210,10 @@ fn exchange(a: &Path, b: &Path) -> Result<()> {
 }
 
 /// Write a file atomically: a temporary sibling, flushed, then renamed over
-/// `path`.
+/// `path`. The temporaries that killed runs left beside `path` are removed.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     let tmp = sibling(path, "tmp")?;
+    remove_stale_siblings(path, "tmp")?;
     let result = (|| {
         let mut f =
             fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
@@ -191,6 +238,7 @@ pub fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<()> {
     let result = (|| {
         for (path, bytes) in files {
             let tmp = sibling(path, "tmp")?;
+            remove_stale_siblings(path, "tmp")?;
             written.push(tmp.clone());
             fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
         }
@@ -241,12 +289,16 @@ mod tests {
     fn commit_replaces_the_previous_report_whole() {
         let root = tempfile::tempdir().unwrap();
         let target = root.path().join("nightly");
-        fs::create_dir(&target).unwrap();
-        fs::write(target.join("old.txt"), "old").unwrap();
+        fs::create_dir_all(target.join("images")).unwrap();
+        fs::write(target.join("report.json"), "old").unwrap();
         let stage = StagingDir::new(&target).unwrap();
-        fs::write(stage.path().join("new.txt"), "new").unwrap();
+        fs::write(stage.path().join("report.json"), "new").unwrap();
         stage.commit().unwrap();
-        assert_eq!(entries(&target), vec!["new.txt"]);
+        assert_eq!(entries(&target), vec!["report.json"]);
+        assert_eq!(
+            fs::read_to_string(target.join("report.json")).unwrap(),
+            "new"
+        );
         assert_eq!(
             entries(root.path()),
             vec!["nightly"],
@@ -259,13 +311,17 @@ mod tests {
         let root = tempfile::tempdir().unwrap();
         let target = root.path().join("nightly");
         fs::create_dir(&target).unwrap();
-        fs::write(target.join("old.txt"), "old").unwrap();
+        fs::write(target.join("report.json"), "old").unwrap();
         {
             let stage = StagingDir::new(&target).unwrap();
-            fs::write(stage.path().join("half.txt"), "half").unwrap();
+            fs::write(stage.path().join("report.json"), "half").unwrap();
             // A failure: dropped without commit.
         }
-        assert_eq!(entries(&target), vec!["old.txt"]);
+        assert_eq!(entries(&target), vec!["report.json"]);
+        assert_eq!(
+            fs::read_to_string(target.join("report.json")).unwrap(),
+            "old"
+        );
         assert_eq!(entries(root.path()), vec!["nightly"]);
     }
 
@@ -304,6 +360,69 @@ mod tests {
                 live.file_name().unwrap().to_string_lossy().into_owned(),
                 ".other.staging-99999999".to_string(),
                 "nightly".to_string()
+            ]
+        );
+    }
+
+    /// A folder holding anything a report does not write is refused, by
+    /// the entry's name, and kept whole; an earlier report's is replaced.
+    #[test]
+    fn a_folder_of_other_files_is_refused_and_kept() {
+        let root = tempfile::tempdir().unwrap();
+        let target = root.path().join("out");
+        fs::create_dir(&target).unwrap();
+        fs::write(target.join("report.json"), "[]").unwrap();
+        fs::create_dir(target.join("repro")).unwrap();
+        fs::write(target.join("notes.txt"), "mine").unwrap();
+        let err = StagingDir::new(&target).unwrap_err().to_string();
+        assert!(err.contains("notes.txt, which no report writes"), "{err}");
+        assert_eq!(entries(&target), vec!["notes.txt", "report.json", "repro"]);
+        assert_eq!(entries(root.path()), vec!["out"], "no staging left");
+        // Something that arrives during the run is found at the commit.
+        fs::remove_file(target.join("notes.txt")).unwrap();
+        let stage = StagingDir::new(&target).unwrap();
+        fs::create_dir(target.join("0")).unwrap();
+        let err = stage.commit().unwrap_err().to_string();
+        assert!(err.contains("out/0, which no report writes"), "{err}");
+        assert_eq!(entries(&target), vec!["0", "report.json", "repro"]);
+        fs::remove_dir(target.join("0")).unwrap();
+        let stage = StagingDir::new(&target).unwrap();
+        fs::write(stage.path().join("report.json"), "[1]").unwrap();
+        stage.commit().unwrap();
+        assert_eq!(entries(&target), vec!["report.json"]);
+    }
+
+    /// `.NAME.tmp-PID` files of dead processes are swept when `NAME` is
+    /// written again; a live process's is left alone.
+    #[test]
+    fn temporaries_of_killed_writes_are_removed() {
+        let root = tempfile::tempdir().unwrap();
+        let p = root.path().join("history.jsonl");
+        let dead = root.path().join(".history.jsonl.tmp-99999999");
+        fs::write(&dead, "half").unwrap();
+        let live = format!(".history.jsonl.tmp-{}", std::os::unix::process::parent_id());
+        fs::write(root.path().join(&live), "busy").unwrap();
+        let other = root.path().join(".other.tmp-99999999");
+        fs::write(&other, "x").unwrap();
+        write_file(&p, b"one\n").unwrap();
+        assert_eq!(
+            entries(root.path()),
+            vec![
+                live.clone(),
+                ".other.tmp-99999999".into(),
+                "history.jsonl".into()
+            ]
+        );
+        let vm = root.path().join("A.vm");
+        fs::write(root.path().join(".A.vm.tmp-99999999"), "half").unwrap();
+        write_files(&[(vm, b"new".to_vec())]).unwrap();
+        assert_eq!(
+            entries(root.path()),
+            vec![
+                live,
+                ".other.tmp-99999999".into(),
+                "A.vm".into(),
+                "history.jsonl".into()
             ]
         );
     }

@@ -316,6 +316,9 @@ pub(crate) fn check(
         diagnostic: format!("{name}: error: {text} (docs/shaders.md)"),
     };
     let table = expected(language, numbers).map_err(fail)?;
+    if language == Language::Wgsl {
+        wgsl_own_names(module, numbers).map_err(fail)?;
+    }
     let mut entries = Vec::new();
     for want in table {
         let found: Vec<_> = module
@@ -350,6 +353,89 @@ pub(crate) fn check(
         entries,
         status: numbers == ShaderNumbers::Float316 && status,
     })
+}
+
+/// What a WGSL shader may not declare (docs/shaders.md): an entry point
+/// (the wrapper has them: a `@compute fn main` of its own would never be
+/// called), a resource binding (the wrapper's `@group(0)` bindings are the
+/// kernel's only ones), or a name starting with `harness_` (the wrapper's),
+/// besides those [`wgsl_provided`] gives it to call. `module` is the user's
+/// code followed by [`wgsl_provided`]. The message names what is refused.
+fn wgsl_own_names(module: &Module, numbers: ShaderNumbers) -> Result<(), String> {
+    if let Some(entry) = module.entry_points.first() {
+        let stage = format!("{:?}", entry.stage).to_lowercase();
+        return Err(format!(
+            "the shader declares the entry point `{}` (@{}): the harness's wrapper has \
+             the entry points, and calls the shader's `pixel` (and `sdf`, `op`); remove \
+             the entry point",
+            entry.name, stage
+        ));
+    }
+    if let Some(name) = module
+        .global_variables
+        .iter()
+        .find(|(_, g)| g.binding.is_some())
+        .map(|(_, g)| g.name.as_deref().unwrap_or("an unnamed variable"))
+    {
+        return Err(format!(
+            "the shader declares the binding `{name}` (@group/@binding): the harness's \
+             wrapper has the kernel's bindings; a shader's globals are `var<private>` or \
+             `const`"
+        ));
+    }
+    let provided = provided_names(numbers);
+    let functions = module
+        .functions
+        .iter()
+        .map(|(_, f)| ("function", f.name.as_deref()));
+    let globals = module
+        .global_variables
+        .iter()
+        .map(|(_, g)| ("variable", g.name.as_deref()));
+    let constants = module
+        .constants
+        .iter()
+        .map(|(_, c)| ("constant", c.name.as_deref()));
+    let overrides = module
+        .overrides
+        .iter()
+        .map(|(_, o)| ("override", o.name.as_deref()));
+    let types = module
+        .types
+        .iter()
+        .map(|(_, t)| ("type", t.name.as_deref()));
+    let reserved = functions
+        .chain(globals)
+        .chain(constants)
+        .chain(overrides)
+        .chain(types)
+        .filter_map(|(what, name)| Some((what, name?)))
+        .find(|(_, name)| name.starts_with(RESERVED_PREFIX) && !provided.iter().any(|p| p == name));
+    match reserved {
+        Some((what, name)) => Err(format!(
+            "the shader declares the {what} `{name}`: names starting with \
+             `{RESERVED_PREFIX}` are the harness's wrapper's{}; rename it",
+            if provided.is_empty() {
+                String::new()
+            } else {
+                format!(" (a shader may call {})", provided.join(", "))
+            }
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The prefix of the wrapper's names, which a shader may not declare.
+pub const RESERVED_PREFIX: &str = "harness_";
+
+/// The names [`wgsl_provided`] declares for a shader computing with
+/// `numbers`: the only `harness_` names a shader's module may hold.
+fn provided_names(numbers: ShaderNumbers) -> Vec<String> {
+    let text = wgsl_provided(numbers);
+    let module = naga::front::wgsl::parse_str(&text).expect("the provided WGSL parses alone");
+    let functions = module.functions.iter().map(|(_, f)| f.name.clone());
+    let globals = module.global_variables.iter().map(|(_, g)| g.name.clone());
+    functions.chain(globals).flatten().collect()
 }
 
 const IO_WGSL: &str = include_str!("wrappers/io.wgsl");

@@ -311,6 +311,83 @@ mod tests {
         );
     }
 
+    fn wgsl_front(text: &str, numbers: ShaderNumbers) -> Result<Front, GpuError> {
+        let source = ShaderSource::from_text("user.wgsl", text, Language::Wgsl);
+        front(&source, numbers, Some(100))
+    }
+
+    const PIXEL: &str =
+        "fn pixel(coord: vec2<f32>, resolution: vec2<f32>) -> f32 { return 0.5; }\n";
+
+    /// An entry point of the shader's own, a binding or a `harness_` name
+    /// is refused, naming the file and what it declares (docs/shaders.md).
+    #[test]
+    fn a_wgsl_entry_point_binding_or_harness_name_is_refused() {
+        assert!(wgsl_front(PIXEL, ShaderNumbers::F32).is_ok());
+        for (extra, named) in [
+            (
+                "@compute @workgroup_size(1)\nfn main() {}\n",
+                "the entry point `main` (@compute)",
+            ),
+            (
+                "@compute @workgroup_size(8)\nfn other(@builtin(global_invocation_id) id: vec3<u32>) {}\n",
+                "the entry point `other` (@compute)",
+            ),
+            (
+                "@group(1) @binding(0) var<storage, read> extra: array<u32>;\n",
+                "the binding `extra`",
+            ),
+            (
+                "fn harness_helper() -> f32 { return 1.0; }\n",
+                "the function `harness_helper`",
+            ),
+            (
+                "var<private> harness_state: f32 = 0.0;\n",
+                "the variable `harness_state`",
+            ),
+            (
+                "const harness_k: f32 = 2.0;\n",
+                "the constant `harness_k`",
+            ),
+            (
+                "struct harness_pair { a: f32, b: f32 }\nfn f(p: harness_pair) -> f32 { return p.a; }\n",
+                "the type `harness_pair`",
+            ),
+        ] {
+            let text = format!("{PIXEL}{extra}");
+            let Err(e) = wgsl_front(&text, ShaderNumbers::F32) else {
+                panic!("accepted: {extra}")
+            };
+            let message = e.to_string();
+            assert!(
+                message.starts_with("user.wgsl: error: the shader declares ")
+                    && message.contains(named),
+                "{extra}: {message}"
+            );
+        }
+    }
+
+    /// A Float316 shader may call the provided `harness_bayer` (and our own
+    /// gpu-f316 does), but not declare a `harness_` name of its own.
+    #[test]
+    fn a_float316_shader_calls_harness_bayer_but_declares_no_harness_name() {
+        let pixel = "fn pixel(coord: vec2<i32>) -> vec4<i32> {\n    \
+            return vec4<i32>(0, 0, 0, harness_bayer(u32(coord.x), u32(coord.y)));\n}\n";
+        assert!(wgsl_front(pixel, ShaderNumbers::Float316).is_ok());
+        let ours = ShaderSource::ours(ShaderNumbers::Float316);
+        assert!(front(&ours, ShaderNumbers::Float316, None).is_ok());
+        let text = format!("{pixel}fn harness_dither(x: i32) -> i32 {{ return x; }}\n");
+        let message = wgsl_front(&text, ShaderNumbers::Float316)
+            .err()
+            .expect("a harness_ name")
+            .to_string();
+        assert!(
+            message.contains("the function `harness_dither`")
+                && message.contains("may call harness_bayer"),
+            "{message}"
+        );
+    }
+
     #[test]
     fn every_loop_is_guarded() {
         let text = "fn pixel(coord: vec2<f32>, resolution: vec2<f32>) -> f32 {\n\
