@@ -10,6 +10,8 @@ use harness::cast::Cast;
 use harness::implementation::Implementation;
 use harness::localize::{localize, Localization};
 use std::path::{Path, PathBuf};
+
+mod binary;
 use vectors::{Level, PixelVector, Vector};
 
 fn root() -> PathBuf {
@@ -58,26 +60,43 @@ fn both_programs_agree_with_ref_f316_on_the_small_sets_through_bindings() {
     }
 }
 
-/// The port with one line of its add changed, in a copy of its folder.
-fn bad_port(dir: &Path) -> String {
+/// A copy of the port in `dir`, each `(file, from, to)` replaced.
+fn port_copy(dir: &Path, edits: &[(&str, &str, &str)]) {
     let src = root().join("examples/jack-port");
     std::fs::create_dir_all(dir).unwrap();
     for entry in std::fs::read_dir(&src).unwrap() {
         let path = entry.unwrap().path();
-        let text = std::fs::read_to_string(&path).unwrap();
-        let text = if path.ends_with("Num.jack") {
-            let line = "            let lm = lm / pow2[d];";
-            assert!(text.contains(line));
-            text.replace(line, "            let lm = lm / pow2[d - 1];")
-        } else {
-            text
-        };
+        let mut text = std::fs::read_to_string(&path).unwrap();
+        for (file, from, to) in edits {
+            if path.ends_with(file) {
+                assert!(text.contains(from), "{from}");
+                text = text.replace(from, to);
+            }
+        }
         std::fs::write(dir.join(path.file_name().unwrap()), text).unwrap();
     }
+}
+
+/// The declaration of `name`: the program in `dir` with its bindings file
+/// `bindings`.
+fn declared(name: &str, dir: &Path, bindings: &str) -> String {
     format!(
-        "[impl.port-bad]\nkind = \"jack\"\nprogram = \"{d}\"\nbindings = \"{d}/bindings.toml\"\n",
+        "[impl.{name}]\nkind = \"jack\"\nprogram = \"{d}\"\nbindings = \"{d}/{bindings}\"\n",
         d = dir.display()
     )
+}
+
+/// The port with one line of its add changed, in a copy of its folder.
+fn bad_port(dir: &Path) -> String {
+    port_copy(
+        dir,
+        &[(
+            "Num.jack",
+            "            let lm = lm / pow2[d];",
+            "            let lm = lm / pow2[d - 1];",
+        )],
+    );
+    declared("port-bad", dir, "bindings.toml")
 }
 
 /// The operation at fault and its Jack call path, whichever way it was found.
@@ -118,11 +137,30 @@ fn a_one_line_change_in_the_ports_add_is_localized_to_add() {
     assert!(l.to_string().contains("origin"), "{l}");
 }
 
+/// `+web-divide` changes `Math.divide` only: a program that the web IDE's
+/// compiler refuses (a field of a class it does not have, which the desktop
+/// tools accept) opens with it, and its divisions floor (issue 29 item 5).
 #[test]
 fn the_web_profiles_math_divide_in_a_bound_program_is_localized() {
-    let cast = cast_with("");
+    let dir = tempfile::tempdir().unwrap();
+    let typo = dir.path().join("typo");
+    port_copy(
+        &typo,
+        &[(
+            "Picture.jack",
+            "    static Array dither;",
+            "    field Vec spare;\n    static Array dither;",
+        )],
+    );
+    let cast = cast_with(&declared("typo", &typo, "bindings.toml"));
     let reference = open(&cast, "ref-f316");
-    let web = open(&cast, "port+web-divide");
+    // The web IDE's compiler refuses it, our desktop profile does not.
+    open(&cast, "typo");
+    let web_compiler = jack::JackProgram::from_dir(&typo, jack::Profile::Web)
+        .expect_err("the web compiler refuses the typo")
+        .to_string();
+    assert!(web_compiler.contains("Vec"), "{web_compiler}");
+    let web = open(&cast, "typo+web-divide");
     let report = support::assert_diverges_on_the_small_ops_set(web.as_ref(), reference.as_ref());
     let input = report.comparisons[0].divergences[0].input.clone();
     let l = localize(web.as_ref(), reference.as_ref(), reference.as_ref(), &input).unwrap();
@@ -184,4 +222,170 @@ fn a_malformed_inline_binding_names_the_file_line_and_field() {
         .to_string();
     assert!(e.contains("harness.toml:"), "{e}");
     assert!(e.contains("impl.inline.float"), "{e}");
+}
+
+fn add_vector() -> Vector {
+    Vector::Op(vectors::OpVector {
+        category: "test".into(),
+        op: common::Op::Add,
+        a: common::F316::new(0, 129, 10240),
+        b: Some(common::F316::new(1, 127, 12288)),
+    })
+}
+
+/// A user's `add` that takes over 100 000 instructions (a loop) answers
+/// values under the default budget, and hangs under a budget below its
+/// cost, the hang naming the budget field (issue 29 item 1).
+#[test]
+fn a_slow_operation_answers_under_the_default_budget_and_hangs_below_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let slow = dir.path().join("slow");
+    port_copy(
+        &slow,
+        &[
+            (
+                "Num.jack",
+                "    /** a + b. */\n",
+                "    /** a + b, slowly. */\n    function Num slowAdd(Num a, Num b) {\n        \
+                 var int k;\n        while (k < 12000) {\n            let k = k + 1;\n        \
+                 }\n        return Num.add(a, b);\n    }\n\n    /** a + b. */\n",
+            ),
+            (
+                "bindings.toml",
+                "add = \"result = Num.add(a, b)\"",
+                "add = \"result = Num.slowAdd(a, b)\"",
+            ),
+        ],
+    );
+    let bindings = std::fs::read_to_string(slow.join("bindings.toml")).unwrap();
+    std::fs::write(
+        slow.join("tight.toml"),
+        format!("budget = {{ op = 100000 }}\n{bindings}"),
+    )
+    .unwrap();
+    let project = format!(
+        "{}{}",
+        declared("slow", &slow, "bindings.toml"),
+        declared("slow-tight", &slow, "tight.toml")
+    );
+    let cast = Cast::with_project(&root().join("harness.toml"), &project).unwrap();
+    let reference = open(&cast, "ref-f316");
+    let add = [add_vector()];
+    let want = reference.eval(&add).unwrap();
+    assert!(matches!(want[0], common::Outcome::Value(_)));
+    assert_eq!(open(&cast, "slow").eval(&add).unwrap(), want);
+    assert_eq!(
+        open(&cast, "slow-tight").eval(&add).unwrap(),
+        [common::Outcome::Hang]
+    );
+
+    // On the command line, the hang names the field that sets the budget.
+    std::fs::write(dir.path().join("harness.toml"), &project).unwrap();
+    let file = dir.path().join("add.json");
+    std::fs::write(
+        &file,
+        r#"{"format_version":1,"name":"add","level":"ops","vectors":[{"category":"c","op":"add","a":[0,129,10240],"b":[1,127,12288]}]}"#,
+    )
+    .unwrap();
+    let o = binary::harness_in(
+        dir.path(),
+        &[
+            "diff",
+            "ref-f316",
+            "slow-tight",
+            "--vectors",
+            file.to_str().unwrap(),
+        ],
+    );
+    let text = binary::text(&o);
+    assert_eq!(o.status.code(), Some(1), "{text}");
+    assert!(text.contains("hang"), "{text}");
+    assert!(
+        text.contains("budget `budget.op` (100000 instructions)"),
+        "{text}"
+    );
+}
+
+/// The line and column (1-based) where `needle` starts in `text`.
+fn line_col(text: &str, needle: &str) -> (usize, usize) {
+    let at = text.find(needle).unwrap_or_else(|| panic!("{needle}"));
+    let before = &text[..at];
+    let line = before.matches('\n').count() + 1;
+    (line, at - before.rfind('\n').map_or(0, |i| i + 1) + 1)
+}
+
+fn open_err(cast: &Cast, label: &str) -> String {
+    match cast.open(label) {
+        Ok(_) => panic!("{label} opened"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// A binding error found at open names the file, the line and the column
+/// of the field's value, inline and in a bindings file (issue 29 item 6).
+#[test]
+fn a_binding_error_at_open_names_the_file_line_and_column() {
+    let root = root();
+    let text = INLINE
+        .replace("{r}", &root.display().to_string())
+        .replace("Num.add(a, b)", "Num.plus(a, b)");
+    let cast = Cast::with_project(&root.join("harness.toml"), &text).unwrap();
+    let (line, col) = line_col(&text, "\"result = Num.plus");
+    let e = open_err(&cast, "inline");
+    let at = format!("harness.toml:{line}:{col}: impl.inline.ops.add: bad binding: ");
+    assert!(e.contains(&at), "{at}\n{e}");
+    assert!(e.contains("no function `Num.plus`"), "{e}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad");
+    port_copy(
+        &bad,
+        &[(
+            "bindings.toml",
+            "\"Num.make(m, e, s)\"",
+            "\"Num.make(m, e)\"",
+        )],
+    );
+    let cast = cast_with(&declared("bad", &bad, "bindings.toml"));
+    let file = std::fs::read_to_string(bad.join("bindings.toml")).unwrap();
+    let (line, col) = line_col(&file, "\"Num.make(m, e)\"");
+    let e = open_err(&cast, "bad");
+    let at = format!("bindings.toml:{line}:{col}: float.new: bad binding: ");
+    assert!(e.contains(&at), "{at}\n{e}");
+}
+
+/// An inline entry without `ready` is refused when declared, naming it
+/// (issue 29 item 6).
+#[test]
+fn an_inline_entry_without_ready_is_refused_naming_ready() {
+    let root = root();
+    let text = INLINE.replace("{r}", &root.display().to_string()).replace(
+        "ready = { run = \"Main.main\", keys = \"SPACE\", until_call = \"Picture.render\" }\n",
+        "",
+    );
+    let e = Cast::with_project(&root.join("harness.toml"), &text)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(e.contains("impl.inline.ready: missing"), "{e}");
+}
+
+/// `sdf_result.fields` swapped, with a `new` that never receives the parts,
+/// round-trips; the roles check at open refuses it (issue 29 item 6).
+#[test]
+fn swapped_sdf_result_fields_are_refused_at_open() {
+    let dir = tempfile::tempdir().unwrap();
+    let swapped = dir.path().join("swapped");
+    port_copy(
+        &swapped,
+        &[(
+            "bindings.toml",
+            "fields = [\"colour\", \"distance\"]",
+            "fields = [\"distance\", \"colour\"]",
+        )],
+    );
+    let cast = cast_with(&declared("swapped", &swapped, "bindings.toml"));
+    let e = open_err(&cast, "swapped");
+    assert!(e.contains("sdf_result.fields: bad binding: "), "{e}");
+    assert!(e.contains("each other's roles"), "{e}");
 }

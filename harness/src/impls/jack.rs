@@ -7,8 +7,9 @@
 //! functions. The image level renders through the pixel statements, pixels
 //! in parallel, or (with only `capture` bound) runs the whole program.
 //!
-//! The fault `web-divide` runs a program under the web IDE's OS profile
-//! (flooring `Math.divide`) instead of its own.
+//! The fault `web-divide` runs a program with the web IDE's flooring
+//! `Math.divide` in place of its profile's; everything else (the compiler's
+//! checks, the OS, the memory layout) stays its profile's.
 
 use crate::cast::file::{FieldError, Fields};
 use crate::cast::{Entry, Kind, Opener, Request, VariantInfo, VariantRole};
@@ -19,15 +20,16 @@ use crate::implementation::{
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{Op, Outcome, TraceRecord};
 pub use jack::Profile;
-use jack::{Bindings, BoundProgram, Budgets, JackError, JackProgram, WholeRun};
+use jack::{Bindings, BoundProgram, Budgets, DivideRule, JackError, JackProgram, WholeRun};
 use serde::de::IntoDeserializer;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
 use vectors::{Level, Vector};
 
 /// The `jack` kind.
 pub struct JackKind;
 
-/// The fault that runs the program under the web IDE's OS profile.
+/// The fault that gives the program the web IDE's flooring `Math.divide`.
 const WEB_DIVIDE: &str = "web-divide";
 
 /// Instructions a whole-program run may take (the seed program takes 21 G).
@@ -60,7 +62,13 @@ fn levels(b: &Bindings) -> Vec<Level> {
     levels
 }
 
-fn entry(name: &str, source: Source, profile: Profile, bindings: Bindings) -> Entry {
+fn entry(
+    name: &str,
+    source: Source,
+    profile: Profile,
+    bindings: Bindings,
+    places: Places,
+) -> Entry {
     let levels = levels(&bindings);
     Entry::new(
         name,
@@ -70,6 +78,7 @@ fn entry(name: &str, source: Source, profile: Profile, bindings: Bindings) -> En
             source,
             profile,
             bindings,
+            places,
         },
     )
     .levels(&levels)
@@ -87,7 +96,7 @@ fn seed_bindings() -> Bindings {
 }
 
 /// The binding fields of an `[impl.NAME]` table.
-const BINDING_FIELDS: [&str; 9] = [
+const BINDING_FIELDS: [&str; 10] = [
     "ready",
     "float",
     "vec3",
@@ -97,6 +106,7 @@ const BINDING_FIELDS: [&str; 9] = [
     "pixel",
     "capture",
     "out_of_domain",
+    "budget",
 ];
 
 /// Read field `key` of `fields` as a `T`; errors located in the file.
@@ -115,22 +125,96 @@ fn part<T: serde::de::DeserializeOwned>(
         })
 }
 
+/// Where each binding field was written, by its path in the bindings
+/// (`ops.add`, `pixel[1]`, `ready.until_call`): a binding error found when
+/// the program is opened is located as a TOML error is.
+#[derive(Clone, Debug, Default)]
+struct Places(Vec<(String, FieldError)>);
+
+impl Places {
+    /// Every value under `value`, at `path`; `at` locates a value's offset.
+    fn walk(
+        &mut self,
+        value: &toml::Spanned<toml::de::DeValue<'_>>,
+        path: String,
+        at: &dyn Fn(&str, usize) -> FieldError,
+    ) {
+        use toml::de::DeValue;
+        self.0.push((path.clone(), at(&path, value.span().start)));
+        match value.get_ref() {
+            DeValue::Table(t) => {
+                for (k, v) in t.iter() {
+                    self.walk(v, format!("{path}.{}", k.get_ref()), at);
+                }
+            }
+            DeValue::Array(items) => {
+                for (i, v) in items.iter().enumerate() {
+                    self.walk(v, format!("{path}[{i}]"), at);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// `e` located at its field's value (or the nearest enclosing one
+    /// written): `FILE:LINE:COL: FIELD: message`.
+    fn locate(&self, e: &jack::BindError) -> String {
+        let mut path = e.field.as_str();
+        loop {
+            if let Some((_, place)) = self.0.iter().find(|(p, _)| p == path) {
+                let mut place = place.clone();
+                place.field = format!("{}{}", place.field, &e.field[path.len()..]);
+                place.message = format!("bad binding: {}", e.message);
+                return place.to_string();
+            }
+            match path.rfind(['.', '[']) {
+                Some(i) => path = &path[..i],
+                None => return format!("bad binding {e}"),
+            }
+        }
+    }
+}
+
 /// The bindings of a declared entry: inline fields, or a bindings file.
-fn declared_bindings(fields: &mut Fields<'_>) -> Result<Bindings, FieldError> {
+fn declared_bindings(fields: &mut Fields<'_>) -> Result<(Bindings, Places), FieldError> {
+    let mut places = Places::default();
     if let Some(path) = fields.path("bindings")? {
         let text =
             common::input::read_text(&path).map_err(|e| fields.error("bindings", e.to_string()))?;
-        return toml::from_str(&text).map_err(|e| {
+        let source = crate::cast::file::Source {
+            file: &path,
+            text: &text,
+        };
+        let bindings = toml::from_str(&text).map_err(|e| {
             let at = e.span().map_or(0, |s| s.start);
-            crate::cast::file::Source {
-                file: &path,
-                text: &text,
-            }
-            .error(at, "", e.message().trim_end().to_string())
-        });
+            source.error(at, "", e.message().trim_end().to_string())
+        })?;
+        let table = crate::cast::file::parse(source)?;
+        for (k, v) in table.get_ref().iter() {
+            places.walk(v, k.get_ref().to_string(), &|p, at| source.error(at, p, ""));
+        }
+        return Ok((bindings, places));
+    }
+    for key in BINDING_FIELDS {
+        if let Some(value) = fields.raw(key) {
+            let at = |p: &str, at: usize| {
+                let mut e = fields.error_at(key, at, "");
+                e.field.push_str(&p[key.len()..]);
+                e
+            };
+            places.walk(value, key.to_string(), &at);
+        }
     }
     let mut b = Bindings {
-        ready: part(fields, "ready")?.unwrap_or_default(),
+        ready: part(fields, "ready")?.ok_or_else(|| {
+            fields.error(
+                "ready",
+                "missing (required: where the program is ready to be queried, \
+                 `ready = { init = [\"Main.init()\"] }` or \
+                 `ready = { run = \"Main.main\", until_call = \"Class.function\" }`; \
+                 `ready = { init = [] }` when nothing needs setting up)",
+            )
+        })?,
         float: part(fields, "float")?
             .ok_or_else(|| fields.error("float", "missing (required: the float's layout)"))?,
         vec3: part(fields, "vec3")?,
@@ -140,9 +224,10 @@ fn declared_bindings(fields: &mut Fields<'_>) -> Result<Bindings, FieldError> {
         pixel: part(fields, "pixel")?,
         capture: part(fields, "capture")?,
         out_of_domain: part(fields, "out_of_domain")?,
+        budget: part(fields, "budget")?.unwrap_or_default(),
     };
     b.ops.retain(|_, v| !v.trim().is_empty());
-    Ok(b)
+    Ok((b, places))
 }
 
 impl Kind for JackKind {
@@ -151,10 +236,14 @@ impl Kind for JackKind {
     }
 
     fn builtins(&self) -> Vec<Entry> {
-        vec![
-            entry("jack", Source::Seed, Profile::Desktop, seed_bindings())
-                .about("the seed Jack raymarcher on the Hack VM emulator, through its bindings"),
-        ]
+        vec![entry(
+            "jack",
+            Source::Seed,
+            Profile::Desktop,
+            seed_bindings(),
+            Places::default(),
+        )
+        .about("the seed Jack raymarcher on the Hack VM emulator, through its bindings")]
     }
 
     fn declare(&self, _name: &str, fields: &mut Fields<'_>) -> Result<Entry, FieldError> {
@@ -167,58 +256,134 @@ impl Kind for JackKind {
                     return Err(fields.error(key, "bindings need a `program` folder"));
                 }
             }
-            return Ok(
-                entry("jack", Source::Seed, profile, seed_bindings()).about(format!(
-                    "the seed Jack raymarcher under the {} OS profile",
-                    profile.name()
-                )),
-            );
+            return Ok(entry(
+                "jack",
+                Source::Seed,
+                profile,
+                seed_bindings(),
+                Places::default(),
+            )
+            .about(format!(
+                "the seed Jack raymarcher under the {} OS profile",
+                profile.name()
+            )));
         };
-        let bindings = declared_bindings(fields)?;
+        let (bindings, places) = declared_bindings(fields)?;
         let about = format!(
             "the Jack program {} under the {} OS profile, through bindings",
             dir.display(),
             profile.name()
         );
-        Ok(entry("jack", Source::Folder(dir), profile, bindings).about(about))
+        Ok(entry("jack", Source::Folder(dir), profile, bindings, places).about(about))
     }
 }
 
-/// Opens a bound program under a profile (`web-divide`: the web one).
+/// Opens a bound program under its profile (`web-divide`: with a flooring
+/// `Math.divide`).
 struct JackOpener {
     source: Source,
     profile: Profile,
     bindings: Bindings,
+    /// Where the bindings were written, to locate their errors.
+    places: Places,
 }
 
 impl Opener for JackOpener {
     fn open(&self, request: &Request<'_>) -> Result<Box<dyn Implementation>, ImplError> {
         request.seed_scene_only()?;
-        let profile = if request.label.variants.iter().any(|v| v == WEB_DIVIDE) {
-            Profile::Web
-        } else {
-            self.profile
-        };
-        let program = match &self.source {
-            Source::Seed => JackProgram::from_jack(&jack::sources::SOURCES, profile),
-            Source::Folder(dir) => JackProgram::from_dir(dir, profile),
+        let mut program = match &self.source {
+            Source::Seed => JackProgram::from_jack(&jack::sources::SOURCES, self.profile),
+            Source::Folder(dir) => JackProgram::from_dir(dir, self.profile),
         }
         .map_err(|e| ImplError::Failed(e.to_string()))?;
+        if request.label.variants.iter().any(|v| v == WEB_DIVIDE) {
+            // The web IDE's Math.divide, and nothing else of the web
+            // profile: the program compiles, lays out and runs as before.
+            program = program.with_divide(DivideRule::Floor);
+        }
         // A program that does not compile, or never reaches its bindings'
         // ready point, is a failure of the port, not of this machine.
         let bound = BoundProgram::open(&program, &self.bindings, Budgets::default())
-            .map_err(|e| ImplError::Failed(e.to_string()))?;
+            .and_then(|bound| check_sdf_roles(&bound, &self.bindings).map(|()| bound))
+            .map_err(|e| match e {
+                JackError::Bind(e) => ImplError::Failed(self.places.locate(&e)),
+                e => ImplError::Failed(e.to_string()),
+            })?;
         Ok(Box::new(JackAdapter {
             bound,
             label: request.label.to_string(),
+            hang_told: AtomicBool::new(false),
         }))
     }
+}
+
+/// Points of the seed scene where ref-f316's distance and colour differ.
+const ROLE_PROBES: [[f64; 3]; 3] = [[0.0, 0.0, 0.0], [2.0, 0.5, 3.0], [-1.0, 2.0, 1.0]];
+
+/// Refuse SDF bindings whose distance and colour come back in each other's
+/// roles, which no round trip sees when the program never makes the result
+/// object from its parts (`new = "alloc"`, an argument-less `new`, getters
+/// swapped): the program's answers at a few points against ref-f316's.
+/// Answers that differ otherwise are findings, left to the comparison.
+fn check_sdf_roles(bound: &BoundProgram, bindings: &Bindings) -> Result<(), JackError> {
+    if !bound.has_sdf() {
+        return Ok(());
+    }
+    let reference = reference::Reference::seed(reference::RefImpl::F316);
+    let mut swapped = None;
+    for p in ROLE_PROBES {
+        let p = p.map(|v| common::F316::from_f64_truncating(v).expect("a probe fits"));
+        let (Outcome::Value(want), Ok(got)) = (reference.sdf(p), bound.sdf(p)) else {
+            continue;
+        };
+        let (Some(d), Some(c), Outcome::Value(got)) =
+            (want.sd.triple, want.col.triple, got.outcome)
+        else {
+            continue;
+        };
+        if d == c {
+            continue;
+        }
+        if got == (d, c) {
+            return Ok(());
+        }
+        if got == (c, d) {
+            swapped.get_or_insert((p, d, c));
+        }
+    }
+    let Some((p, d, c)) = swapped else {
+        return Ok(());
+    };
+    let (field, how) = match &bindings.sdf_result {
+        Some(l) => (
+            "sdf_result.fields",
+            format!(
+                "list the fields of {} in the order the class declares them",
+                l.class
+            ),
+        ),
+        None => ("sdf", "give each of `distance` and `colour` its own".into()),
+    };
+    Err(jack::BindError::new(
+        field,
+        format!(
+            "distance and colour come back in each other's roles: at p = ({}, {}, {}) the \
+             program gives distance {c:?} and colour {d:?}, where ref-f316 gives distance \
+             {d:?} and colour {c:?}; {how}",
+            p[0].to_f64(),
+            p[1].to_f64(),
+            p[2].to_f64()
+        ),
+    )
+    .into())
 }
 
 /// A bound Jack program as an implementation.
 pub struct JackAdapter {
     bound: BoundProgram,
     label: String,
+    /// Whether a hang's budget was told on stderr (once per adapter).
+    hang_told: AtomicBool,
 }
 
 /// The whole image through the pixel statements, pixels in parallel,
@@ -241,6 +406,25 @@ fn failed(e: JackError) -> ImplError {
 }
 
 impl JackAdapter {
+    /// Say once, on stderr, which budget a hang ran out of: a program whose
+    /// operation really finishes, only later, needs a larger one.
+    fn tell_hang(&self, v: &Vector) {
+        let budgets = self.bound.budgets();
+        let (field, budget) = match v {
+            Vector::Op(_) => ("op", budgets.op),
+            Vector::Sdf(_) => ("sdf", budgets.sdf),
+            Vector::Pixel(_) | Vector::Image(_) => ("pixel", budgets.pixel),
+        };
+        if !self.hang_told.swap(true, Ordering::Relaxed) {
+            eprintln!(
+                "note: `{}` ran out of its instruction budget `budget.{field}` ({budget} \
+                 instructions) and is reported as a hang; if the program does finish, set a \
+                 larger one in its bindings: `budget = {{ {field} = N }}` (docs/bindings.md)",
+                self.label
+            );
+        }
+    }
+
     /// The image: through the pixel statements, else by running the
     /// whole program.
     fn image(&self) -> Result<Vec<bool>, ImplError> {
@@ -347,6 +531,10 @@ impl Implementation for JackAdapter {
         let mut answers = Vec::with_capacity(batch.len());
         for v in batch {
             match self.answer(v) {
+                Ok(Outcome::Hang) => {
+                    self.tell_hang(v);
+                    answers.push(Outcome::Hang)
+                }
                 Ok(a) => answers.push(a),
                 Err(ImplError::Failed(why)) => {
                     return Err(Failure::new(&self.label, FailureKind::Crash, why, batch)

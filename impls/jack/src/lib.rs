@@ -25,10 +25,10 @@ pub mod sources;
 mod trace;
 
 pub use bind::{
-    normalized_coords, BindError, Bindings, BoundProgram, Capture, JackProgram, Layout, Ready,
-    Signatures, Statements, WholeRun, DEFAULT_READY_BUDGET,
+    normalized_coords, BindError, Bindings, BoundProgram, BudgetFields, Capture, JackProgram,
+    Layout, Ready, Signatures, Statements, WholeRun, DEFAULT_READY_BUDGET,
 };
 pub use error::JackError;
-pub use hack_vm::{Config, Profile};
+pub use hack_vm::{Config, DivideRule, Profile};
 pub use raymarcher::{Budgets, Counted, Raymarcher, Render, Shaded, OUT_OF_DOMAIN_CODE};
 pub use screen::{read_screen, run_main, ScreenImage};

@@ -21,13 +21,14 @@ use std::sync::Arc;
 pub const OUT_OF_DOMAIN_CODE: i16 = 316;
 
 /// Instruction budgets per call; running out is reported as
-/// [`Outcome::Hang`]. The defaults are well above the costliest normal
-/// call, so that running out means a loop that never ends: an operation
-/// ends within 33 108 instructions whatever its operands (`sub` at the
-/// largest exponent gap; the nightly's sets within 1 162, `inv_sqrt`;
-/// `cargo run -p jack --example op_budget`), a pixel under 1 000 000. A
-/// hang costs the whole budget, so the operation's is not larger than
-/// that needs: 1.5 times the costliest operation.
+/// [`Outcome::Hang`]. The defaults are far above the costliest normal call
+/// of any port seen, so that running out means a loop that never ends: our
+/// raymarcher's operations end within 33 108 instructions whatever their
+/// operands (`sub` at the largest exponent gap; `cargo run -p jack
+/// --example op_budget`), a user's bit-serial `add` within 73 580, a pixel
+/// under 1 000 000. A hang costs the whole budget, about 4 ms for the
+/// operation's 2 000 000 on the compiled engine. A bound program sets its
+/// own in its bindings (`budget = { op = N, sdf = N, pixel = N }`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Budgets {
     /// Per Float316 operation.
@@ -41,7 +42,7 @@ pub struct Budgets {
 impl Default for Budgets {
     fn default() -> Self {
         Budgets {
-            op: 50_000,
+            op: 2_000_000,
             sdf: 5_000_000,
             pixel: 50_000_000,
         }

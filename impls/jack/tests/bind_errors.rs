@@ -146,3 +146,29 @@ fn a_class_the_program_does_not_have_is_named() {
     let e = bind_error(open_edited("class = \"Num\"", "class = \"Nums\""));
     assert_eq!(e.field, "float.class");
 }
+
+/// `Num.above` is a method: called as `Num.above(a, b)` it would take `a`
+/// as its object, with the right VM arity by chance (issue 29 item 6).
+#[test]
+fn a_method_called_as_a_function_is_refused() {
+    let e = bind_error(open_edited(
+        "gt = \"result = Num.gt(a, b)\"",
+        "gt = \"result = Num.above(a, b)\"",
+    ));
+    assert_eq!(e.field, "ops.gt");
+    assert!(e.message.contains("is a method, not a function"), "{e}");
+}
+
+/// Operations are bound by the names docs/bindings.md lists, and no other
+/// spelling (issue 29 item 6).
+#[test]
+fn an_undocumented_operation_name_is_refused() {
+    for name in ["invsqrt", "invSqrt", "inv-sqrt"] {
+        let e = bind_error(open_edited(
+            "inv_sqrt = \"result = Num.invSqrt(a)\"",
+            &format!("{name} = \"result = Num.invSqrt(a)\""),
+        ));
+        assert_eq!(e.field, format!("ops.{name}"));
+        assert!(e.message.contains("inv_sqrt"), "{e}");
+    }
+}

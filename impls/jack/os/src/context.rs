@@ -11,6 +11,8 @@ const OUT_OF_RANGE_READ: i32 = 65535;
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct OsState {
     pub profile: Profile,
+    /// `Math.divide`'s rounding (the profile's unless chosen).
+    pub divide: crate::DivideRule,
     pub keys: KeyScript,
     /// Free-list head (not in RAM; spec 3.2). Kept unwrapped, as in the IDE.
     pub heap_head: i32,
@@ -24,9 +26,10 @@ pub(crate) struct OsState {
 }
 
 impl OsState {
-    pub fn new(profile: Profile, keys: KeyScript) -> OsState {
+    pub fn new(profile: Profile, divide: crate::DivideRule, keys: KeyScript) -> OsState {
         OsState {
             profile,
+            divide,
             keys,
             heap_head: crate::memory::HEAP_BASE,
             row: 0,
@@ -99,6 +102,10 @@ impl Ctx<'_> {
 
     pub fn profile(&self) -> crate::Profile {
         self.os.profile
+    }
+
+    pub fn divide_rule(&self) -> crate::DivideRule {
+        self.os.divide
     }
 
     /// Whether `Sys.error`, `Sys.halt` or a fatal condition has stopped the run.

@@ -49,6 +49,7 @@ mod string;
 mod table;
 
 pub use keys::{KeyScript, KeyScriptError};
+pub use math::DivideRule;
 pub use os::{Completion, Os, Stop};
 pub use profile::{Profile, ProfileParseError};
 pub use ram::{Ram, KBD, RAM_SIZE, SCREEN};

@@ -10,14 +10,43 @@ pub fn multiply(a: i16, b: i16) -> i16 {
     jack_int::mul(a, b)
 }
 
-/// `Math.divide` under `profile`: truncating toward zero on the desktop
-/// (-7/2 = -3), rounding toward minus infinity on the web (-7/2 = -4).
-/// `None` for a zero divisor (ERR3, result 0). -32768/-1 = -32768.
+/// How `Math.divide` rounds: toward zero (the desktop tools, -7/2 = -3) or
+/// toward minus infinity (the web IDE, -7/2 = -4). Each profile has its
+/// own ([`DivideRule::of`]); a machine may take the other one and keep
+/// every other rule of its profile (the fault `web-divide`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DivideRule {
+    /// Truncating toward zero.
+    Truncate,
+    /// Rounding toward minus infinity.
+    Floor,
+}
+
+impl DivideRule {
+    /// The rule of `profile`'s OS.
+    pub const fn of(profile: Profile) -> DivideRule {
+        match profile {
+            Profile::Desktop => DivideRule::Truncate,
+            Profile::Web => DivideRule::Floor,
+        }
+    }
+}
+
+impl From<Profile> for DivideRule {
+    fn from(profile: Profile) -> DivideRule {
+        DivideRule::of(profile)
+    }
+}
+
+/// `Math.divide` under `rule` (a [`Profile`] stands for its own rule):
+/// truncating toward zero on the desktop (-7/2 = -3), rounding toward
+/// minus infinity on the web (-7/2 = -4). `None` for a zero divisor (ERR3,
+/// result 0). -32768/-1 = -32768.
 #[inline]
-pub fn divide(profile: Profile, a: i16, b: i16) -> Option<i16> {
-    match profile {
-        Profile::Desktop => jack_int::div(a, b),
-        Profile::Web => jack_int::div_floor(a, b),
+pub fn divide(rule: impl Into<DivideRule>, a: i16, b: i16) -> Option<i16> {
+    match rule.into() {
+        DivideRule::Truncate => jack_int::div(a, b),
+        DivideRule::Floor => jack_int::div_floor(a, b),
     }
 }
 
@@ -73,6 +102,8 @@ mod tests {
         assert_eq!(divide(Profile::Desktop, -32768, -1), Some(-32768));
         assert_eq!(divide(Profile::Desktop, 5, 0), None);
         assert_eq!(divide(Profile::Web, 5, 0), None);
+        assert_eq!(divide(DivideRule::Floor, -7, 2), Some(-4));
+        assert_eq!(divide(DivideRule::Truncate, -7, 2), Some(-3));
         assert_eq!(abs(-32768), -32768);
         assert_eq!(abs(-5), 5);
         assert_eq!(min(-1, 32767), -1);

@@ -41,8 +41,14 @@ pub struct Os {
 impl Os {
     /// An OS in its reset state; call [`Os::reset`] on the RAM as well.
     pub fn new(profile: Profile, keys: KeyScript) -> Os {
+        Os::with_divide(profile, crate::DivideRule::of(profile), keys)
+    }
+
+    /// An OS of `profile` whose `Math.divide` rounds by `divide` (every
+    /// other rule is the profile's).
+    pub fn with_divide(profile: Profile, divide: crate::DivideRule, keys: KeyScript) -> Os {
         Os {
-            state: OsState::new(profile, keys),
+            state: OsState::new(profile, divide, keys),
         }
     }
 
@@ -51,7 +57,11 @@ impl Os {
     /// `Memory.init` writes them); free-list head 2048, cursor (0,0),
     /// colour black.
     pub fn reset(&mut self, ram: &mut Ram) {
-        self.state = OsState::new(self.state.profile, self.state.keys.clone());
+        self.state = OsState::new(
+            self.state.profile,
+            self.state.divide,
+            self.state.keys.clone(),
+        );
         ram.words_mut().fill(0);
         ram.write(0, 256);
         match self.state.profile {
@@ -71,6 +81,11 @@ impl Os {
     /// The profile chosen at construction.
     pub fn profile(&self) -> Profile {
         self.state.profile
+    }
+
+    /// `Math.divide`'s rounding, chosen at construction.
+    pub fn divide_rule(&self) -> crate::DivideRule {
+        self.state.divide
     }
 
     /// The key script.
@@ -166,7 +181,7 @@ fn dispatch(ctx: &mut Ctx, f: Builtin, args: &[i16]) -> i32 {
             0
         }
         MathMultiply => math::multiply(w(0), w(1)).into(),
-        MathDivide => match math::divide(ctx.profile(), w(0), w(1)) {
+        MathDivide => match math::divide(ctx.divide_rule(), w(0), w(1)) {
             Some(q) => q.into(),
             None => {
                 ctx.error(3);

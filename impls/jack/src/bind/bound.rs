@@ -165,6 +165,8 @@ const PROBES: [F316; 3] = [
 impl BoundProgram {
     /// Check `bindings` against `program`, reach the ready point, check
     /// that objects round-trip, make the query objects and snapshot.
+    /// `budgets` are the defaults; the bindings' `budget` replaces those
+    /// it names.
     pub fn open(
         program: &JackProgram,
         bindings: &Bindings,
@@ -232,7 +234,7 @@ impl BoundProgram {
             .transpose()?;
         Ok(BoundProgram {
             snapshot: m,
-            budgets,
+            budgets: bindings.budget.over(budgets),
             float,
             vec3,
             hit,
@@ -487,9 +489,14 @@ fn bind_op(
     program: &JackProgram,
 ) -> Result<BoundOp, BindError> {
     let field = format!("ops.{name}");
-    let op: Op = name
-        .parse()
-        .map_err(|e: common::op::UnknownOp| BindError::new(&field, e.to_string()))?;
+    // The exact names only (the vector files' parser also takes `invsqrt`
+    // and other spellings, which the bindings do not document).
+    let op = Op::ALL
+        .into_iter()
+        .find(|op| op.name() == name)
+        .ok_or_else(|| {
+            BindError::new(&field, common::op::UnknownOp(name.to_string()).to_string())
+        })?;
     let context = op_context(op);
     let call = compile(
         &field,

@@ -32,5 +32,5 @@ pub use error::BindError;
 pub use program::JackProgram;
 pub use ready::DEFAULT_READY_BUDGET;
 pub use signatures::Signatures;
-pub use spec::{Bindings, Capture, Layout, Ready, Statements};
+pub use spec::{Bindings, BudgetFields, Capture, Layout, Ready, Statements};
 pub use whole::WholeRun;

@@ -4,7 +4,7 @@
 
 use super::signatures::Signatures;
 use crate::JackError;
-use hack_vm::{Profile, Program};
+use hack_vm::{DivideRule, Profile, Program};
 use jack_compiler::VmClass;
 use std::path::Path;
 use std::sync::Arc;
@@ -18,9 +18,20 @@ pub struct JackProgram {
     pub signatures: Signatures,
     /// The OS profile it was compiled for and runs under.
     pub profile: Profile,
+    /// `Math.divide`'s rounding on its machines: the profile's, unless
+    /// [`JackProgram::with_divide`] chose the other (the fault
+    /// `web-divide`, which changes nothing else).
+    pub divide: DivideRule,
 }
 
 impl JackProgram {
+    /// The same program, its machines' `Math.divide` rounding by `divide`
+    /// (compiled and laid out as before, under its own profile).
+    pub fn with_divide(mut self, divide: DivideRule) -> JackProgram {
+        self.divide = divide;
+        self
+    }
+
     /// Compile Jack `sources` (file name, text) under `profile`.
     pub fn from_jack<N: AsRef<str>, S: AsRef<str>>(
         sources: &[(N, S)],
@@ -36,6 +47,7 @@ impl JackProgram {
             program: Program::from_sources(&vm)?,
             signatures: Signatures::from_jack(sources),
             profile,
+            divide: DivideRule::of(profile),
         })
     }
 
@@ -48,6 +60,7 @@ impl JackProgram {
             program: Program::from_sources(sources)?,
             signatures: Signatures::from_vm(sources),
             profile,
+            divide: DivideRule::of(profile),
         })
     }
 

@@ -42,6 +42,7 @@ pub(crate) fn config(program: &JackProgram, ready: &Ready) -> Result<Config, Bin
     };
     Ok(Config {
         profile: program.profile,
+        divide: Some(program.divide),
         keys,
         ..Config::default()
     })

@@ -144,7 +144,8 @@ impl Signatures {
 
     /// Check a call of `name` with `vm_args` arguments: its arity, that a
     /// target is assigned only from a non-void subroutine, that `var.f()`
-    /// names a method.
+    /// names a method and `Class.f()` a function or constructor (a method
+    /// called that way would take its first argument as its object).
     pub fn check(
         &self,
         name: &str,
@@ -161,6 +162,14 @@ impl Signatures {
                 return Err(format!(
                     "`{name}` is a {}, not a method (`{}`): call it as `{name}(...)`",
                     d.kind.keyword(),
+                    d.text
+                ));
+            }
+            if !on_variable && d.kind == SubroutineKind::Method {
+                let sub = name.rsplit('.').next().unwrap_or(name);
+                return Err(format!(
+                    "`{name}` is a method, not a function (`{}`): call it on an object, \
+                     `a.{sub}(...)`",
                     d.text
                 ));
             }

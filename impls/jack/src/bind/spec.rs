@@ -38,6 +38,37 @@ pub struct Bindings {
     /// reference's floor and mod2 outside their table).
     #[serde(default)]
     pub out_of_domain: Option<i16>,
+    /// Instruction budgets per query, in place of the defaults
+    /// ([`crate::Budgets`]): `budget = { op = 3000000 }`.
+    #[serde(default)]
+    pub budget: BudgetFields,
+}
+
+/// `budget = { op = N, sdf = N, pixel = N }`: instructions one query may
+/// take before it is reported as a hang; each absent one keeps its default.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BudgetFields {
+    /// Per operation (`ops.NAME`).
+    #[serde(default)]
+    pub op: Option<u64>,
+    /// Per SDF query.
+    #[serde(default)]
+    pub sdf: Option<u64>,
+    /// Per pixel.
+    #[serde(default)]
+    pub pixel: Option<u64>,
+}
+
+impl BudgetFields {
+    /// `defaults` with the budgets given here in their place.
+    pub fn over(&self, defaults: crate::Budgets) -> crate::Budgets {
+        crate::Budgets {
+            op: self.op.unwrap_or(defaults.op),
+            sdf: self.sdf.unwrap_or(defaults.sdf),
+            pixel: self.pixel.unwrap_or(defaults.pixel),
+        }
+    }
 }
 
 /// A class of the program: its fields in declaration order, by role, and

@@ -159,7 +159,7 @@ fn operands_ok<const N: usize>(operands: [Operand; N], flags: u8, seg: &[u16; 8]
 }
 
 #[inline(always)]
-fn apply(op: Bin, x: i16, y: i16, profile: jack_os::Profile) -> Option<i16> {
+fn apply(op: Bin, x: i16, y: i16, divide: jack_os::DivideRule) -> Option<i16> {
     Some(match op {
         Bin::Add => x.wrapping_add(y),
         Bin::Sub => x.wrapping_sub(y),
@@ -169,7 +169,7 @@ fn apply(op: Bin, x: i16, y: i16, profile: jack_os::Profile) -> Option<i16> {
         Bin::Gt => -i16::from(x > y),
         Bin::Lt => -i16::from(x < y),
         Bin::Mul => math::multiply(x, y),
-        Bin::Div => return math::divide(profile, x, y),
+        Bin::Div => return math::divide(divide, x, y),
     })
 }
 
@@ -286,6 +286,7 @@ impl Machine {
         let scratch = &mut self.scratch;
         let beyond_end = &mut self.beyond_end;
         let os_profile = os.profile();
+        let divide = os.divide_rule();
         let timing = Timing::of(os_profile);
         let (function_step, stack_check) = (timing.function_step, timing.stack_check);
         let plain = &code.plain[..];
@@ -530,7 +531,7 @@ impl Machine {
                     sp = top + 1;
                     let y = src!($b);
                     w[top as usize + 1] = y;
-                    let Some(r) = apply($op, x, y, os_profile) else {
+                    let Some(r) = apply($op, x, y, divide) else {
                         sp = top;
                         deopt!()
                     };
@@ -545,7 +546,7 @@ impl Machine {
                     let x = w[top as usize - 1];
                     let y = src!($b);
                     w[top as usize] = y;
-                    let Some(r) = apply($o, x, y, os_profile) else {
+                    let Some(r) = apply($o, x, y, divide) else {
                         deopt!()
                     };
                     skip!($op, $steps);
@@ -812,9 +813,8 @@ impl Machine {
                 }
                 Op::Multiply => binary!(|x, y| math::multiply(x, y)),
                 Op::Divide => {
-                    let profile = os.profile();
                     let y = rd!(sp.wrapping_sub(1));
-                    match math::divide(profile, rd!(sp.wrapping_sub(2)), y) {
+                    match math::divide(divide, rd!(sp.wrapping_sub(2)), y) {
                         Some(q) if sp != 256 && sp != 257 => {
                             sp = sp.wrapping_sub(1);
                             wr!(sp.wrapping_sub(1), q);
@@ -1016,7 +1016,7 @@ impl Machine {
                     }
                     skip!(op, 3);
                     let top = sp as usize;
-                    let Some(r) = apply(o, w[top - 2], w[top - 1], os_profile) else {
+                    let Some(r) = apply(o, w[top - 2], w[top - 1], divide) else {
                         deopt!()
                     };
                     w[top - 2] = !r;

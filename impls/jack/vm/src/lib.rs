@@ -35,7 +35,7 @@ mod trace_diff;
 
 pub use error::LoadError;
 pub use exit::{CallStack, Exit};
-pub use jack_os::{Builtin, Completion, KeyScript, Profile, Ram, Stop, RAM_SIZE};
+pub use jack_os::{Builtin, Completion, DivideRule, KeyScript, Profile, Ram, Stop, RAM_SIZE};
 pub use load::{in_load_order, IMPLICIT};
 pub use machine::{Config, Machine, Register, UnknownFunction, Watcher, MAX_DEPTH};
 pub use native::{Engine, AUTO_THRESHOLD};

@@ -70,6 +70,10 @@ pub const MAX_DEPTH: usize = 1 << 22;
 pub struct Config {
     /// Which official tool the OS follows.
     pub profile: Profile,
+    /// `Math.divide`'s rounding in place of the profile's (`None`: the
+    /// profile's own, [`jack_os::DivideRule::of`]); every other rule stays
+    /// the profile's.
+    pub divide: Option<jack_os::DivideRule>,
     /// Keyboard input over time.
     pub keys: KeyScript,
     /// Count instructions per function (see [`Machine::function_profile`]).
@@ -154,7 +158,10 @@ impl Machine {
     pub fn new(program: Arc<Program>, config: Config) -> Machine {
         let mut ram = Ram::new();
         let timing = Timing::of(config.profile);
-        let mut os = Os::new(config.profile, config.keys);
+        let divide = config
+            .divide
+            .unwrap_or(jack_os::DivideRule::of(config.profile));
+        let mut os = Os::with_divide(config.profile, divide, config.keys);
         os.reset(&mut ram);
         let entry = program.entry;
         let profile = config
@@ -162,9 +169,9 @@ impl Machine {
             .then(|| vec![0; program.functions.len()]);
         let native = match config.engine {
             Engine::Interp | Engine::Auto => None,
-            Engine::Native => program.native(config.profile).ok(),
+            Engine::Native => program.native(config.profile, divide).ok(),
             Engine::NativeBrokenSub => {
-                Native::compile(&program, config.profile, Some(Fault::SubSwapped))
+                Native::compile(&program, config.profile, divide, Some(Fault::SubSwapped))
                     .ok()
                     .map(Arc::new)
             }

@@ -3,7 +3,7 @@
 //! by every [`crate::Machine`].
 
 use crate::native::Native;
-use jack_os::{Builtin, Profile};
+use jack_os::{Builtin, DivideRule, Profile};
 use std::collections::HashMap;
 use std::sync::atomic::AtomicU64;
 use std::sync::{Arc, OnceLock};
@@ -341,8 +341,9 @@ pub struct Program {
     pub(crate) command_lines: usize,
     /// Number of static slots allocated (RAM 16..16+n).
     pub(crate) statics: usize,
-    /// Compiled code under each OS profile (desktop, web), made on first use.
-    pub(crate) native: [OnceLock<Result<Arc<Native>, String>>; 2],
+    /// Compiled code under each OS profile (desktop, web) and rounding of
+    /// `Math.divide` (see [`native_index`]), made on first use.
+    pub(crate) native: [OnceLock<Result<Arc<Native>, String>>; 4],
     /// Steps that [`crate::Engine::Auto`] machines of each profile have run
     /// on the interpreter, all machines together (see `crate::tier`).
     pub(crate) interpreted: [AtomicU64; 2],
@@ -399,19 +400,34 @@ impl Program {
     /// (done once; later calls and [`crate::Machine::new`] share it), and
     /// say how long compiling took, or why it cannot be done on this host.
     pub fn compile_native(&self, profile: Profile) -> Result<Duration, String> {
-        self.native(profile).map(|n| n.compile_time())
+        self.native(profile, DivideRule::of(profile))
+            .map(|n| n.compile_time())
     }
 
-    /// The compiled code for `profile`, compiling it on first use.
-    pub(crate) fn native(&self, profile: Profile) -> Result<Arc<Native>, String> {
-        let slot = &self.native[crate::timing::index(profile)];
-        slot.get_or_init(|| Native::compile(self, profile, None).map(Arc::new))
+    /// The compiled code for `profile` with `divide`, compiling it on first
+    /// use.
+    pub(crate) fn native(
+        &self,
+        profile: Profile,
+        divide: DivideRule,
+    ) -> Result<Arc<Native>, String> {
+        let slot = &self.native[native_index(profile, divide)];
+        slot.get_or_init(|| Native::compile(self, profile, divide, None).map(Arc::new))
             .clone()
     }
 
-    /// The compiled code for `profile` if it has been made (`Err`: it
-    /// cannot be), without compiling.
-    pub(crate) fn native_made(&self, profile: Profile) -> Option<&Result<Arc<Native>, String>> {
-        self.native[crate::timing::index(profile)].get()
+    /// The compiled code for `profile` with `divide` if it has been made
+    /// (`Err`: it cannot be), without compiling.
+    pub(crate) fn native_made(
+        &self,
+        profile: Profile,
+        divide: DivideRule,
+    ) -> Option<&Result<Arc<Native>, String>> {
+        self.native[native_index(profile, divide)].get()
     }
+}
+
+/// The slot of [`Program::native`] for `profile` with `divide`.
+fn native_index(profile: Profile, divide: DivideRule) -> usize {
+    crate::timing::index(profile) * 2 + usize::from(divide == DivideRule::Floor)
 }

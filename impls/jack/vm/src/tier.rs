@@ -40,8 +40,8 @@ impl Machine {
         let Some(tier) = self.tier else {
             return u64::MAX;
         };
-        let profile = self.os.profile();
-        let native = match self.program.native_made(profile) {
+        let (profile, divide) = (self.os.profile(), self.os.divide_rule());
+        let native = match self.program.native_made(profile, divide) {
             Some(made) => made.as_ref().ok().cloned(),
             None => {
                 let counter = &self.program.interpreted[crate::timing::index(profile)];
@@ -49,7 +49,7 @@ impl Machine {
                 if total < tier.threshold {
                     return self.steps.saturating_add(tier.threshold - total);
                 }
-                self.program.native(profile).ok()
+                self.program.native(profile, divide).ok()
             }
         };
         self.tier_credit();

@@ -549,6 +549,37 @@ fn web_profile_divides_toward_minus_infinity() {
     assert_eq!(m.ram().read(263), -5);
 }
 
+/// A machine may take the other profile's `Math.divide` and keep the rest of
+/// its own (the fault `web-divide`): on both engines, and for a divisor
+/// the compiled code divides inline as for one it passes to the OS.
+#[test]
+fn the_divide_rule_is_chosen_apart_from_the_profile() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\npush constant 9\nneg\npush constant 2\ncall Math.divide 2\nreturn\n\
+               function Main.g 0\npush constant 7\npush constant 2\nneg\ncall Math.divide 2\nreturn\n";
+    let p = Program::from_sources(&[("Main.vm", src)]).unwrap();
+    for engine in [hack_vm::Engine::Interp, hack_vm::Engine::Native] {
+        for (divide, f, g) in [
+            (None, -4, -3),
+            (Some(hack_vm::DivideRule::Truncate), -4, -3),
+            (Some(hack_vm::DivideRule::Floor), -5, -4),
+        ] {
+            let mut m = Machine::new(
+                p.clone(),
+                Config {
+                    profile: Profile::Desktop,
+                    divide,
+                    engine,
+                    ..Config::default()
+                },
+            );
+            let mut call = |name| m.call(name, &[], Some(1000)).unwrap();
+            assert_eq!(call("Main.f"), Exit::Returned(f), "{engine:?} {divide:?}");
+            assert_eq!(call("Main.g"), Exit::Returned(g), "{engine:?} {divide:?}");
+        }
+    }
+}
+
 #[test]
 fn sys_error_and_divide_by_zero_stop_with_the_stack() {
     let src = "function Main.main 0\ncall Main.f 0\nreturn\nfunction Main.f 0\npush constant 1\npush constant 0\ncall Math.divide 2\nreturn\n";

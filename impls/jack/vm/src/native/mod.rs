@@ -214,6 +214,7 @@ impl Native {
     pub(crate) fn compile(
         program: &Program,
         profile: Profile,
+        divide: jack_os::DivideRule,
         fault: Option<Fault>,
     ) -> Result<Native, String> {
         let started = Instant::now();
@@ -299,6 +300,7 @@ impl Native {
                     blocks: &vm_blocks,
                     block_at: &starts,
                     profile,
+                    divide,
                     fault,
                     target,
                     callee: &mut callee,

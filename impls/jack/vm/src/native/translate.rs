@@ -116,6 +116,8 @@ pub(crate) struct Env<'a> {
     pub blocks: &'a [Block],
     pub block_at: &'a [Option<u32>],
     pub profile: Profile,
+    /// `Math.divide`'s rounding (the profile's unless the machine chose).
+    pub divide: jack_os::DivideRule,
     pub fault: Option<Fault>,
     pub target: cranelift_codegen::isa::TargetFrontendConfig,
     /// The compiled function of a callee, as a reference in this function.
@@ -1579,15 +1581,15 @@ impl Translator<'_, '_> {
         self.jump_to(before.pc + 1);
     }
 
-    /// `Math.divide` of a non-zero divisor under the OS profile.
+    /// `Math.divide` of a non-zero divisor under the OS's rounding.
     fn divide(&mut self, x: Value, y: Value) -> Value {
         // In 32 bits, so that -32768 / -1 does not trap (it wraps below).
         let x32 = self.b.ins().sextend(T32, x);
         let y32 = self.b.ins().sextend(T32, y);
         let q = self.b.ins().sdiv(x32, y32);
-        let q = match self.env.profile {
-            Profile::Desktop => q,
-            Profile::Web => {
+        let q = match self.env.divide {
+            jack_os::DivideRule::Truncate => q,
+            jack_os::DivideRule::Floor => {
                 // Round toward minus infinity: one less when the remainder
                 // is non-zero and the signs differ.
                 let r = self.b.ins().srem(x32, y32);
