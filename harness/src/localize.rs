@@ -1,9 +1,12 @@
 //! Localization: given two implementations and one input on which they
-//! differ, find the first Float316 operation that differs. Both op traces
-//! are diffed record by record (operation, operands, result; paths are
-//! informative); the answer is the first divergent record with the last
-//! matching one before it (Gameboy-Doctor style), and its *origin*: the
-//! innermost operation that was given identical operands and still
+//! differ, find the first Float316 operation that differs. The answers are
+//! compared first: traces that differ on the way to the same answer are a
+//! difference that does not reach it. Both op traces are then diffed,
+//! records paired by what they compute (operation and operands; paths are
+//! informative), whatever order each side computes them in
+//! ([`diff_traces`]); the answer is the first divergent record with the
+//! last matching one before it (Gameboy-Doctor style), and its *origin*:
+//! the innermost operation that was given identical operands and still
 //! produced a different result (the operation at fault).
 //!
 //! An implementation that cannot trace (gpu-f316) is localized by replay:

@@ -45,7 +45,8 @@ pub struct RunSummary {
     /// Why it gave no answers (unavailable, unsupported, failed).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub error: Option<ImplError>,
-    /// Wall-clock seconds (CPU time summed over parallel batches).
+    /// Wall-clock seconds from its first batch's start to its last one's
+    /// end.
     pub seconds: f64,
 }
 

@@ -1,8 +1,8 @@
 //! The nightly job: a list of typed steps ([`steps::all`]) run in order
 //! over the cast. Each step reads what the steps before it left in the
 //! [`Night`] (the opened implementations, the renders) and adds its
-//! results to the report being built; the [`Summary`] decides the exit
-//! status from the report: every bit-exact divergence (at any level, and
+//! results to the report being built; the [`Verdict`] inside the
+//! [`Summary`] decides the exit status: every bit-exact divergence (at any level, and
 //! between the images of Float316 implementations, a program's own screen
 //! included), every render that failed and a failed self-test fail the
 //! night.
@@ -12,8 +12,8 @@
 //! with `--steps`, its `name` is its line in the log and the report's
 //! timings, `run` does the work through the [`Night`]) and add it to
 //! [`steps::all`] where it belongs in the order. A step that can find a
-//! failure must make it count in [`Summary`]: a bit-exact comparison row,
-//! a gated image pair, a failed render, or a new field here.
+//! failure must make it count in the night's [`Verdict`]: a bit-exact
+//! comparison row, a gated image pair, or `Night::not_compared`.
 
 mod explain;
 mod pairs;

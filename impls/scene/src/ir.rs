@@ -2,8 +2,8 @@
 //! over one number type. A scene lowers to one [`Program`] per number
 //! formulation ([`Formulation::Float316`] for ref-f316 and gpu-f316,
 //! [`Formulation::Ieee`] for ref-f64, ref-f32 and gpu-f32). Back ends
-//! (the reference's interpreter, the WGSL generator, a Jack generator) map
-//! each statement to their target one for one; none of them knows scenes.
+//! (the reference's interpreter, the WGSL generator) map each statement to
+//! their target one for one; none of them knows scenes.
 //!
 //! Registers are per function: scalar numbers, booleans and small integer
 //! tags (which instance a surface belongs to). A vector is three
