@@ -7,8 +7,12 @@
 # (`gates`: the verdict type, merge, measure, check, the report model's
 # comparisons and the nightly's summary), judged by the library tests,
 # tests/gates.rs, which runs the binary on faulty implementations, and the
-# merge and check suites.
-#   scripts/mutants.sh [float316|compare|gates] [K/N]    (default: all, whole)
+# merge and check suites; and of the compiled VM engine (`engine`:
+# impls/jack/vm/src/native, tier.rs, timing.rs), judged by hack-vm's tests
+# on the compiled engine from the first step, with a fixed proptest seed
+# and case count so that whether a mutant is caught does not depend on the
+# seed a run draws, and without appending to the tracked regressions file.
+#   scripts/mutants.sh [float316|compare|gates|engine] [K/N]    (default: all, whole)
 # K/N runs every N-th mutant from the K-th (K counts from 0), so N machines
 # share a file. Installs cargo-mutants from crates.io when missing. Results go
 # to mutants.out/FILE[-K-N]/mutants.out/{caught,missed,timeout,unviable}.txt;
@@ -59,5 +63,13 @@ if [ "$which" = all ] || [ "$which" = gates ]; then
         --cargo-test-arg=--test --cargo-test-arg=merge \
         --cargo-test-arg=--test --cargo-test-arg=check \
         --cargo-test-arg=--test --cargo-test-arg=nightly_testfloat || status=$?
+fi
+if [ "$which" = all ] || [ "$which" = engine ]; then
+    HACK_VM_ENGINE=native PROPTEST_RNG_SEED=34 PROPTEST_CASES=256 \
+        PROPTEST_DISABLE_FAILURE_PERSISTENCE=1 \
+        run engine -p hack-vm \
+        --file 'impls/jack/vm/src/native/*.rs' --file impls/jack/vm/src/tier.rs \
+        --file impls/jack/vm/src/timing.rs \
+        --timeout 240 --build-timeout 900 || status=$?
 fi
 exit "$status"
