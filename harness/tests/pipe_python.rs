@@ -9,14 +9,19 @@ use harness::pipe::{Pipe, PipeConfig};
 use harness::runner::{diff_set, RunOptions};
 use vectors::Level;
 
+/// An adapter of `examples/pipe-python`, started under `label`. Its port
+/// answers out of domain where the reference does: compared there too.
+fn python_adapter(label: &str, script: &str) -> Pipe {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/pipe-python");
+    let mut config = PipeConfig::new(label, "python3", &[script]);
+    config.dir = Some(dir.into());
+    config.checks_domain = true;
+    Pipe::open(&config).unwrap()
+}
+
 #[test]
 fn the_python_float316_adapter_agrees_with_ref_f316_on_every_ops_set() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/pipe-python");
-    let mut config = PipeConfig::new("float316.py", "python3", &["adapter.py"]);
-    config.dir = Some(dir.into());
-    // It answers out of domain where the reference does: compared there too.
-    config.checks_domain = true;
-    let pipe = Pipe::open(&config).unwrap();
+    let pipe = python_adapter("float316.py", "adapter.py");
     assert!(pipe.supports(Level::Ops) && !pipe.supports(Level::Sdf));
     let reference = Cast::builtin().open("ref-f316").unwrap();
     let mut compared = 0;
@@ -48,11 +53,7 @@ fn the_python_float316_adapter_agrees_with_ref_f316_on_every_ops_set() {
 /// and a pixel is still localized through it, its trace replayed.
 #[test]
 fn a_port_without_halve_double_and_quarter_is_compared_on_what_it_has() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/pipe-python");
-    let mut config = PipeConfig::new("inline", "python3", &["inline_scaling_adapter.py"]);
-    config.dir = Some(dir.into());
-    config.checks_domain = true;
-    let pipe = Pipe::open(&config).unwrap();
+    let pipe = python_adapter("inline", "inline_scaling_adapter.py");
     let reference = Cast::builtin().open("ref-f316").unwrap();
     let set = vectors::load_named("ops-small").unwrap();
     let report = diff_set(&[reference.as_ref(), &pipe], &set, RunOptions::default());
