@@ -412,3 +412,55 @@ fn swapped_sdf_result_fields_are_refused_at_open() {
     assert!(e.contains("sdf_result.fields: bad binding: "), "{e}");
     assert!(e.contains("each other's roles"), "{e}");
 }
+
+/// The port bound at the pixel level with the shade alone (issue 29 item
+/// 3): `Light.pixel` leaves the shade before the clamp in `shade`. Declared
+/// `pixel_shade = "unclamped"`, the harness clamps it and computes the
+/// white bit with ref-f316's own operations, and the pixels agree with
+/// ref-f316's; declared clamped (the default), the same shade is compared
+/// unclamped, and the pixels whose shade lies outside [0, 1] diverge.
+#[test]
+fn a_pixel_binding_that_gives_the_shade_alone_agrees_with_ref_f316() {
+    let dir = tempfile::tempdir().unwrap();
+    let raw = dir.path().join("raw");
+    port_copy(
+        &raw,
+        &[(
+            "bindings.toml",
+            "pixel = [\"shade = Picture.shade(u, v)\", \"white = Picture.dither(shade, x, y)\"]",
+            "pixel = \"Light.pixel(u, v, shade)\"\npixel_shade = \"unclamped\"",
+        )],
+    );
+    let bindings = std::fs::read_to_string(raw.join("bindings.toml")).unwrap();
+    std::fs::write(
+        raw.join("as-clamped.toml"),
+        bindings.replace("pixel_shade = \"unclamped\"\n", ""),
+    )
+    .unwrap();
+    let cast = cast_with(&format!(
+        "{}{}",
+        declared("raw", &raw, "bindings.toml"),
+        declared("raw-as-clamped", &raw, "as-clamped.toml")
+    ));
+    let reference = open(&cast, "ref-f316");
+    let set = vectors::load_named(vectors::named::small_set_name(Level::Pixels)).unwrap();
+    let options = harness::runner::RunOptions::default();
+    let subject = open(&cast, "raw");
+    assert!(subject.supports(Level::Pixels));
+    let report = harness::runner::diff_set(&[reference.as_ref(), subject.as_ref()], &set, options);
+    assert!(report.failures().next().is_none());
+    assert!(
+        !report.diverged(),
+        "{}",
+        harness::text::level_report(&report)
+    );
+    assert_eq!(report.comparisons[0].vectors, set.vectors.len());
+
+    let wrong = open(&cast, "raw-as-clamped");
+    let report = harness::runner::diff_set(&[reference.as_ref(), wrong.as_ref()], &set, options);
+    assert!(
+        report.diverged(),
+        "{}",
+        harness::text::level_report(&report)
+    );
+}

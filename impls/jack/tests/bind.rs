@@ -2,7 +2,7 @@
 //! with its own entry points, answer for answer and trace for trace.
 
 use common::{Op, F316};
-use jack::{Bindings, BoundProgram, Budgets, JackProgram, Profile, Raymarcher};
+use jack::{Bindings, BoundPixel, BoundProgram, Budgets, JackProgram, Profile, Raymarcher};
 use std::sync::OnceLock;
 
 fn bound() -> &'static BoundProgram {
@@ -59,7 +59,7 @@ fn ops_sdf_and_pixels_agree_with_the_entry_points() {
     for (x, y) in [(330, 150), (100, 200), (0, 0), (511, 255)] {
         assert_eq!(
             bound().pixel(x, y).unwrap().outcome,
-            entry().pixel(x, y).unwrap().outcome
+            entry().pixel(x, y).unwrap().outcome.map(BoundPixel::from)
         );
         let tb = bound().trace_pixel(x, y).unwrap();
         let te = entry().trace_pixel(x, y).unwrap();
@@ -96,7 +96,7 @@ fn the_port_agrees_with_the_raymarcher() {
     for (x, y) in [(330, 150), (100, 200), (0, 0), (511, 255)] {
         assert_eq!(
             port().pixel(x, y).unwrap().outcome,
-            entry().pixel(x, y).unwrap().outcome,
+            entry().pixel(x, y).unwrap().outcome.map(BoundPixel::from),
             "pixel ({x},{y})"
         );
     }
