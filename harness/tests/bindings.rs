@@ -464,3 +464,104 @@ fn a_pixel_binding_that_gives_the_shade_alone_agrees_with_ref_f316() {
         harness::text::level_report(&report)
     );
 }
+
+/// Every command agrees about a Jack entry whose only image is its
+/// whole-program capture (issue 29 item 4): the port bound without `pixel`,
+/// its render loop cut to the first two rows so that a whole run is short.
+/// diff judges the image and gives no localize command and no repro file
+/// for its pixels, a pixels level asked for is not compared (3), check
+/// judges the image (1: the rows left white diverge) and cannot decide a
+/// shade metric (125), render writes the captured bits (exit 0; 3 with
+/// --values), bench has its row, and localize at a pixel exits 3.
+#[test]
+fn every_command_agrees_about_a_capture_only_jack_entry() {
+    let dir = tempfile::tempdir().unwrap();
+    let cap = dir.path().join("cap");
+    port_copy(
+        &cap,
+        &[
+            (
+                "bindings.toml",
+                "pixel = [\"shade = Picture.shade(u, v)\", \"white = Picture.dither(shade, x, y)\"]\n",
+                "",
+            ),
+            ("Picture.jack", "while (yi < 256) {", "while (yi < 2) {"),
+        ],
+    );
+    let project = declared("cap", &cap, "bindings.toml");
+    std::fs::write(dir.path().join("harness.toml"), &project).unwrap();
+    let run = |args: &[&str]| {
+        let o = binary::harness_in(dir.path(), args);
+        (o.status.code(), binary::text(&o))
+    };
+
+    let report = dir.path().join("report");
+    let report_arg = report.to_str().unwrap();
+    let (code, text) = run(&[
+        "diff", "ref-f316", "cap", "--level", "image", "--report", report_arg,
+    ]);
+    assert_eq!(code, Some(1), "{text}");
+    assert!(!text.contains("harness localize"), "{text}");
+    let repro: Vec<_> = std::fs::read_dir(report.join("repro")).unwrap().collect();
+    assert!(repro.is_empty(), "{repro:?}");
+
+    let (code, text) = run(&["diff", "ref-f316", "cap", "--level", "pixels"]);
+    assert_eq!(code, Some(3), "{text}");
+
+    let (code, text) = run(&[
+        "check",
+        "--no-divergence",
+        "ref-f316",
+        "cap",
+        "--level",
+        "image",
+    ]);
+    assert_eq!(code, Some(1), "{text}");
+    let (code, text) = run(&["check", "--max-error", "cap", "0.5", "--metric", "max"]);
+    assert_eq!(code, Some(125), "{text}");
+    assert!(text.contains("--metric flips"), "{text}");
+
+    let png = dir.path().join("cap.png");
+    let (code, text) = run(&["render", "--impl", "cap", "--out", png.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{text}");
+    // The two rows the program drew are ref-f316's; the rest stayed white.
+    let bits = image::open(&png).unwrap().to_luma8();
+    let reference = reference::Reference::seed(reference::RefImpl::F316);
+    for y in 0..256u32 {
+        for x in (0..512u32).step_by(7) {
+            let want = y >= 2
+                || reference
+                    .pixel(x as usize, y as usize)
+                    .value()
+                    .unwrap()
+                    .white;
+            assert_eq!(bits.get_pixel(x, y).0[0] == 255, want, "({x},{y})");
+        }
+    }
+    let values = dir.path().join("values.json");
+    let (code, text) = run(&[
+        "render",
+        "--impl",
+        "cap",
+        "--out",
+        png.to_str().unwrap(),
+        "--values",
+        values.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(3), "{text}");
+    assert!(!values.exists());
+
+    // Judged against the oracle (the rows left white are flips beyond
+    // policy), not skipped.
+    let (code, text) = run(&["bench", "cap"]);
+    assert_eq!(code, Some(1), "{text}");
+    assert!(
+        text.lines().any(|l| l.starts_with("cap ")),
+        "{code:?}\n{text}"
+    );
+    assert!(!text.contains("skipped"), "{text}");
+
+    let (code, text) = run(&["localize", "ref-f316", "cap", "--pixel", "3,1"]);
+    assert_eq!(code, Some(3), "{text}");
+    assert!(text.contains("does not answer the pixels level"), "{text}");
+}
