@@ -60,6 +60,30 @@ fn both_programs_agree_with_ref_f316_on_the_small_sets_through_bindings() {
     }
 }
 
+/// The port's image level is its whole program (its pixel function gives
+/// the shade alone; its render loop clamps, dithers and draws with
+/// Screen.drawPixel inline), and it is ref-f316's image bit for bit: one
+/// run of Main.main, about 20 s.
+#[test]
+fn the_ports_whole_program_image_agrees_with_ref_f316() {
+    let cast = cast_with("");
+    let port = open(&cast, "port");
+    let reference = open(&cast, "ref-f316");
+    let set = vectors::load_named(vectors::named::small_set_name(Level::Image)).unwrap();
+    let report = harness::runner::diff_set(
+        &[reference.as_ref(), port.as_ref()],
+        &set,
+        harness::runner::RunOptions::default(),
+    );
+    assert!(report.failures().next().is_none());
+    assert!(
+        !report.diverged(),
+        "{}",
+        harness::text::level_report(&report)
+    );
+    assert_eq!(report.comparisons.len(), 1);
+}
+
 /// A copy of the port in `dir`, each `(file, from, to)` replaced.
 fn port_copy(dir: &Path, edits: &[(&str, &str, &str)]) {
     let src = root().join("examples/jack-port");
@@ -132,7 +156,7 @@ fn a_one_line_change_in_the_ports_add_is_localized_to_add() {
     // The Jack call path of the add at fault: its callers, from the pixel.
     assert_eq!(
         path,
-        "pixel(330,150) > Picture.shade > Light.pixel > Eye.ray > V3.normalize > V3.dot"
+        "pixel(330,150) > Picture.shadeRaw > Light.pixel > Eye.ray > V3.normalize > V3.dot"
     );
     assert!(l.to_string().contains("origin"), "{l}");
 }
@@ -247,67 +271,52 @@ fn a_malformed_inline_binding_names_the_file_line_and_field() {
     assert!(e.contains("impl.inline.float"), "{e}");
 }
 
-fn add_vector() -> Vector {
+fn mod2_vector(a: common::F316) -> Vector {
     Vector::Op(vectors::OpVector {
         category: "test".into(),
-        op: common::Op::Add,
-        a: common::F316::new(0, 129, 10240),
-        b: Some(common::F316::new(1, 127, 12288)),
+        op: common::Op::Mod2,
+        a,
+        b: None,
     })
 }
 
-/// A user's `add` that takes over 100 000 instructions (a loop) answers
-/// values under the default budget, and hangs under a budget below its
-/// cost, the hang naming the budget field (issue 29 item 1).
+/// The port's `mod2` counts the integer part down by two, one pass per 2:
+/// mod2 of 16383 takes more than the 50 000 instructions the budget once
+/// was, answers ref-f316's value under the default budget, and hangs under
+/// a budget of 50 000, the hang naming the budget field; a small integer
+/// part answers under that budget too (issue 29 item 1 and its example).
 #[test]
 fn a_slow_operation_answers_under_the_default_budget_and_hangs_below_its_own() {
     let dir = tempfile::tempdir().unwrap();
-    let slow = dir.path().join("slow");
-    port_copy(
-        &slow,
-        &[
-            (
-                "Num.jack",
-                "    /** a + b. */\n",
-                "    /** a + b, slowly. */\n    function Num slowAdd(Num a, Num b) {\n        \
-                 var int k;\n        while (k < 12000) {\n            let k = k + 1;\n        \
-                 }\n        return Num.add(a, b);\n    }\n\n    /** a + b. */\n",
-            ),
-            (
-                "bindings.toml",
-                "add = \"result = Num.add(a, b)\"",
-                "add = \"result = Num.slowAdd(a, b)\"",
-            ),
-        ],
-    );
-    let bindings = std::fs::read_to_string(slow.join("bindings.toml")).unwrap();
-    std::fs::write(
-        slow.join("tight.toml"),
-        format!("budget = {{ op = 100000 }}\n{bindings}"),
-    )
-    .unwrap();
+    let port = root().join("examples/jack-port");
+    let bindings = std::fs::read_to_string(port.join("bindings.toml")).unwrap();
+    let tight = dir.path().join("tight.toml");
+    std::fs::write(&tight, format!("budget = {{ op = 50000 }}\n{bindings}")).unwrap();
     let project = format!(
-        "{}{}",
-        declared("slow", &slow, "bindings.toml"),
-        declared("slow-tight", &slow, "tight.toml")
+        "[impl.slow-tight]\nkind = \"jack\"\nprogram = \"{}\"\nbindings = \"{}\"\n",
+        port.display(),
+        tight.display()
     );
-    let cast = Cast::with_project(&root().join("harness.toml"), &project).unwrap();
+    let cast = cast_with(&project);
     let reference = open(&cast, "ref-f316");
-    let add = [add_vector()];
-    let want = reference.eval(&add).unwrap();
+    let slow = [mod2_vector(common::F316::new(0, 140, 16383))];
+    let want = reference.eval(&slow).unwrap();
     assert!(matches!(want[0], common::Outcome::Value(_)));
-    assert_eq!(open(&cast, "slow").eval(&add).unwrap(), want);
+    assert_eq!(open(&cast, "port").eval(&slow).unwrap(), want);
+    let tight_port = open(&cast, "slow-tight");
+    assert_eq!(tight_port.eval(&slow).unwrap(), [common::Outcome::Hang]);
+    let fast = [mod2_vector(common::F316::new(0, 129, 12288))];
     assert_eq!(
-        open(&cast, "slow-tight").eval(&add).unwrap(),
-        [common::Outcome::Hang]
+        tight_port.eval(&fast).unwrap(),
+        reference.eval(&fast).unwrap()
     );
 
     // On the command line, the hang names the field that sets the budget.
     std::fs::write(dir.path().join("harness.toml"), &project).unwrap();
-    let file = dir.path().join("add.json");
+    let file = dir.path().join("mod2.json");
     std::fs::write(
         &file,
-        r#"{"format_version":1,"name":"add","level":"ops","vectors":[{"category":"c","op":"add","a":[0,129,10240],"b":[1,127,12288]}]}"#,
+        r#"{"format_version":1,"name":"mod2","level":"ops","vectors":[{"category":"c","op":"mod2","a":[0,140,16383]}]}"#,
     )
     .unwrap();
     let o = binary::harness_in(
@@ -324,9 +333,47 @@ fn a_slow_operation_answers_under_the_default_budget_and_hangs_below_its_own() {
     assert_eq!(o.status.code(), Some(1), "{text}");
     assert!(text.contains("hang"), "{text}");
     assert!(
-        text.contains("budget `budget.op` (100000 instructions)"),
+        text.contains("budget `budget.op` (50000 instructions)"),
         "{text}"
     );
+}
+
+/// The port's invSqrt calls its `sub` with the result aliased to the second
+/// operand, which flips the sign of the result; invSqrt drops that sign
+/// later. localize prints the trace difference as one that does not reach
+/// the answer and exits 0, and diff finds the answers agree.
+#[test]
+fn the_ports_aliased_sub_is_a_trace_difference_that_does_not_reach_the_answer() {
+    let dir = tempfile::tempdir().unwrap();
+    let port = root().join("examples/jack-port");
+    std::fs::write(
+        dir.path().join("harness.toml"),
+        declared("port", &port, "bindings.toml"),
+    )
+    .unwrap();
+    let args = [
+        "localize",
+        "ref-f316",
+        "port",
+        "--op",
+        "inv_sqrt",
+        "--a",
+        "0,127,8192",
+    ];
+    let o = binary::harness_in(dir.path(), &args);
+    let text = binary::text(&o);
+    assert_eq!(o.status.code(), Some(0), "{text}");
+    assert!(
+        text.contains("the traces differ, but the difference does not reach the answer"),
+        "{text}"
+    );
+    assert!(
+        text.contains("sub((0,127,12288)=1.5, (0,126,8192)=0.5)"),
+        "{text}"
+    );
+    let o = binary::harness_in(dir.path(), &["diff", "ref-f316", "port", "--level", "ops"]);
+    let text = binary::text(&o);
+    assert_eq!(o.status.code(), Some(0), "{text}");
 }
 
 /// The line and column (1-based) where `needle` starts in `text`.
@@ -427,8 +474,8 @@ fn a_pixel_binding_that_gives_the_shade_alone_agrees_with_ref_f316() {
         &raw,
         &[(
             "bindings.toml",
-            "pixel = [\"shade = Picture.shade(u, v)\", \"white = Picture.dither(shade, x, y)\"]",
-            "pixel = \"Light.pixel(u, v, shade)\"\npixel_shade = \"unclamped\"",
+            "pixel = \"shade = Picture.shadeRaw(u, v)\"",
+            "pixel = \"Light.pixel(u, v, shade)\"",
         )],
     );
     let bindings = std::fs::read_to_string(raw.join("bindings.toml")).unwrap();
@@ -482,7 +529,7 @@ fn every_command_agrees_about_a_capture_only_jack_entry() {
         &[
             (
                 "bindings.toml",
-                "pixel = [\"shade = Picture.shade(u, v)\", \"white = Picture.dither(shade, x, y)\"]\n",
+                "pixel = \"shade = Picture.shadeRaw(u, v)\"\npixel_shade = \"unclamped\"\n",
                 "",
             ),
             ("Picture.jack", "while (yi < 256) {", "while (yi < 2) {"),
