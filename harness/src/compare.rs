@@ -148,6 +148,20 @@ pub struct Divergence {
     /// The one-vector repro file, once written.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub repro: Option<String>,
+    /// Whether both sides answer the input on its own, at its level, so
+    /// that a repro file and a localize command can replay it: an image
+    /// divergence of a program whose image comes only from its whole run
+    /// (no pixel binding) has a pixel neither can be asked for.
+    #[serde(default = "yes", skip_serializing_if = "is_yes")]
+    pub reproducible: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn is_yes(b: &bool) -> bool {
+    *b
 }
 
 /// Identical divergences: same level, operation, category and kind.
@@ -557,6 +571,7 @@ pub fn compare(set: &vectors::VectorSet, sides: &Sides) -> Comparison {
             odd_one_out: None,
             localize: None,
             repro: None,
+            reproducible: true,
         })
         .collect();
     Comparison {

@@ -5,7 +5,7 @@
 //! need it; and the error figures of one render against another.
 
 use crate::cast::Cast;
-use crate::implementation::{Answer, Implementation, Numbers};
+use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Numbers};
 use crate::report::images::Grid;
 use crate::report::RenderImages;
 use crate::runner::{self, RunOptions};
@@ -113,7 +113,10 @@ pub fn render(cast: &Cast, label: &str, progress: bool) -> Result<(FullRender, N
 }
 
 /// Every pixel through `imp`, opened in `setup_s` seconds: the render and
-/// each pixel's answer in row order.
+/// each pixel's answer in row order. An implementation that answers the
+/// image level but not the pixels level (a Jack program bound through its
+/// whole-program capture alone) renders its image as that level gives it:
+/// bits only, no shades, each pixel's answer an [`Answer::Dot`].
 pub fn render_with(
     imp: &dyn Implementation,
     setup_s: f64,
@@ -121,6 +124,28 @@ pub fn render_with(
 ) -> Result<(FullRender, Vec<Outcome<Answer>>)> {
     let label = imp.label();
     let start = Instant::now();
+    if !imp.supports(Level::Pixels) && imp.supports(Level::Image) {
+        let bitmap =
+            image_bits(imp, progress).map_err(|e| anyhow::Error::new(e).context(label.clone()))?;
+        let render_s = start.elapsed().as_secs_f64();
+        let answers = bitmap
+            .white
+            .iter()
+            .map(|&white| Outcome::Value(Answer::Dot { white }))
+            .collect();
+        let full = FullRender {
+            label: label.clone(),
+            setup_s,
+            render_s,
+            images: RenderImages {
+                bits: Grid::new(bitmap.width, bitmap.height, bitmap.white)?,
+                shades: None,
+                traps: None,
+            },
+            costs: None,
+        };
+        return Ok((full, answers));
+    }
     let (answers, costs) = match imp.render_image(progress) {
         Some(image) => {
             let image = image.map_err(|e| anyhow::Error::new(e).context(label.clone()))?;
@@ -149,6 +174,34 @@ pub fn render_with(
     let mut full = FullRender::from_pixels(&label, setup_s, render_s, pixels)?;
     full.costs = costs.map(|c| Grid::new(WIDTH, HEIGHT, c)).transpose()?;
     Ok((full, answers))
+}
+
+/// The image level's bitmap of `imp`: the screen of its whole program where
+/// it has one ([`Implementation::program_screen`]), else its answer to the
+/// image level's one vector.
+fn image_bits(imp: &dyn Implementation, progress: bool) -> Result<Bitmap, ImplError> {
+    if let Some(screen) = imp.program_screen(None, progress) {
+        return screen;
+    }
+    let set = VectorSet::new(
+        "full-image",
+        Level::Image,
+        "the whole image",
+        None,
+        vec![Vector::Image(vectors::ImageVector {
+            category: "image".into(),
+        })],
+    );
+    let run = runner::run(&[imp], &set, RunOptions { progress })
+        .into_iter()
+        .next()
+        .ok_or_else(|| ImplError::Failed("the runner returned no run".into()))?;
+    match run.answers?.pop() {
+        Some(Outcome::Value(Answer::Image { bitmap })) => Ok(bitmap),
+        other => Err(ImplError::Failed(format!(
+            "the image level answered {other:?}"
+        ))),
+    }
 }
 
 /// The spec's dithered image (`vectors/images/seed-float316-512x256.png`).

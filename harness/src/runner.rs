@@ -35,6 +35,8 @@ pub struct ImplRun {
     /// Whether it checks the reference's modelled domain itself
     /// ([`Implementation::checks_domain`]).
     pub checks_domain: bool,
+    /// The levels it answers ([`Implementation::supports`]).
+    pub levels: Vec<Level>,
 }
 
 /// How an implementation fared on a set, without its answers.
@@ -296,6 +298,10 @@ pub fn run(impls: &[&dyn Implementation], set: &VectorSet, options: RunOptions) 
                 answers,
                 seconds,
                 checks_domain: imp.checks_domain(),
+                levels: Level::ALL
+                    .into_iter()
+                    .filter(|&l| imp.supports(l))
+                    .collect(),
             }
         })
         .collect()
@@ -384,9 +390,18 @@ pub fn compare_runs(set: &VectorSet, runs: &[ImplRun]) -> Vec<Comparison> {
                     b: &ab[..n],
                 },
             );
+            // An input a side cannot be asked for on its own (a pixel of
+            // an image that comes from its whole program) has no repro and
+            // no localize command.
+            for d in &mut comparison.divergences {
+                let level = d.input.level();
+                d.reproducible = sa.levels.contains(&level) && sb.levels.contains(&level);
+            }
             if comparison.policy == Policy::Exact {
                 for d in &mut comparison.divergences {
-                    d.localize = localize_command(&sa.label, &sb.label, &d.input);
+                    if d.reproducible {
+                        d.localize = localize_command(&sa.label, &sb.label, &d.input);
+                    }
                     let voters: Vec<&&(&ImplRun, &[Outcome<Answer>])> = exact_runs
                         .iter()
                         .filter(|(_, a)| set.level == Level::Image || d.index < a.len())

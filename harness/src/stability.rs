@@ -182,6 +182,7 @@ mod tests {
             answers: Ok(answers),
             seconds: 0.0,
             checks_domain: true,
+            levels: vectors::Level::ALL.to_vec(),
         }
     }
 

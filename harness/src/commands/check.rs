@@ -193,10 +193,16 @@ fn max_error(cast: &Cast, imp: &str, threshold: f64, metric: Metric) -> Result<B
             figures.traps, figures.pixels
         )));
     }
+    let no_shades = || {
+        format!(
+            "no shades to compare: {imp} gives its image's bits alone (it does not answer the \
+             pixels level); --metric flips compares them"
+        )
+    };
     let value = match metric {
         Metric::Flips => figures.flips as f64,
-        Metric::Max => figures.shade.context("no shades to compare")?.1,
-        Metric::Mean => figures.shade.context("no shades to compare")?.0,
+        Metric::Max => figures.shade.with_context(no_shades)?.1,
+        Metric::Mean => figures.shade.with_context(no_shades)?.0,
     };
     let what =
         format!("{imp}: {metric:?} error against {oracle_name} {value:e}, threshold {threshold:e}")

@@ -117,7 +117,7 @@ pub fn write_report(dir: &Path, reports: &mut [LevelReport]) -> anyhow::Result<(
     for report in reports.iter_mut() {
         for c in &mut report.comparisons {
             for d in &mut c.divergences {
-                if matches!(d.input, Vector::Image(_)) {
+                if matches!(d.input, Vector::Image(_)) || !d.reproducible {
                     continue;
                 }
                 let name = format!("{}.json", d.input.slug());

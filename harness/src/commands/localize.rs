@@ -7,7 +7,8 @@
 //! `--point` takes three decimals `x,y,z` (encoded by truncation) or three
 //! triples `s,e,m:s,e,m:s,e,m`. Exit 0: the answers agree (a difference
 //! of the traces that does not reach the answer is printed as such); 1:
-//! they differ (the localization is printed); 2: usage or input error.
+//! they differ (the localization is printed); 2: usage or input error; 3:
+//! a side does not answer the input's level (nothing compared).
 
 use crate::cast::Cast;
 use crate::localize::localize;
@@ -141,6 +142,19 @@ pub fn run(args: LocalizeArgs, cast: &Cast) -> anyhow::Result<ExitCode> {
             .with_context(|| format!("implementation `{label}`"))
     };
     let (a, b) = (open(&args.a)?, open(&args.b)?);
+    // A level a side does not answer is not compared, as in every other
+    // command (docs/verdict.md): a Jack program whose image comes from its
+    // whole run alone has no pixel to be asked for.
+    let level = input.level();
+    for imp in [&a, &b] {
+        if !imp.supports(level) {
+            eprintln!(
+                "error: {} does not answer the {level} level: nothing to localize at {input}",
+                imp.label()
+            );
+            return Ok(ExitCode::from(3));
+        }
+    }
     let tracer = open(&cast.tracer().name)?;
     let found = localize(a.as_ref(), b.as_ref(), tracer.as_ref(), &input)?;
     if args.json {

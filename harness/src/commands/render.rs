@@ -194,6 +194,14 @@ pub fn run(args: RenderArgs, cast: &Cast) -> Result<ExitCode> {
             &image::DynamicImage::ImageRgb8(dithered(&images.bits, Some(traps))),
         )?,
     }
+    if args.values.is_some() && images.shades.is_none() {
+        // Its image is the whole program's screen: bits, no shades.
+        println!(
+            "render: {label} gives no shades (it does not answer the pixels level; its image \
+             comes from its whole program): --values not written"
+        );
+        return Ok(Status::Incomplete.exit_code());
+    }
     if let Some(path) = &args.values {
         let pixels = answers
             .iter()

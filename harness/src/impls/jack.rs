@@ -5,7 +5,10 @@
 //! bindings file. Every query runs on a clone of the program's ready
 //! snapshot; op traces come from the emulator watching the bound operation
 //! functions. The image level renders through the pixel statements, pixels
-//! in parallel, or (with only `capture` bound) runs the whole program.
+//! in parallel, when they give the white bit; else it runs the whole
+//! program where `capture` is bound. A shade the pixel statements give
+//! alone (or before the program's clamp) is clamped and dithered with
+//! ref-f316's own operations, as the reference's pipeline does.
 //!
 //! The fault `web-divide` runs a program with the web IDE's flooring
 //! `Math.divide` in place of its profile's; everything else (the compiler's
@@ -18,9 +21,11 @@ use crate::implementation::{
     Answer, Bitmap, ImageAnswers, ImplError, Implementation, Num, Numbers,
 };
 use common::image_consts::{HEIGHT, WIDTH};
-use common::{Op, Outcome, TraceRecord};
+use common::{Op, OpValue, Outcome, TraceRecord, F316};
 pub use jack::Profile;
-use jack::{Bindings, BoundProgram, Budgets, DivideRule, JackError, JackProgram, WholeRun};
+use jack::{
+    Bindings, BoundPixel, BoundProgram, Budgets, DivideRule, JackError, JackProgram, WholeRun,
+};
 use serde::de::IntoDeserializer;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -96,7 +101,7 @@ fn seed_bindings() -> Bindings {
 }
 
 /// The binding fields of an `[impl.NAME]` table.
-const BINDING_FIELDS: [&str; 10] = [
+const BINDING_FIELDS: [&str; 11] = [
     "ready",
     "float",
     "vec3",
@@ -104,6 +109,7 @@ const BINDING_FIELDS: [&str; 10] = [
     "ops",
     "sdf",
     "pixel",
+    "pixel_shade",
     "capture",
     "out_of_domain",
     "budget",
@@ -222,6 +228,7 @@ fn declared_bindings(fields: &mut Fields<'_>) -> Result<(Bindings, Places), Fiel
         ops: part(fields, "ops")?.unwrap_or_default(),
         sdf: part(fields, "sdf")?,
         pixel: part(fields, "pixel")?,
+        pixel_shade: part(fields, "pixel_shade")?.unwrap_or_default(),
         capture: part(fields, "capture")?,
         out_of_domain: part(fields, "out_of_domain")?,
         budget: part(fields, "budget")?.unwrap_or_default(),
@@ -386,9 +393,67 @@ pub struct JackAdapter {
     hang_told: AtomicBool,
 }
 
+/// One Float316 operation of ref-f316.
+fn ref_op(op: Op, args: &[F316]) -> Outcome<OpValue> {
+    reference::op(op, args, reference::Arith::default()).expect("the operands fit the operation")
+}
+
+fn ref_gt(a: F316, b: F316) -> Outcome<bool> {
+    ref_op(Op::Gt, &[a, b]).map(|v| v == OpValue::Bool(true))
+}
+
+/// The clamp and the 8x8 ordered dither of ref-f316 (its pipeline's
+/// `shaded`), with its own Float316 operations: a shade above 1 is 1, a
+/// negative one 0; pixel (x, y) is white when `shade + (B - 32) / 64 > 0.5`,
+/// B the Bayer entry of (x, y). The white bit of a shade is a function of
+/// the clamped shade and (x, y) alone, so computing it here is exact.
+fn clamp_and_dither(shade: F316, clamped: bool, x: usize, y: usize) -> Outcome<(F316, bool)> {
+    let value = if clamped {
+        shade
+    } else {
+        match ref_gt(shade, F316::ONE) {
+            Outcome::Value(true) => F316::ONE,
+            Outcome::Value(false) if shade.s == 1 => F316::ZERO,
+            Outcome::Value(false) => shade,
+            trap => return trap.map(|_| (shade, false)),
+        }
+    };
+    let threshold = (f64::from(common::image_consts::bayer(x, y)) - 32.0) / 64.0;
+    let threshold = F316::from_f64_truncating(threshold).expect("a Bayer threshold is exact");
+    let dithered = match ref_op(Op::Add, &[value, threshold]) {
+        Outcome::Value(OpValue::Num(d)) => d,
+        other => return other.map(|_| (value, false)),
+    };
+    let half = F316::new(0, 126, 8192);
+    ref_gt(dithered, half).map(|white| (value, white))
+}
+
+/// The answer of pixel (x, y) from what its statements gave: the shade
+/// clamped and the white bit computed as ref-f316 computes them
+/// ([`clamp_and_dither`]) where the program gives the shade before its
+/// clamp, or the shade alone.
+fn finish_pixel(p: Outcome<BoundPixel>, x: usize, y: usize) -> Outcome<Answer> {
+    let pixel = match p {
+        Outcome::Value(p) => p,
+        trap => return trap.map(|_| Answer::Unsupported),
+    };
+    let finished = match pixel.white {
+        Some(white) if pixel.clamped => Outcome::Value((pixel.shade, white)),
+        Some(white) => clamp_and_dither(pixel.shade, false, x, y).map(|(v, _)| (v, white)),
+        None => clamp_and_dither(pixel.shade, pixel.clamped, x, y),
+    };
+    finished.map(|(shade, white)| Answer::Pixel {
+        shade: Num::F316(shade),
+        white,
+    })
+}
+
 /// The whole image through the pixel statements, pixels in parallel,
 /// with a bar of pixels done when `shown` (on a terminal).
-fn render_with_bar(bound: &BoundProgram, shown: bool) -> Result<jack::Render, JackError> {
+fn render_with_bar(
+    bound: &BoundProgram,
+    shown: bool,
+) -> Result<Vec<jack::Counted<BoundPixel>>, JackError> {
     let bar = crate::progress::show(
         crate::progress::items((WIDTH * HEIGHT) as u64, "jack", "pixels"),
         shown,
@@ -425,17 +490,26 @@ impl JackAdapter {
         }
     }
 
-    /// The image: through the pixel statements, else by running the
-    /// whole program.
+    /// The image: through the pixel statements when they give the white
+    /// bit, else by running the whole program where `capture` says how,
+    /// else through the pixel statements with the white bits computed from
+    /// their shades.
     fn image(&self) -> Result<Vec<bool>, ImplError> {
-        if self.bound.has_pixel() {
+        let through_pixels = self.bound.pixel_gives_white()
+            || self.bound.has_pixel() && !self.bound.captures_pixels();
+        if through_pixels {
             let render = render_with_bar(&self.bound, crate::progress::wanted()).map_err(failed)?;
             // A pixel whose computation trapped is never drawn: the Hack
             // screen starts white.
             return Ok(render
-                .pixels
                 .iter()
-                .map(|p| p.outcome.value().is_none_or(|s| s.white))
+                .enumerate()
+                .map(
+                    |(i, p)| match finish_pixel(p.outcome, i % WIDTH, i / WIDTH) {
+                        Outcome::Value(Answer::Pixel { white, .. }) => white,
+                        _ => true,
+                    },
+                )
                 .collect());
         }
         let run = self
@@ -471,15 +545,10 @@ impl JackAdapter {
                     sd: Num::F316(sd),
                     col: Num::F316(col),
                 }),
-            Vector::Pixel(p) => self
-                .bound
-                .pixel(usize::from(p.x), usize::from(p.y))
-                .map_err(failed)?
-                .outcome
-                .map(|s| Answer::Pixel {
-                    shade: Num::F316(s.value),
-                    white: s.white,
-                }),
+            Vector::Pixel(p) => {
+                let (x, y) = (usize::from(p.x), usize::from(p.y));
+                finish_pixel(self.bound.pixel(x, y).map_err(failed)?.outcome, x, y)
+            }
             Vector::Image(_) => Outcome::Value(Answer::Image {
                 bitmap: Bitmap {
                     width: WIDTH,
@@ -557,16 +626,11 @@ impl Implementation for JackAdapter {
             render_with_bar(&self.bound, progress)
                 .map_err(failed)
                 .map(|render| ImageAnswers {
-                    costs: Some(render.pixels.iter().map(|p| p.instructions).collect()),
+                    costs: Some(render.iter().map(|p| p.instructions).collect()),
                     pixels: render
-                        .pixels
                         .into_iter()
-                        .map(|p| {
-                            p.outcome.map(|s| Answer::Pixel {
-                                shade: Num::F316(s.value),
-                                white: s.white,
-                            })
-                        })
+                        .enumerate()
+                        .map(|(i, p)| finish_pixel(p.outcome, i % WIDTH, i / WIDTH))
                         .collect(),
                 }),
         )

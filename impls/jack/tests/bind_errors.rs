@@ -172,3 +172,24 @@ fn an_undocumented_operation_name_is_refused() {
         assert!(e.message.contains("inv_sqrt"), "{e}");
     }
 }
+
+/// A pixel binding must give the shade; `pixel_shade` says what it is and
+/// needs a `pixel` binding (issue 29 item 3).
+#[test]
+fn a_pixel_binding_without_a_shade_and_a_pixel_shade_without_pixel_are_named() {
+    let e = bind_error(open_edited(
+        "pixel = \"shade = Picture.shadeRaw(u, v)\"",
+        "pixel = \"Picture.shadeRaw(u, v)\"",
+    ));
+    assert_eq!(e.field, "pixel");
+    assert!(e.message.contains("no statement gives `shade`"), "{e}");
+    let e = bind_error(open_edited(
+        "pixel = \"shade = Picture.shadeRaw(u, v)\"\n",
+        "",
+    ));
+    assert_eq!(e.field, "pixel_shade");
+    assert!(e.message.contains("`pixel` is not bound"), "{e}");
+    let text = std::fs::read_to_string(format!("{DIR}/bindings.toml")).unwrap();
+    let e = toml::from_str::<Bindings>(&text.replace("\"unclamped\"", "\"raw\"")).unwrap_err();
+    assert!(e.message().contains("unknown variant `raw`"), "{e}");
+}

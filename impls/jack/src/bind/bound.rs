@@ -5,7 +5,7 @@
 use super::error::BindError;
 use super::layout::{Kind, ObjectLayout};
 use super::ready;
-use super::spec::{Bindings, Statements};
+use super::spec::{Bindings, PixelShade, Statements};
 use super::statement::{compile, Call, Classes, Context, Ty};
 use super::vm::{run_all, Regs};
 use super::JackProgram;
@@ -137,6 +137,32 @@ pub fn normalized_coords(x: usize, y: usize) -> (F316, F316) {
     (u, v)
 }
 
+/// One pixel as the pixel statements give it: the shade (clamped to
+/// [0, 1] or not, as `pixel_shade` declares) and the dithered bit when a
+/// statement gives `white`. A program whose clamp and dither are inline in
+/// its render loop gives the shade alone; the harness then clamps and
+/// dithers it exactly as the reference does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BoundPixel {
+    /// The shade before dithering.
+    pub shade: F316,
+    /// Whether `shade` is clamped to [0, 1] already.
+    pub clamped: bool,
+    /// True when the dithered pixel is white; `None` when no statement
+    /// gives `white`.
+    pub white: Option<bool>,
+}
+
+impl From<Shaded> for BoundPixel {
+    fn from(s: Shaded) -> BoundPixel {
+        BoundPixel {
+            shade: s.value,
+            clamped: true,
+            white: Some(s.white),
+        }
+    }
+}
+
 /// A bound Jack program, ready to answer queries.
 #[derive(Clone, Debug)]
 pub struct BoundProgram {
@@ -150,6 +176,8 @@ pub struct BoundProgram {
     op_objects: [i16; 3],
     sdf: Option<Query>,
     pixel: Option<Query>,
+    /// What the pixel statements' `shade` is.
+    pixel_shade: PixelShade,
     pub(crate) out_of_domain: Option<i16>,
     /// The start of whole-program runs (the program's entry, its keys).
     pub(crate) whole: super::whole::WholeSetup,
@@ -216,6 +244,13 @@ impl BoundProgram {
             .as_ref()
             .map(|s| statements("pixel", s, &pixel_context(false)))
             .transpose()?;
+        if bindings.pixel.is_none() && bindings.pixel_shade != PixelShade::Clamped {
+            return Err(BindError::new(
+                "pixel_shade",
+                "says what the `pixel` statements' shade is, but `pixel` is not bound",
+            )
+            .into());
+        }
         let whole = super::whole::WholeSetup::new(program, bindings, &classes)?;
 
         let mut m = ready::reach(program, &bindings.ready, &classes)?;
@@ -242,6 +277,7 @@ impl BoundProgram {
             op_objects,
             sdf,
             pixel,
+            pixel_shade: bindings.pixel_shade,
             out_of_domain: bindings.out_of_domain,
             whole,
         })
@@ -271,6 +307,14 @@ impl BoundProgram {
     /// Whether a pixel query is bound.
     pub fn has_pixel(&self) -> bool {
         self.pixel.is_some()
+    }
+
+    /// Whether the pixel statements give the dithered bit (`white`), not
+    /// the shade alone.
+    pub fn pixel_gives_white(&self) -> bool {
+        self.pixel
+            .as_ref()
+            .is_some_and(|q| q.uses(pixel_reg::WHITE))
     }
 
     pub(crate) fn bound_op(&self, op: Op) -> Option<&BoundOp> {
@@ -434,8 +478,9 @@ impl BoundProgram {
         Ok((q, regs))
     }
 
-    /// Pixel (x, y): its clamped shade and dithered bit.
-    pub fn pixel(&self, x: usize, y: usize) -> Result<Counted<Shaded>, JackError> {
+    /// Pixel (x, y): its shade and, when the statements give it, its
+    /// dithered bit.
+    pub fn pixel(&self, x: usize, y: usize) -> Result<Counted<BoundPixel>, JackError> {
         let mut m = self.machine();
         let (q, mut regs) = self.prepare_pixel(&mut m, x, y)?;
         let (outcome, instructions) = run_all(
@@ -446,9 +491,12 @@ impl BoundProgram {
             self.out_of_domain,
         )?;
         Ok(Counted {
-            outcome: outcome.map(|_| Shaded {
-                value: self.float.read_float(m.ram(), regs[pixel_reg::SHADE]),
-                white: regs[pixel_reg::WHITE] != 0,
+            outcome: outcome.map(|_| BoundPixel {
+                shade: self.float.read_float(m.ram(), regs[pixel_reg::SHADE]),
+                clamped: self.pixel_shade == PixelShade::Clamped,
+                white: q
+                    .uses(pixel_reg::WHITE)
+                    .then(|| regs[pixel_reg::WHITE] != 0),
             }),
             instructions,
         })
@@ -460,23 +508,22 @@ impl BoundProgram {
         &self,
         rows: std::ops::Range<usize>,
         done: &(dyn Fn() + Sync),
-    ) -> Result<crate::Render, JackError> {
+    ) -> Result<Vec<Counted<BoundPixel>>, JackError> {
         use rayon::prelude::*;
         let coords: Vec<(usize, usize)> =
             rows.flat_map(|y| (0..WIDTH).map(move |x| (x, y))).collect();
-        let pixels = coords
+        coords
             .par_iter()
             .map(|&(x, y)| {
                 let p = self.pixel(x, y)?;
                 done();
                 Ok(p)
             })
-            .collect::<Result<Vec<_>, JackError>>()?;
-        Ok(crate::Render { pixels })
+            .collect()
     }
 
-    /// The whole image through the pixel statements.
-    pub fn render(&self) -> Result<crate::Render, JackError> {
+    /// The whole image through the pixel statements, row by row.
+    pub fn render(&self) -> Result<Vec<Counted<BoundPixel>>, JackError> {
         self.render_rows_observed(0..HEIGHT, &|| {})
     }
 }
@@ -629,8 +676,8 @@ fn sdf_query(
     Ok(q)
 }
 
-/// Check the pixel statements give a shade and a white bit, and make their
-/// objects.
+/// Check the pixel statements give a shade (and, if any, a white bit that
+/// is assigned), and make their objects.
 fn pixel_query(
     m: &mut Machine,
     calls: Vec<Call>,
@@ -641,10 +688,12 @@ fn pixel_query(
         calls,
         regs: vec![0; 6],
     };
-    for (reg, name) in [(SHADE, "shade"), (WHITE, "white")] {
-        if !q.uses(reg) {
-            return Err(BindError::new("pixel", format!("no statement gives `{name}`")).into());
-        }
+    if !q.uses(SHADE) {
+        return Err(BindError::new(
+            "pixel",
+            "no statement gives `shade` (the shade before dithering; `white` is optional)",
+        )
+        .into());
     }
     if q.needs_object(WHITE) {
         return Err(

@@ -27,10 +27,10 @@ mod statement;
 mod vm;
 mod whole;
 
-pub use bound::{normalized_coords, BoundProgram};
+pub use bound::{normalized_coords, BoundPixel, BoundProgram};
 pub use error::BindError;
 pub use program::JackProgram;
 pub use ready::DEFAULT_READY_BUDGET;
 pub use signatures::Signatures;
-pub use spec::{Bindings, BudgetFields, Capture, Layout, Ready, Statements};
+pub use spec::{Bindings, BudgetFields, Capture, Layout, PixelShade, Ready, Statements};
 pub use whole::WholeRun;

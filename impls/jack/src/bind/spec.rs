@@ -30,6 +30,10 @@ pub struct Bindings {
     /// The statements of one pixel.
     #[serde(default)]
     pub pixel: Option<Statements>,
+    /// Whether the shade the pixel statements give is clamped to [0, 1]
+    /// already (the default) or taken before the program clamps it.
+    #[serde(default)]
+    pub pixel_shade: PixelShade,
     /// How whole-program mode sees pixels and their operations.
     #[serde(default)]
     pub capture: Option<Capture>,
@@ -69,6 +73,18 @@ impl BudgetFields {
             pixel: self.pixel.unwrap_or(defaults.pixel),
         }
     }
+}
+
+/// `pixel_shade`: what the `shade` of the pixel statements is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PixelShade {
+    /// Clamped to [0, 1], as the reference compares it.
+    #[default]
+    Clamped,
+    /// Before the clamp (a pixel function whose caller clamps): the
+    /// harness clamps it as the reference does.
+    Unclamped,
 }
 
 /// A class of the program: its fields in declaration order, by role, and
