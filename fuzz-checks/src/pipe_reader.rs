@@ -150,7 +150,13 @@ fn protocol_reader(data: &[u8]) {
     for line in lines {
         for &numbers in &numbers {
             for (level, op) in REQUESTS.into_iter().filter(|(l, _)| levels.contains(l)) {
-                let expect = Expect { level, op, numbers };
+                let pixel = (level == Level::Pixels).then_some((3, 5));
+                let expect = Expect {
+                    level,
+                    op,
+                    pixel,
+                    numbers,
+                };
                 match read_line(&line, &expect) {
                     Ok(read) => answer_fits(&read, &expect, &line),
                     Err(e) => well_formed(&e, &line, &ANSWER_FIELDS),

@@ -110,6 +110,7 @@ fn seeds_reach_the_deep_paths() {
     let expect = harness::pipe::protocol::Expect {
         level: vectors::Level::Ops,
         op: Some(common::Op::Add),
+        pixel: None,
         numbers: hello.numbers,
     };
     let read: Vec<_> = lines

@@ -13,6 +13,7 @@ pub mod cli;
 pub mod commands;
 pub mod compare;
 pub mod contain;
+pub mod dither;
 pub mod exhaustive;
 pub mod explain;
 pub mod implementation;

@@ -21,7 +21,7 @@ use crate::implementation::{
     Answer, Bitmap, ImageAnswers, ImplError, Implementation, Num, Numbers,
 };
 use common::image_consts::{HEIGHT, WIDTH};
-use common::{Op, OpValue, Outcome, TraceRecord, F316};
+use common::{Op, Outcome, TraceRecord};
 pub use jack::Profile;
 use jack::{
     Bindings, BoundPixel, BoundProgram, Budgets, DivideRule, JackError, JackProgram, WholeRun,
@@ -393,44 +393,9 @@ pub struct JackAdapter {
     hang_told: AtomicBool,
 }
 
-/// One Float316 operation of ref-f316.
-fn ref_op(op: Op, args: &[F316]) -> Outcome<OpValue> {
-    reference::op(op, args, reference::Arith::default()).expect("the operands fit the operation")
-}
-
-fn ref_gt(a: F316, b: F316) -> Outcome<bool> {
-    ref_op(Op::Gt, &[a, b]).map(|v| v == OpValue::Bool(true))
-}
-
-/// The clamp and the 8x8 ordered dither of ref-f316 (its pipeline's
-/// `shaded`), with its own Float316 operations: a shade above 1 is 1, a
-/// negative one 0; pixel (x, y) is white when `shade + (B - 32) / 64 > 0.5`,
-/// B the Bayer entry of (x, y). The white bit of a shade is a function of
-/// the clamped shade and (x, y) alone, so computing it here is exact.
-fn clamp_and_dither(shade: F316, clamped: bool, x: usize, y: usize) -> Outcome<(F316, bool)> {
-    let value = if clamped {
-        shade
-    } else {
-        match ref_gt(shade, F316::ONE) {
-            Outcome::Value(true) => F316::ONE,
-            Outcome::Value(false) if shade.s == 1 => F316::ZERO,
-            Outcome::Value(false) => shade,
-            trap => return trap.map(|_| (shade, false)),
-        }
-    };
-    let threshold = (f64::from(common::image_consts::bayer(x, y)) - 32.0) / 64.0;
-    let threshold = F316::from_f64_truncating(threshold).expect("a Bayer threshold is exact");
-    let dithered = match ref_op(Op::Add, &[value, threshold]) {
-        Outcome::Value(OpValue::Num(d)) => d,
-        other => return other.map(|_| (value, false)),
-    };
-    let half = F316::new(0, 126, 8192);
-    ref_gt(dithered, half).map(|white| (value, white))
-}
-
 /// The answer of pixel (x, y) from what its statements gave: the shade
 /// clamped and the white bit computed as ref-f316 computes them
-/// ([`clamp_and_dither`]) where the program gives the shade before its
+/// ([`crate::dither::float316`]) where the program gives the shade before its
 /// clamp, or the shade alone.
 fn finish_pixel(p: Outcome<BoundPixel>, x: usize, y: usize) -> Outcome<Answer> {
     let pixel = match p {
@@ -439,8 +404,8 @@ fn finish_pixel(p: Outcome<BoundPixel>, x: usize, y: usize) -> Outcome<Answer> {
     };
     let finished = match pixel.white {
         Some(white) if pixel.clamped => Outcome::Value((pixel.shade, white)),
-        Some(white) => clamp_and_dither(pixel.shade, false, x, y).map(|(v, _)| (v, white)),
-        None => clamp_and_dither(pixel.shade, pixel.clamped, x, y),
+        Some(white) => crate::dither::float316(pixel.shade, false, x, y).map(|(v, _)| (v, white)),
+        None => crate::dither::float316(pixel.shade, pixel.clamped, x, y),
     };
     finished.map(|(shade, white)| Answer::Pixel {
         shade: Num::F316(shade),

@@ -346,6 +346,8 @@ pub struct Expect {
     pub level: Level,
     /// The request's operation (ops level).
     pub op: Option<Op>,
+    /// The request's pixel (pixels level): where a shade alone is dithered.
+    pub pixel: Option<(usize, usize)>,
     pub numbers: Numbers,
 }
 
@@ -357,6 +359,10 @@ impl Expect {
             level: input.level(),
             op: match input {
                 Vector::Op(o) => Some(o.op),
+                _ => None,
+            },
+            pixel: match input {
+                Vector::Pixel(p) => Some((usize::from(p.x), usize::from(p.y))),
                 _ => None,
             },
             numbers,
@@ -513,10 +519,27 @@ fn value(raw: &RawAnswer, expect: &Expect, line: &str) -> Result<Answer, LineErr
             sd: num(raw.sd.as_ref(), "sd", n, line)?,
             col: num(raw.col.as_ref(), "col", n, line)?,
         },
-        Level::Pixels => Answer::Pixel {
-            shade: num(raw.shade.as_ref(), "shade", n, line)?,
-            white: boolean(raw.white.as_ref(), "white", line)?,
-        },
+        Level::Pixels => {
+            let shade = num(raw.shade.as_ref(), "shade", n, line)?;
+            match (&raw.white, expect.pixel) {
+                (Some(_), _) | (None, None) => Answer::Pixel {
+                    shade,
+                    white: boolean(raw.white.as_ref(), "white", line)?,
+                },
+                // A shade alone: clamped and dithered as the reference
+                // does, in the adapter's numbers.
+                (None, Some((x, y))) => match crate::dither::finish(shade, x, y) {
+                    Outcome::Value((shade, white)) => Answer::Pixel { shade, white },
+                    _ => {
+                        return Err(LineError::new(
+                            Some("shade"),
+                            format!("{shade}: no dithered value comes from this shade"),
+                            line,
+                        ))
+                    }
+                },
+            }
+        }
         Level::Image => Answer::Image {
             bitmap: bitmap(raw.white.as_ref(), line)?,
         },
@@ -642,6 +665,7 @@ mod tests {
         let expect = Expect {
             level: Level::Ops,
             op: Some(Op::Halve),
+            pixel: None,
             numbers: Numbers::Float316,
         };
         let line = read_line(r#"{"id":3,"outcome":"unsupported"}"#, &expect).unwrap();
@@ -659,6 +683,60 @@ mod tests {
         assert!(
             e.contains("expected value, sys_error, hang or out_of_domain"),
             "{e}"
+        );
+    }
+
+    /// A pixel answered with its shade alone is clamped and dithered as the
+    /// reference does, in the adapter's numbers; one with `white` is read
+    /// as it is.
+    #[test]
+    fn a_pixel_may_be_answered_with_its_shade_alone() {
+        let expect = |numbers| Expect {
+            level: Level::Pixels,
+            op: None,
+            pixel: Some((3, 5)),
+            numbers,
+        };
+        let read = |line: &str, numbers| match read_line(line, &expect(numbers)).unwrap() {
+            Line::Answer {
+                outcome: Outcome::Value(Answer::Pixel { shade, white }),
+                ..
+            } => (shade, white),
+            other => panic!("{other:?}"),
+        };
+        // B(3, 5) = 30: white when (shade + 30/64) - 0.5 > 0.5, above 34/64;
+        // 1.5 clamps to 1 (white), -0 to 0 (black), and 0.5 stays black.
+        assert_eq!(
+            read(r#"{"id":0,"shade":1.5}"#, Numbers::F64),
+            (Num::F64(1.0), true)
+        );
+        assert_eq!(
+            read(r#"{"id":0,"shade":0.5}"#, Numbers::F64),
+            (Num::F64(0.5), false)
+        );
+        assert_eq!(
+            read(r#"{"id":0,"shade":-0.0}"#, Numbers::F32),
+            (Num::F32(0.0), false)
+        );
+        assert_eq!(
+            read(r#"{"id":0,"shade":0.3,"white":true}"#, Numbers::F64),
+            (Num::F64(0.3), true)
+        );
+        // B(3, 0) = 60: white when add(shade, 28/64) > 0.5: 0.125 is.
+        let at = Expect {
+            pixel: Some((3, 0)),
+            ..expect(Numbers::Float316)
+        };
+        let line = r#"{"id":0,"shade":[0,124,8192]}"#;
+        let Line::Answer { outcome, .. } = read_line(line, &at).unwrap() else {
+            panic!("an answer")
+        };
+        assert_eq!(
+            outcome,
+            Outcome::Value(Answer::Pixel {
+                shade: Num::F316(F316::new(0, 124, 8192)),
+                white: true,
+            })
         );
     }
 }
