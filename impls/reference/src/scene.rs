@@ -18,8 +18,9 @@ pub enum SceneError {
         path: String,
         source: serde_json::Error,
     },
-    /// A field's value cannot be used by an implementation.
-    #[error("scene field `{field}` = {value}: {reason}")]
+    /// A field's value cannot be used by an implementation (the value as
+    /// [`common::shown`] shows it: `1e300`, never 301 digits).
+    #[error("scene field `{field}` = {}: {reason}", common::shown(*.value))]
     Field {
         field: String,
         value: f64,

@@ -99,3 +99,15 @@ fn every_error_names_the_file_and_the_field() {
     assert!(e.contains("missing.json"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A huge value is shown as `1e300`, not its 301 digits (issue 35 item 11).
+#[test]
+fn a_huge_value_is_shown_compactly() {
+    let e = load(
+        "k",
+        r#"{"camera":{"position":[0,1e300,0],"look_at":[0,0,0],"up":[0,1e300,0]}}"#,
+    )
+    .unwrap_err();
+    assert!(e.contains("`camera.up` = 1e300: "), "{e}");
+    assert!(!e.contains("000000"), "{e}");
+}
