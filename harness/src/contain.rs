@@ -21,7 +21,7 @@ use std::cell::RefCell;
 use std::fmt;
 use std::panic::{self, AssertUnwindSafe};
 use std::sync::{mpsc, Arc, Mutex, Once, PoisonError};
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use vectors::{Level, Vector};
 
 /// How an implementation failed to answer.
@@ -343,6 +343,26 @@ fn on_worker<T: Send + 'static>(
     Ok(answer)
 }
 
+/// Run a set-up step `job` (a shader's compilation) on a contained worker
+/// and wait at most `limit`, counted from this call: `Some(v)` when it
+/// finished in time, `None` when it did not. A job past its limit is left
+/// on its worker, which holds everything the job uses; what it returns
+/// when it ends is dropped. A panic is a failure of `label`.
+pub(crate) fn within<T: Send + 'static>(
+    label: &str,
+    limit: Duration,
+    job: impl FnOnce() -> T + Send + 'static,
+) -> Result<Option<T>, ImplError> {
+    let start = Instant::now();
+    match on_worker(label, limit, move || catch(job))? {
+        // A result that came after the limit (this thread waited late) is
+        // past it all the same.
+        Some(Ok(value)) if start.elapsed() <= limit => Ok(Some(value)),
+        Some(Ok(_)) | None => Ok(None),
+        Some(Err(message)) => Err(ImplError::Failed(format!("{label} panicked: {message}"))),
+    }
+}
+
 /// Wait at most `limit` for a value on `rx`: `Some(Some(v))` when it came,
 /// `Some(None)` when the time ran out, `None` when the sender is gone. The
 /// runner's jobs wait here on the runner's own threads
@@ -550,6 +570,30 @@ mod duration_tests {
         assert_eq!(user_seconds(86_400.0), Some(Duration::from_secs(86_400)));
         for bad in [1e300, 1e19, 86_400.5, 0.0, -1.0, f64::NAN, f64::INFINITY] {
             assert_eq!(user_seconds(bad), None, "{bad}");
+        }
+    }
+
+    /// A set-up step past its limit is `None` and left on its worker; one
+    /// in time is its value; a panic is a failure naming the label.
+    #[test]
+    fn a_step_within_its_limit_or_not() {
+        let slow = within("slow", Duration::from_millis(20), || {
+            std::thread::sleep(Duration::from_millis(500));
+            1
+        });
+        assert!(matches!(slow, Ok(None)), "{slow:?}");
+        assert!(matches!(
+            within("quick", Duration::from_secs(60), || 2),
+            Ok(Some(2))
+        ));
+        let panicked = within("boom", Duration::from_secs(60), || -> u8 {
+            panic!("no driver")
+        });
+        match panicked {
+            Err(ImplError::Failed(message)) => {
+                assert!(message.starts_with("boom panicked: no driver"), "{message}")
+            }
+            other => panic!("{other:?}"),
         }
     }
 }

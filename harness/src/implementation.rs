@@ -303,3 +303,30 @@ pub trait Implementation: Send + Sync {
         )))
     }
 }
+
+#[cfg(test)]
+mod display_tests {
+    use super::*;
+
+    /// A huge or tiny number is shown in scientific notation, never as its
+    /// hundreds of digits (issue 35 item 11).
+    #[test]
+    fn huge_and_tiny_numbers_are_shown_compactly() {
+        assert_eq!(Num::F64(1e300).to_string(), "1e300");
+        assert_eq!(Num::F64(-1e-300).to_string(), "-1e-300");
+        assert_eq!(Num::F32(f32::MAX).to_string(), "3.4028235e38f32");
+        // 2^997 and -2^-992 as Float316 triples.
+        assert_eq!(
+            Num::F316(F316::new(0, 1124, 8192)).to_string(),
+            "(0,1124,8192)=1.3393857589828342e300"
+        );
+        assert_eq!(
+            Num::F316(F316::new(1, -865, 8192)).to_string(),
+            "(1,-865,8192)=-2.3891548633682403e-299"
+        );
+        assert_eq!(
+            Num::F316(F316::new(0, 127, 12288)).to_string(),
+            "(0,127,12288)=1.5"
+        );
+    }
+}

@@ -299,3 +299,46 @@ fn out_of_range_durations_are_refused_with_the_field_named() {
         text(&o)
     );
 }
+
+/// A shader whose compilation outlasts its limit fails its entry, naming
+/// the file and the limit, and the rest of the cast is listed: a driver
+/// compiling for minutes hung `harness cast` (issue 35 item 5). The limit,
+/// 120 s or the entry's larger `timeout_s`, is made tiny here through
+/// HARNESS_SHADER_COMPILE_S; a step that came back after it is past it.
+#[test]
+fn a_shader_compiling_past_its_limit_fails_its_entry_and_the_cast_goes_on() {
+    let dir = project();
+    let shader = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/shaders/seed.glsl");
+    std::fs::write(
+        dir.path().join("harness.toml"),
+        format!(
+            "{PROJECT}\n[impl.slow]\nkind = \"shader\"\npath = \"{shader}\"\nshade = \"red\"\n"
+        ),
+    )
+    .unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_harness"))
+        .args(["cast", "--json"])
+        .current_dir(dir.path())
+        .env("HARNESS_SHADER_COMPILE_S", "0.000001")
+        .output()
+        .expect("the binary runs");
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let list: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let find = |name: &str| {
+        list.as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["name"] == name)
+            .unwrap_or_else(|| panic!("{name} in {list}"))
+            .clone()
+    };
+    let slow = find("slow");
+    assert_eq!(slow["available"], false, "{slow}");
+    let why = slow["unavailable"].as_str().unwrap();
+    assert!(
+        why.contains("seed.glsl: the shader did not compile within its limit of 0.000001 s"),
+        "{why}"
+    );
+    assert_eq!(find("my-port")["available"], true);
+    assert_eq!(find("ref-f64")["available"], true);
+}

@@ -565,6 +565,43 @@ fn a_jack_operation_that_halts_is_a_crash_on_its_input() {
     assert_status(&o, 1, &["bad: ", "halted"]);
 }
 
+/// A bound operation that recurses for ever overflows the Jack stack: a
+/// crash on its input like `Sys.halt`, never a failure of the whole batch
+/// (which `check` skipped with 125 and `diff` reported without its input,
+/// dropping the answers before it).
+#[test]
+fn a_jack_operation_that_recurses_for_ever_is_a_crash_on_its_input() {
+    let p = jack_port_with("Num", "mod2", "do Num.mod2(a);");
+    let o = run(p.path(), &["diff", "ref-f316", "port", "--level", "ops"]);
+    assert_status(
+        &o,
+        3,
+        &[
+            "failed: port on ops-small",
+            "crashed on input #",
+            "mod2(",
+            "Stack overflow",
+        ],
+    );
+    assert!(
+        vectors_compared(&text(&o)) > 0,
+        "the answers before it are compared: {}",
+        text(&o)
+    );
+    let o = run(
+        p.path(),
+        &[
+            "check",
+            "--no-divergence",
+            "ref-f316",
+            "port",
+            "--level",
+            "ops",
+        ],
+    );
+    assert_status(&o, 1, &["bad: ", "Stack overflow"]);
+}
+
 /// A port whose whole program stops with `Sys.error` as it starts to draw
 /// (its entry points all answer): the nightly's screens step reports that
 /// screen as not compared, never skips it.

@@ -442,3 +442,17 @@ fn a_report_never_replaces_a_folder_of_other_files_or_of_its_inputs() {
     let o = harness(&["merge", s(&zero), s(&one), "--out", s(&merged)]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
 }
+
+/// A `--point` coordinate beyond Float316's range is named as the user
+/// wrote it, `1e-300`, not as 300 digits (issue 35 item 11).
+#[test]
+fn a_point_beyond_the_float316_range_is_shown_compactly() {
+    let o = harness(&["localize", "ref-f316", "ref-f64", "--point", "1e-300,0,0"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("--point: 1e-300 is not a Float316 value"),
+        "{}",
+        text(&o)
+    );
+    assert!(!text(&o).contains("000000"), "{}", text(&o));
+}

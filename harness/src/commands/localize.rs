@@ -91,8 +91,9 @@ pub fn parse_point(p: &str) -> anyhow::Result<[F316; 3]> {
         ints::<f64>(p, 3, "--point")?
             .into_iter()
             .map(|x| {
-                F316::from_f64_truncating(x)
-                    .with_context(|| format!("--point: {x} is not a Float316 value"))
+                F316::from_f64_truncating(x).with_context(|| {
+                    format!("--point: {} is not a Float316 value", common::shown(x))
+                })
             })
             .collect::<Result<_, _>>()?
     };

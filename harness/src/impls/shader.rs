@@ -206,7 +206,43 @@ enum Source {
     },
 }
 
-/// Compiles the shader on the preferred adapter.
+/// How long a shader with a time limit (a user's, the seed's Shadertoy
+/// port) may take to compile by default: its pipelines and each kernel's
+/// first dispatch, where a driver may compile machine code. An entry's
+/// `timeout_s` above it is its limit instead.
+pub const COMPILE_LIMIT: Duration = Duration::from_secs(120);
+
+/// The environment variable that sets every such shader's compile limit
+/// instead, in seconds (in (0, 86400], as `HARNESS_WATCHDOG_S`).
+pub const COMPILE_LIMIT_VAR: &str = "HARNESS_SHADER_COMPILE_S";
+
+/// The compile limit of a shader whose dispatches have `time_limit`: none
+/// for our own kernels, which have no time limit either (their loops and
+/// their compilation are known); else `from_env` (the value of
+/// [`COMPILE_LIMIT_VAR`]) when it is a valid duration; else the larger of
+/// [`COMPILE_LIMIT`] and the time limit.
+fn compile_limit(time_limit: Option<Duration>, from_env: Option<&str>) -> Option<Duration> {
+    let time_limit = time_limit?;
+    if let Some(text) = from_env {
+        match text
+            .parse::<f64>()
+            .ok()
+            .and_then(crate::contain::user_seconds)
+        {
+            Some(limit) => return Some(limit),
+            None => eprintln!(
+                "warning: {COMPILE_LIMIT_VAR}: `{text}` is not a number of seconds in \
+                 (0, {}]: not used, the default compile limit applies",
+                crate::contain::MAX_DURATION_S
+            ),
+        }
+    }
+    Some(COMPILE_LIMIT.max(time_limit))
+}
+
+/// Compiles the shader on the preferred adapter, a shader with a time limit
+/// on a contained worker under [`compile_limit`]: one whose compilation
+/// never ends fails its entry, and `harness cast` lists the others.
 struct ShaderOpener {
     source: Source,
     options: ShaderOptions,
@@ -221,7 +257,34 @@ impl Opener for ShaderOpener {
                 ShaderSource::read(path, *language).map_err(failed)?
             }
         };
-        let shader = UserShader::open(&source, &self.options).map_err(|e| match e {
+        let options = self.options;
+        let limit = compile_limit(
+            options.time_limit,
+            std::env::var(COMPILE_LIMIT_VAR).ok().as_deref(),
+        );
+        let opened = match limit {
+            None => UserShader::open(&source, &options),
+            Some(limit) => {
+                let name = source.name().to_string();
+                let label = request.label.to_string();
+                match crate::contain::within(&label, limit, move || {
+                    UserShader::open(&source, &options)
+                })? {
+                    Some(opened) => opened,
+                    None => {
+                        return Err(ImplError::Failed(format!(
+                            "{name}: the shader did not compile within its limit of {} s \
+                             (its pipelines and each kernel's first dispatch; the limit is \
+                             the larger of {} s and its timeout_s, {COMPILE_LIMIT_VAR} sets \
+                             another): the driver is left compiling, the entry is not used",
+                            common::shown(limit.as_secs_f64()),
+                            COMPILE_LIMIT.as_secs()
+                        )))
+                    }
+                }
+            }
+        };
+        let shader = opened.map_err(|e| match e {
             GpuError::NoAdapter { .. } => {
                 ImplError::Unavailable(format!("no usable wgpu adapter: {e}"))
             }
@@ -353,6 +416,27 @@ mod tests {
             assert_eq!(entry.levels, super::levels_of(&provides), "{name}");
         }
         assert_eq!(cast.get("gpu-f316").unwrap().levels, Level::ALL);
+    }
+
+    /// A shader's compilation is bounded by the larger of 120 s and its
+    /// `timeout_s`, or by HARNESS_SHADER_COMPILE_S; ours are not (issue 35
+    /// item 5).
+    #[test]
+    fn the_compile_limit_is_the_larger_of_120_s_and_the_time_limit() {
+        use super::compile_limit;
+        use std::time::Duration;
+        let s = Duration::from_secs;
+        assert_eq!(compile_limit(Some(s(10)), None), Some(s(120)));
+        assert_eq!(compile_limit(Some(s(600)), None), Some(s(600)));
+        assert_eq!(compile_limit(None, None), None);
+        assert_eq!(compile_limit(None, Some("5")), None);
+        assert_eq!(
+            compile_limit(Some(s(600)), Some("0.5")),
+            Some(Duration::from_millis(500))
+        );
+        for bad in ["0", "-1", "1e300", "soon"] {
+            assert_eq!(compile_limit(Some(s(10)), Some(bad)), Some(s(120)), "{bad}");
+        }
     }
 
     /// A project file at the repository's root, so that paths are the

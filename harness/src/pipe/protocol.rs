@@ -236,7 +236,7 @@ impl fmt::Display for Wire {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Wire::Triple(t) => write!(f, "the triple {t:?}"),
-            Wire::Number(x) => write!(f, "the number {x}"),
+            Wire::Number(x) => write!(f, "the number {}", common::Shown(*x)),
             Wire::Bool(b) => write!(f, "{b}"),
             Wire::Text(s) => write!(f, "a string of {} characters", s.chars().count()),
         }
@@ -738,5 +738,25 @@ mod tests {
                 white: true,
             })
         );
+    }
+
+    /// A huge number where a triple is due is shown as `1e300`, not its 301
+    /// digits (issue 35 item 11).
+    #[test]
+    fn a_huge_number_in_an_answer_is_shown_compactly() {
+        let expect = Expect {
+            level: Level::Ops,
+            op: Some(Op::Add),
+            pixel: None,
+            numbers: Numbers::Float316,
+        };
+        let e = read_line(r#"{"id":3,"value":1e300}"#, &expect)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("the number 1e300; a float316 adapter answers a triple"),
+            "{e}"
+        );
+        assert!(!e.contains("000000"), "{e}");
     }
 }

@@ -103,15 +103,39 @@ impl fmt::Debug for F316 {
 }
 
 impl fmt::Display for F316 {
-    /// `(s,e,m)=value`, e.g. `(0,127,8192)=1`.
+    /// `(s,e,m)=value`, e.g. `(0,127,8192)=1`, the value as
+    /// [`crate::shown`] shows it (`(0,1124,8192)=2.78...e300`, never 301
+    /// digits).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "({},{},{})={}", self.s, self.e, self.m, self.to_f64())
+        write!(
+            f,
+            "({},{},{})={}",
+            self.s,
+            self.e,
+            self.m,
+            crate::Shown(self.to_f64())
+        )
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The value is shown compactly: `1.3393857589828342e300` for 2^997,
+    /// not its 301 digits (issue 35 item 11).
+    #[test]
+    fn a_huge_or_tiny_value_is_shown_compactly() {
+        assert_eq!(
+            F316::new(0, 1124, 8192).to_string(),
+            "(0,1124,8192)=1.3393857589828342e300"
+        );
+        assert_eq!(
+            F316::new(0, 48, 8857).to_string(),
+            "(0,48,8857)=1.7886569056108804e-24"
+        );
+        assert_eq!(F316::ONE.to_string(), "(0,127,8192)=1");
+    }
 
     #[test]
     fn spec_constants_round_trip() {

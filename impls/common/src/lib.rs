@@ -11,9 +11,11 @@ pub mod input;
 pub mod jack_int;
 pub mod op;
 pub mod outcome;
+pub mod shown;
 pub mod trace;
 
 pub use f316::F316;
 pub use op::Op;
 pub use outcome::{Outcome, OutcomeKind};
+pub use shown::{shown, shown_f32, Shown};
 pub use trace::{OpValue, TraceRecord};

@@ -18,8 +18,9 @@ pub enum SceneError {
         path: String,
         source: serde_json::Error,
     },
-    /// A field's value cannot be used by an implementation.
-    #[error("scene field `{field}` = {value}: {reason}")]
+    /// A field's value cannot be used by an implementation (the value as
+    /// [`common::shown`] shows it: `1e300`, never 301 digits).
+    #[error("scene field `{field}` = {}: {reason}", common::shown(*.value))]
     Field {
         field: String,
         value: f64,
@@ -32,6 +33,13 @@ pub enum SceneError {
     /// seed scene needs no file).
     #[error("scene file {path}: the object sets no field (leave out --scene for the seed scene)")]
     Empty { path: String },
+    /// An error of the file's fields ([`Scene::check`]), with the file
+    /// named.
+    #[error("scene file {path}: {error}")]
+    InFile {
+        path: String,
+        error: Box<SceneError>,
+    },
     /// Evaluating the camera basis (done once per image) trapped.
     #[error("the camera basis cannot be computed: {0}")]
     Camera(String),
@@ -190,7 +198,8 @@ impl Default for Camera {
 
 impl Scene {
     /// Read a scene from a JSON file; fields left out keep the seed scene's
-    /// values.
+    /// values. Every error names the file (and the field, where one is at
+    /// fault).
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
         let shown = path.display().to_string();
         let text = common::input::read_text(path)?;
@@ -210,10 +219,13 @@ impl Scene {
         }
         // Parsed again from the text, so that a field's error has its line.
         let scene: Scene = serde_json::from_str(&text).map_err(|source| SceneError::Parse {
-            path: shown,
+            path: shown.clone(),
             source,
         })?;
-        scene.check()?;
+        scene.check().map_err(|error| SceneError::InFile {
+            path: shown,
+            error: Box::new(error),
+        })?;
         Ok(scene)
     }
 

@@ -59,3 +59,55 @@ fn a_camera_without_direction_is_refused() {
     s.camera.look_at = s.camera.position;
     assert!(Reference::new(RefImpl::F316, &s, Settings::default()).is_err());
 }
+
+/// Every error of a scene file names the file, and the field where one is
+/// at fault: the checks' errors named no file (issue 35 item 11).
+#[test]
+fn every_error_names_the_file_and_the_field() {
+    let dir = std::env::temp_dir().join(format!("scene-limits-files-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("my-scene.json");
+    let shown = path.display().to_string();
+    for (text, field) in [
+        (
+            r#"{"march":{"view_steps":100000}}"#,
+            Some("march.view_steps"),
+        ),
+        (
+            r#"{"camera":{"position":[0,0,0],"look_at":[0,0,0]}}"#,
+            Some("camera.look_at"),
+        ),
+        (
+            r#"{"camera":{"position":[0,1e300,0],"look_at":[0,0,0],"up":[0,1e300,0]}}"#,
+            Some("camera.up"),
+        ),
+        (r#"{"torus":{"tube":0.5}}"#, Some("tube")),
+        ("{\"radius\": NaN}", None),
+        ("[]", None),
+        ("{}", None),
+    ] {
+        std::fs::write(&path, text).unwrap();
+        let e = Scene::from_file(&path).unwrap_err().to_string();
+        assert!(e.contains(&shown), "{text}: {e}");
+        if let Some(field) = field {
+            assert!(e.contains(field), "{text}: {e}");
+        }
+    }
+    let e = Scene::from_file(&dir.join("missing.json"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("missing.json"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A huge value is shown as `1e300`, not its 301 digits (issue 35 item 11).
+#[test]
+fn a_huge_value_is_shown_compactly() {
+    let e = load(
+        "k",
+        r#"{"camera":{"position":[0,1e300,0],"look_at":[0,0,0],"up":[0,1e300,0]}}"#,
+    )
+    .unwrap_err();
+    assert!(e.contains("`camera.up` = 1e300: "), "{e}");
+    assert!(!e.contains("000000"), "{e}");
+}

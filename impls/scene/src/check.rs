@@ -7,6 +7,7 @@ use crate::desc::{
     Background, Camera, Colour, Description, Material, Method, Node, Output, Texture, Transform,
 };
 use crate::SceneError;
+use common::shown;
 use std::collections::BTreeSet;
 
 /// The most steps a march may take.
@@ -60,13 +61,16 @@ fn positive(path: &str, v: f64) -> Result<(), SceneError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(err(path, format!("must be positive, is {v}")))
+        Err(err(path, format!("must be positive, is {}", shown(v))))
     }
 }
 
 fn finite(path: &str, v: &[f64]) -> Result<(), SceneError> {
     match v.iter().find(|x| !x.is_finite() || x.abs() > 1e6) {
-        Some(x) => Err(err(path, format!("{x} is not a finite number below 1e6"))),
+        Some(x) => Err(err(
+            path,
+            format!("{} is not a finite number below 1e6", shown(*x)),
+        )),
         None => Ok(()),
     }
 }
@@ -452,7 +456,7 @@ impl Walk<'_> {
                     if c <= s.radius {
                         return Err(err(
                             format!("{p}.size[{i}]"),
-                            format!("must exceed the radius {}", s.radius),
+                            format!("must exceed the radius {}", shown(s.radius)),
                         ));
                     }
                 }

@@ -228,3 +228,24 @@ fn transforms_and_references_are_bounded() {
         ],
     );
 }
+
+/// A huge value is shown compactly in the error, `1e300` and not its 301
+/// digits (issue 35 item 11).
+#[test]
+fn huge_values_are_shown_compactly() {
+    let e = error(|v| v["image"]["camera"]["look_at"]["position"] = json!([0.0, 1e300, 4.0]));
+    expect(
+        &e,
+        &[
+            "image.camera.look_at.position",
+            "1e300 is not a finite number below 1e6",
+        ],
+    );
+    assert!(!e.contains("000000"), "{e}");
+    let e = error(|v| v["nodes"]["sphere"]["sphere"]["radius"] = json!(-1e300));
+    expect(
+        &e,
+        &["nodes.sphere.sphere.radius", "must be positive, is -1e300"],
+    );
+    assert!(!e.contains("000000"), "{e}");
+}

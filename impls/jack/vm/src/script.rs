@@ -705,19 +705,24 @@ impl Run {
             "output-file" => {
                 arity(1)?;
                 let name = self.output_name(&words[1])?;
+                let path = self.dir.join(name);
                 if self
                     .compare
                     .as_ref()
-                    .is_some_and(|(c, _)| c.file_name() == Some(name))
+                    .is_some_and(|(c, _)| c.file_name() == Some(name) || same_file(c, &path))
                 {
                     return Err(format!("output-file {name:?} is the compare file"));
                 }
-                self.output = Some((self.dir.join(name), line, col));
+                self.output = Some((path, line, col));
             }
             "compare-to" => {
                 arity(1)?;
                 let path = self.dir.join(&words[1]);
-                if self.output.as_ref().is_some_and(|(o, _, _)| *o == path) {
+                if self
+                    .output
+                    .as_ref()
+                    .is_some_and(|(o, _, _)| same_file(o, &path))
+                {
                     return Err(format!("compare-to {:?} is the output file", words[1]));
                 }
                 let text = common::input::read_text(&path).map_err(|e| e.to_string())?;
@@ -925,4 +930,11 @@ fn open_loop(what: &str) -> String {
     format!(
         "this {what} ran {MAX_OPEN_LOOP} times and the program has not ended: stopped (the harness's bound for a loop without a count)"
     )
+}
+
+/// Whether `a` and `b` name one file: the same path, or paths that resolve
+/// to the same file (`sub/../Count.out`, a symbolic link to it), so that an
+/// `output-file` never writes over the file a `compare-to` reads.
+fn same_file(a: &Path, b: &Path) -> bool {
+    a == b || matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
 }

@@ -323,6 +323,9 @@ fn a_star_in_a_desktop_compare_line_matches_any_one_character() {
 fn a_script_is_bounded_in_what_it_reads_nests_repeats_and_writes() {
     let tmp = folder(&[("Count.vm", COUNT_VM)]);
     let tst = tmp.path().join("Bad.tst");
+    // Other names of the compare file: through a folder, and a link.
+    std::fs::create_dir(tmp.path().join("sub")).unwrap();
+    std::os::unix::fs::symlink("Count.out", tmp.path().join("Link.out")).unwrap();
     let error = |text: &str| {
         std::fs::write(&tst, text).unwrap();
         run_script(&tst, Profile::Desktop)
@@ -360,11 +363,27 @@ fn a_script_is_bounded_in_what_it_reads_nests_repeats_and_writes() {
             "output-file \"Count.out\" is the compare file",
         ),
         (
+            "load Count.vm, output-file Count.out, compare-to Count.out;",
+            "1:39: compare-to \"Count.out\" is the output file",
+        ),
+        (
+            "load Count.vm, output-file Count.out, compare-to sub/../Count.out;",
+            "1:39: compare-to \"sub/../Count.out\" is the output file",
+        ),
+        (
+            "load Count.vm, output-file Link.out, compare-to Count.out;",
+            "1:38: compare-to \"Count.out\" is the output file",
+        ),
+        (
+            "load Count.vm, compare-to Count.out, output-file Link.out;",
+            "1:38: output-file \"Link.out\" is the compare file",
+        ),
+        (
             "load Count.vm;\nrepeat { vmstep; }",
             "2:1: this repeat ran 100000000 times and the program has not ended",
         ),
     ] {
-        if text.contains("compare-to Count.out") {
+        if text.contains("Count.out") {
             std::fs::write(tmp.path().join("Count.out"), "").unwrap();
         }
         let got = error(text);
