@@ -436,9 +436,22 @@ fn the_whole_image_paths_pass_through_containment() {
         assert_eq!(f.kind, FailureKind::Panic);
         assert!(f.message.contains(what), "{f}");
     }
+    // ref-f316 gives its whole image through the library's own loop, and
+    // has no program screen.
     let reference = contained(Cast::builtin().open("ref-f316").unwrap());
-    assert!(reference.render_image(false).is_none());
+    let image = reference.render_image(false);
+    let Some(Ok(image)) = image else {
+        panic!("ref-f316's image is passed on: {image:?}")
+    };
+    assert_eq!(image.pixels.len(), 512 * 256);
     assert!(reference.program_screen(None, false).is_none());
+    // One with neither has none once contained.
+    let plain = contained(Box::new(ThreadNoting {
+        threads: Default::default(),
+        hang_on: None,
+    }));
+    assert!(plain.render_image(false).is_none());
+    assert!(plain.program_screen(None, false).is_none());
 }
 
 /// Answers every input with a number, and notes the thread each batch ran
