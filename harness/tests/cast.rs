@@ -32,20 +32,23 @@ fn project() -> tempfile::TempDir {
     dir
 }
 
+/// The entry `name` of `harness cast --json`'s list.
+fn entry(list: &serde_json::Value, name: &str) -> serde_json::Value {
+    list.as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["name"] == name)
+        .unwrap_or_else(|| panic!("{name} in {list}"))
+        .clone()
+}
+
 #[test]
 fn cast_lists_the_declared_implementations_with_their_group() {
     let dir = project();
     let o = harness_in(dir.path(), &["cast", "--json"]);
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let list: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let find = |name: &str| {
-        list.as_array()
-            .unwrap()
-            .iter()
-            .find(|e| e["name"] == name)
-            .unwrap_or_else(|| panic!("{name} in {list}"))
-            .clone()
-    };
+    let find = |name: &str| entry(&list, name);
     let port = find("my-port");
     assert_eq!(port["kind"], "reference");
     assert_eq!(port["numbers"], "float316");
@@ -324,14 +327,7 @@ fn a_shader_compiling_past_its_limit_fails_its_entry_and_the_cast_goes_on() {
         .expect("the binary runs");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     let list: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let find = |name: &str| {
-        list.as_array()
-            .unwrap()
-            .iter()
-            .find(|e| e["name"] == name)
-            .unwrap_or_else(|| panic!("{name} in {list}"))
-            .clone()
-    };
+    let find = |name: &str| entry(&list, name);
     let slow = find("slow");
     assert_eq!(slow["available"], false, "{slow}");
     let why = slow["unavailable"].as_str().unwrap();

@@ -534,35 +534,39 @@ fn explain_exits_1_only_where_the_dithered_bit_differs() {
     assert_status(&o, 1, &["pixel(106,93)"]);
 }
 
-/// A bound operation that halts the program crashes on its input: `diff`
-/// names it and keeps the answers before it, and `check` says bad, never
-/// skip, so `git bisect run` blames the commit.
-#[test]
-fn a_jack_operation_that_halts_is_a_crash_on_its_input() {
-    let p = jack_port_with("Num", "mod2", "do Sys.halt();");
+/// A port whose `mod2` runs `statement` first: `diff` names the input it
+/// crashed on (with `diff_names`) and keeps the answers before it, and
+/// `check` says bad (with `why`), never skip, so `git bisect run` blames
+/// the commit.
+fn assert_mod2_crashes_on_its_input(statement: &str, diff_names: &[&str], why: &str) {
+    let p = jack_port_with("Num", "mod2", statement);
     let o = run(p.path(), &["diff", "ref-f316", "port", "--level", "ops"]);
-    assert_status(
-        &o,
-        3,
-        &["failed: port on ops-small", "crashed", "mod2(", "halted"],
-    );
+    assert_status(&o, 3, diff_names);
     assert!(
         vectors_compared(&text(&o)) > 0,
         "the answers before it are compared: {}",
         text(&o)
     );
-    let o = run(
-        p.path(),
-        &[
-            "check",
-            "--no-divergence",
-            "ref-f316",
-            "port",
-            "--level",
-            "ops",
-        ],
+    let check = [
+        "check",
+        "--no-divergence",
+        "ref-f316",
+        "port",
+        "--level",
+        "ops",
+    ];
+    let o = run(p.path(), &check);
+    assert_status(&o, 1, &["bad: ", why]);
+}
+
+/// A bound operation that halts the program crashes on its input.
+#[test]
+fn a_jack_operation_that_halts_is_a_crash_on_its_input() {
+    assert_mod2_crashes_on_its_input(
+        "do Sys.halt();",
+        &["failed: port on ops-small", "crashed", "mod2(", "halted"],
+        "halted",
     );
-    assert_status(&o, 1, &["bad: ", "halted"]);
 }
 
 /// A bound operation that recurses for ever overflows the Jack stack: a
@@ -571,35 +575,16 @@ fn a_jack_operation_that_halts_is_a_crash_on_its_input() {
 /// dropping the answers before it).
 #[test]
 fn a_jack_operation_that_recurses_for_ever_is_a_crash_on_its_input() {
-    let p = jack_port_with("Num", "mod2", "do Num.mod2(a);");
-    let o = run(p.path(), &["diff", "ref-f316", "port", "--level", "ops"]);
-    assert_status(
-        &o,
-        3,
+    assert_mod2_crashes_on_its_input(
+        "do Num.mod2(a);",
         &[
             "failed: port on ops-small",
             "crashed on input #",
             "mod2(",
             "Stack overflow",
         ],
+        "Stack overflow",
     );
-    assert!(
-        vectors_compared(&text(&o)) > 0,
-        "the answers before it are compared: {}",
-        text(&o)
-    );
-    let o = run(
-        p.path(),
-        &[
-            "check",
-            "--no-divergence",
-            "ref-f316",
-            "port",
-            "--level",
-            "ops",
-        ],
-    );
-    assert_status(&o, 1, &["bad: ", "Stack overflow"]);
 }
 
 /// A port whose whole program stops with `Sys.error` as it starts to draw
