@@ -13,7 +13,7 @@
 set -uo pipefail
 cd "$(git rev-parse --show-toplevel)" || exit 125
 
-if ! build_log=$(cargo build --quiet -p harness 2>&1); then
+if ! build_log=$(cargo build --quiet -p harness-cli 2>&1); then
   printf '%s\n' "$build_log" | tail -n 20 >&2
   echo "bisect-check: the harness does not build at $(git rev-parse --short HEAD); skipping" >&2
   exit 125

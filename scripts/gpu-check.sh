@@ -89,7 +89,7 @@ if [ -n "${HARNESS_BIN:-}" ]; then
     bin=$HARNESS_BIN
     note "- build: skipped, HARNESS_BIN=$bin"
 else
-    step build cargo build --release --locked -p harness || {
+    step build cargo build --release --locked -p harness-cli || {
         note ""
         note "**FAILED**: the release build"
         exit 1

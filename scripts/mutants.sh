@@ -56,8 +56,8 @@ fi
 if [ "$which" = all ] || [ "$which" = gates ]; then
     run gates -p harness \
         --file harness/src/verdict.rs --file harness/src/merge.rs \
-        --file harness/src/measure.rs --file harness/src/commands/check.rs \
-        --file harness/src/report/model.rs --file harness/src/nightly/mod.rs \
+        --file harness-report/src/measure.rs --file harness-cli/src/commands/check.rs \
+        --file harness-report/src/model.rs --file harness-cli/src/nightly/mod.rs \
         --timeout 300 --build-timeout 1500 \
         --cargo-test-arg=--lib --cargo-test-arg=--test --cargo-test-arg=gates \
         --cargo-test-arg=--test --cargo-test-arg=merge \

@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 . scripts/headless.sh
 scripts/setup.sh
 status=0
-cargo run --release --locked -p harness -- nightly "$@" || status=$?
+cargo run --release --locked -p harness-cli -- nightly "$@" || status=$?
 cargo test --release --locked -p jack -- --ignored || status=1
 scripts/fuzz.sh "${FUZZ_SECONDS:-60}" || status=1
 exit "$status"

@@ -16,8 +16,9 @@ cargo test --workspace --locked "$@"
 # differently and rebuild much of the workspace).
 native=(
     "hack-vm *" "jack *" "jack-compiler *"
-    "harness lib" "harness bindings" "harness check" "harness cli" "harness containment"
-    "harness hardening" "harness jack" "harness selftest"
+    "harness lib" "harness jack" "harness selftest"
+    "harness-cli bindings" "harness-cli check" "harness-cli cli" "harness-cli containment"
+    "harness-cli hardening"
 )
 binaries=$(cargo test --workspace --locked --no-run --message-format=json "$@" 2>/dev/null |
     python3 -c '

@@ -187,7 +187,142 @@ pub enum ImplError {
     /// It panicked, hung, crashed or broke its protocol while answering:
     /// contained, with the input and the answers that came before.
     #[error("{0}")]
-    Contained(Box<crate::contain::Failure>),
+    Contained(Box<Failure>),
+}
+
+/// How an implementation failed to answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FailureKind {
+    /// It panicked (an in-process implementation).
+    Panic,
+    /// Its answer did not come within the watchdog's time.
+    Hang,
+    /// Its process exited (or was killed) while answering.
+    Crash,
+    /// Its process wrote something the protocol does not allow: a
+    /// malformed line, a wrong id, a wrong count.
+    Protocol,
+    /// Its process exited before its handshake.
+    EarlyExit,
+    /// It was not asked: an earlier failure stopped it.
+    NotRun,
+}
+
+impl fmt::Display for FailureKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            FailureKind::Panic => "panicked",
+            FailureKind::Hang => "hung",
+            FailureKind::Crash => "crashed",
+            FailureKind::Protocol => "broke the protocol",
+            FailureKind::EarlyExit => "exited before its handshake",
+            FailureKind::NotRun => "not run",
+        })
+    }
+}
+
+/// A contained failure of one implementation.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Failure {
+    /// The implementation's label.
+    pub label: String,
+    pub kind: FailureKind,
+    /// What happened, in words (the panic message, the offending line and
+    /// field, the exit status, ...).
+    pub message: String,
+    /// The input it was working on, when it is known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub input: Option<Vector>,
+    /// Index of the first input left without an answer: in the batch as the
+    /// implementation reports it, in the set once the runner has placed it.
+    pub index: usize,
+    /// The batch it was answering: index of its first input and its length.
+    pub batch: (usize, usize),
+    /// The last lines the adapter process wrote on stderr.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stderr: Vec<String>,
+    /// The answers to the inputs of the batch before `index`, kept.
+    #[serde(skip)]
+    pub answered: Vec<Outcome<Answer>>,
+}
+
+impl Failure {
+    /// A failure of `label` on a batch, before the runner places it.
+    pub fn new(label: &str, kind: FailureKind, message: String, batch: &[Vector]) -> Self {
+        Failure {
+            label: label.to_string(),
+            kind,
+            message,
+            input: None,
+            index: 0,
+            batch: (0, batch.len()),
+            stderr: Vec::new(),
+            answered: Vec::new(),
+        }
+    }
+
+    /// The same failure with the answers given before it, naming the input
+    /// it stopped at.
+    pub fn after(mut self, answered: Vec<Outcome<Answer>>, batch: &[Vector]) -> Self {
+        self.index = answered.len();
+        self.input = batch.get(answered.len()).cloned();
+        self.answered = answered;
+        self
+    }
+
+    /// The failure of a batch of one input names that input.
+    pub fn naming_a_lone_input(self, batch: &[Vector]) -> Self {
+        if batch.len() == 1 && self.answered.is_empty() {
+            self.after(Vec::new(), batch)
+        } else {
+            self
+        }
+    }
+
+    /// Move the failure from batch indices to set indices: the batch
+    /// started at `start` in the set.
+    pub fn placed(mut self, start: usize) -> Self {
+        self.index += start;
+        self.batch.0 += start;
+        self
+    }
+
+    /// Whether the implementation itself failed (a panic, hang, crash,
+    /// protocol violation or early exit), as opposed to not being asked.
+    pub fn is_own(&self) -> bool {
+        self.kind != FailureKind::NotRun
+    }
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} {}", self.label, self.kind)?;
+        match &self.input {
+            Some(input) => write!(f, " on input #{} {input}", self.index)?,
+            None if self.batch.1 > 0 => write!(
+                f,
+                " on the batch of inputs #{}..#{}",
+                self.batch.0,
+                self.batch.0 + self.batch.1 - 1
+            )?,
+            None => {}
+        }
+        write!(f, ": {}", self.message)?;
+        if !self.stderr.is_empty() {
+            write!(f, "; last lines of its stderr:")?;
+            for line in &self.stderr {
+                write!(f, "\n    | {line}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl From<Failure> for ImplError {
+    fn from(f: Failure) -> Self {
+        ImplError::Contained(Box::new(f))
+    }
 }
 
 /// A whole image from an implementation's own render path.
@@ -289,7 +424,7 @@ pub trait Implementation: Send + Sync {
 
     /// The GPU adapter it runs on, for an implementation that runs on one
     /// (`harness cast` prints it).
-    fn adapter(&self) -> Option<gpu::AdapterDescription> {
+    fn adapter(&self) -> Option<common::AdapterDescription> {
         None
     }
 

@@ -9,8 +9,6 @@
 //! the result types).
 
 pub mod cast;
-pub mod cli;
-pub mod commands;
 pub mod compare;
 pub mod contain;
 pub mod dither;
@@ -19,16 +17,11 @@ pub mod explain;
 pub mod implementation;
 pub mod impls;
 pub mod localize;
-pub mod measure;
 pub mod merge;
-pub mod nightly;
-pub mod output;
 pub mod pipe;
 pub mod progress;
-pub mod report;
 pub mod runner;
 pub mod selftest;
-pub mod stability;
 pub mod sweep;
 pub mod testkit;
 pub mod text;

@@ -5,8 +5,9 @@
 //! when three or more answered, names the odd one out of each divergence.
 
 use crate::compare::{compare, odd_one_out, Comparison, Policy, Sides};
-use crate::contain::{Failure, FailureKind};
-use crate::implementation::{Answer, BatchAnswers, ImplError, Implementation, Numbers};
+use crate::implementation::{
+    Answer, BatchAnswers, Failure, FailureKind, ImplError, Implementation, Numbers,
+};
 use crate::progress;
 use common::Outcome;
 use indicatif::ProgressBar;

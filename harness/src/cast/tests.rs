@@ -3,6 +3,7 @@
 use super::*;
 use crate::implementation::Numbers;
 use std::path::Path;
+use vectors::Level;
 
 fn project(text: &str) -> Result<Cast, FieldError> {
     Cast::with_project(Path::new("dir/harness.toml"), text)

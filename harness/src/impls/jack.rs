@@ -14,11 +14,10 @@
 //! `Math.divide` in place of its profile's; everything else (the compiler's
 //! checks, the OS, the memory layout) stays its profile's.
 
+use crate::cast::entry::{Entry, Kind, Opener, Request, VariantInfo, VariantRole};
 use crate::cast::file::{FieldError, Fields};
-use crate::cast::{Entry, Kind, Opener, Request, VariantInfo, VariantRole};
-use crate::contain::{Failure, FailureKind};
 use crate::implementation::{
-    Answer, Bitmap, ImageAnswers, ImplError, Implementation, Num, Numbers,
+    Answer, Bitmap, Failure, FailureKind, ImageAnswers, ImplError, Implementation, Num, Numbers,
 };
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{Op, Outcome, TraceRecord};

@@ -19,9 +19,10 @@
 //!
 //! When it is opened, its handshake must agree with the declaration.
 
+use crate::cast::entry::{Entry, Kind, Opener, Request};
 use crate::cast::file::{FieldError, Fields};
-use crate::cast::{Entry, Kind, Opener, Request};
-use crate::contain::{Failure, FailureKind, Watchdog};
+use crate::contain::Watchdog;
+use crate::implementation::{Failure, FailureKind};
 use crate::implementation::{ImplError, Implementation, Numbers};
 use crate::pipe::{Pipe, PipeConfig};
 use std::path::PathBuf;

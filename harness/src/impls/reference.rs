@@ -7,8 +7,8 @@
 //! values of the operands, in that float type; a non-finite result is out
 //! of domain.
 
+use crate::cast::entry::{Entry, Kind, Opener, Request, Roles, VariantInfo, VariantRole};
 use crate::cast::file::{FieldError, Fields};
-use crate::cast::{Entry, Kind, Opener, Request, Roles, VariantInfo, VariantRole};
 use crate::implementation::{
     Answer, Bitmap, ImageAnswers, ImplError, Implementation, Num, Numbers,
 };

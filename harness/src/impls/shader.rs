@@ -10,8 +10,8 @@
 //! run without the loop guard and time limit (their loops have constant
 //! bounds). Without an adapter they are unavailable, with the reason.
 
+use crate::cast::entry::{Entry, Kind, Opener, Request};
 use crate::cast::file::{FieldError, Fields};
-use crate::cast::{Entry, Kind, Opener, Request};
 use crate::implementation::{Answer, Bitmap, ImplError, Implementation, Num, Numbers};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::Outcome;
@@ -339,7 +339,7 @@ impl Implementation for ShaderAdapter {
         usize::MAX
     }
 
-    fn adapter(&self) -> Option<gpu::AdapterDescription> {
+    fn adapter(&self) -> Option<common::AdapterDescription> {
         Some(self.shader.adapter_info().clone())
     }
 
@@ -347,11 +347,11 @@ impl Implementation for ShaderAdapter {
         Ok(match batch.first() {
             None => Vec::new(),
             Some(Vector::Op(_)) => {
-                let out = self.shader.ops(&super::op_cases(batch)).map_err(failed)?;
+                let out = self.shader.ops(&op_cases(batch)).map_err(failed)?;
                 out.into_iter().map(|o| o.map(Answer::from)).collect()
             }
             Some(Vector::Sdf(_)) => {
-                let out = self.shader.sdf(&super::sdf_points(batch)).map_err(failed)?;
+                let out = self.shader.sdf(&sdf_points(batch)).map_err(failed)?;
                 out.into_iter()
                     .map(|o| {
                         o.map(|(sd, col)| Answer::Sdf {
@@ -362,10 +362,7 @@ impl Implementation for ShaderAdapter {
                     .collect()
             }
             Some(Vector::Pixel(_)) => {
-                let out = self
-                    .shader
-                    .pixels(&super::pixel_coords(batch))
-                    .map_err(failed)?;
+                let out = self.shader.pixels(&pixel_coords(batch)).map_err(failed)?;
                 out.into_iter()
                     .map(|o| {
                         o.map(|(shade, white)| Answer::Pixel {
@@ -389,6 +386,40 @@ impl Implementation for ShaderAdapter {
             }
         })
     }
+}
+
+/// The operation cases of an ops-level batch, as the GPU kernels take them
+/// (a unary operation's second operand is zero).
+fn op_cases(batch: &[vectors::Vector]) -> Vec<(common::Op, common::F316, common::F316)> {
+    batch
+        .iter()
+        .filter_map(|v| match v {
+            vectors::Vector::Op(o) => Some((o.op, o.a, o.b.unwrap_or(common::F316::ZERO))),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The points of an sdf-level batch.
+fn sdf_points(batch: &[vectors::Vector]) -> Vec<[common::F316; 3]> {
+    batch
+        .iter()
+        .filter_map(|v| match v {
+            vectors::Vector::Sdf(s) => Some(s.p),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The pixels `(x, y)` of a pixel-level batch.
+fn pixel_coords(batch: &[vectors::Vector]) -> Vec<(u16, u16)> {
+    batch
+        .iter()
+        .filter_map(|v| match v {
+            vectors::Vector::Pixel(p) => Some((p.x, p.y)),
+            _ => None,
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -16,8 +16,9 @@ pub mod protocol;
 pub use process::{stderr_tail, stdout_lines};
 pub use process::{MAX_LINE_BYTES, STDERR_LINES, STDERR_LINE_BYTES};
 
-use crate::contain::{Failure, FailureKind, Watchdog};
+use crate::contain::Watchdog;
 use crate::implementation::{Answer, BatchAnswers, ImplError, Implementation, Num, Numbers};
+use crate::implementation::{Failure, FailureKind};
 use common::{Outcome, TraceRecord};
 use process::{Adapter, Reply, Request, StartError};
 use protocol::{Expect, Handshake};

@@ -6,8 +6,8 @@
 //! batches may be in flight at once.
 
 use super::protocol::{self, Expect, Line};
-use crate::contain::FailureKind;
 use crate::implementation::Answer;
+use crate::implementation::FailureKind;
 use common::{Outcome, TraceRecord};
 use std::collections::VecDeque;
 use std::io::{BufRead, BufReader, Read, Write};

@@ -5,6 +5,7 @@
 //! Dependency direction: `harness -> impls/* -> common`. Nothing here knows
 //! about any particular implementation.
 
+pub mod adapter;
 pub mod f316;
 pub mod image_consts;
 pub mod input;
@@ -14,6 +15,7 @@ pub mod outcome;
 pub mod shown;
 pub mod trace;
 
+pub use adapter::AdapterDescription;
 pub use f316::F316;
 pub use op::Op;
 pub use outcome::{Outcome, OutcomeKind};

@@ -3,62 +3,28 @@
 
 use crate::error::GpuError;
 use crate::shader::{Compiled, ShaderNumbers, ShaderOptions, ShaderSource};
-use serde::{Deserialize, Serialize};
+pub use common::AdapterDescription;
 use std::sync::{Arc, Mutex};
 
-/// The adapter a [`Gpu`] runs on, as reports name it.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct AdapterDescription {
-    /// The adapter's name (`llvmpipe (LLVM 15.0.6, 256 bits)` for lavapipe).
-    pub name: String,
-    /// The graphics API wgpu drives it through (`Vulkan`, `Metal`, ...).
-    pub backend: String,
-    /// Discrete, integrated, virtual, CPU or other.
-    pub device_type: String,
-    /// The driver's name (`llvmpipe`).
-    pub driver: String,
-    /// The driver's version string.
-    pub driver_info: String,
-    /// Whether it is a software rasteriser on the CPU (lavapipe, llvmpipe,
-    /// SwiftShader): no figure or verdict from it stands for a GPU's.
-    pub software: bool,
-}
-
-impl AdapterDescription {
-    fn from_info(info: &wgpu::AdapterInfo) -> Self {
-        // wgpu calls a CPU rasteriser `Cpu` on Vulkan; the names catch one
-        // that a backend reports otherwise.
-        let named = |s: &str| {
-            let s = s.to_lowercase();
-            ["llvmpipe", "lavapipe", "softpipe", "swiftshader"]
-                .iter()
-                .any(|n| s.contains(n))
-        };
-        AdapterDescription {
-            name: info.name.clone(),
-            backend: format!("{:?}", info.backend),
-            device_type: format!("{:?}", info.device_type),
-            driver: info.driver.clone(),
-            driver_info: info.driver_info.clone(),
-            software: info.device_type == wgpu::DeviceType::Cpu
-                || named(&info.name)
-                || named(&info.driver),
-        }
-    }
-
-    /// Whether this is a software rasteriser running on the CPU (lavapipe).
-    pub fn is_software(&self) -> bool {
-        self.software
-    }
-}
-
-impl std::fmt::Display for AdapterDescription {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "{} ({}, {}, driver {} {})",
-            self.name, self.backend, self.device_type, self.driver, self.driver_info
-        )
+/// The description of wgpu's adapter `info`.
+fn describe(info: &wgpu::AdapterInfo) -> AdapterDescription {
+    // wgpu calls a CPU rasteriser `Cpu` on Vulkan; the names catch one
+    // that a backend reports otherwise.
+    let named = |s: &str| {
+        let s = s.to_lowercase();
+        ["llvmpipe", "lavapipe", "softpipe", "swiftshader"]
+            .iter()
+            .any(|n| s.contains(n))
+    };
+    AdapterDescription {
+        name: info.name.clone(),
+        backend: format!("{:?}", info.backend),
+        device_type: format!("{:?}", info.device_type),
+        driver: info.driver.clone(),
+        driver_info: info.driver_info.clone(),
+        software: info.device_type == wgpu::DeviceType::Cpu
+            || named(&info.name)
+            || named(&info.driver),
     }
 }
 
@@ -178,7 +144,7 @@ impl Device {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let adapter = choose_adapter(&instance)?;
-        let description = AdapterDescription::from_info(&adapter.get_info());
+        let description = describe(&adapter.get_info());
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("f316-harness"),
             required_limits: adapter.limits(),
