@@ -85,3 +85,13 @@ pub fn grid(n: usize) -> Vec<[F316; 3]> {
     }
     out
 }
+
+/// The generated program opened through its own bindings.toml, as the
+/// harness opens a user's Jack program.
+pub fn bound(j: &JackSources) -> jack::BoundProgram {
+    let bindings: jack::Bindings = toml::from_str(&j.bindings).expect("bindings.toml parses");
+    let program =
+        jack::JackProgram::from_jack(&j.sources(), jack::Profile::Desktop).expect("compiles");
+    jack::BoundProgram::open(&program, &bindings, jack::Budgets::default())
+        .unwrap_or_else(|e| panic!("the bindings open: {e}"))
+}
