@@ -84,3 +84,57 @@ fn carved_pixels_and_sdf_equal_the_reference() {
     check_pixels("tests/carved", &[10, 48, 80], 3);
     check_sdf("tests/carved");
 }
+
+/// The documented four-level rule: white where 8 L > 6 B + 3, B the 2x2
+/// Bayer matrix [[0, 2], [3, 1]] at (x mod 2, y mod 2).
+fn four_level_white(level: u8, x: usize, y: usize) -> bool {
+    let b = [[0, 2], [3, 1]][y % 2][x % 2];
+    8 * u32::from(level) > 6 * b + 3
+}
+
+#[test]
+fn rtdemo_main_draws_its_four_levels_by_the_documented_rule() {
+    let screen =
+        scene_jack::cost::run_main(&emitted("rtdemo"), jack::Profile::Desktop, 5_000_000_000)
+            .expect("Main.main ends");
+    let image = reference("rtdemo").render();
+    let (w, h) = (512, 256);
+    let differing: Vec<(usize, usize)> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let want = if x < image.width && y < image.height {
+                let level = image.pixels[y * image.width + x]
+                    .value()
+                    .expect("no trap")
+                    .level;
+                four_level_white(level, x, y)
+            } else {
+                true // not drawn
+            };
+            screen.white[y * w + x] != want
+        })
+        .collect();
+    assert!(
+        differing.is_empty(),
+        "{} screen pixels differ: {:?}",
+        differing.len(),
+        &differing[..differing.len().min(5)]
+    );
+}
+
+/// The library classes keep what the scene calls, each subroutine exactly
+/// as the hand-written Float316 class writes it.
+#[test]
+fn libraries_keep_only_what_the_scene_calls() {
+    let hand = include_str!("../../jack/raymarcher/Float316.jack");
+    let seed = emitted("seed");
+    let rtdemo = emitted("rtdemo");
+    let f_seed = seed.class("Float316.jack").unwrap();
+    let f_rtdemo = rtdemo.class("Float316.jack").unwrap();
+    assert!(f_seed.contains("method void invSqrt("));
+    assert!(!f_rtdemo.contains("method void invSqrt(") && !f_rtdemo.contains("isX2"));
+    assert!(!rtdemo.class("Ops.jack").unwrap().contains("normalize3"));
+    for sub in f_rtdemo.split("\n\n").filter(|s| s.contains("method ")) {
+        assert!(hand.contains(sub.trim_end_matches("}\n")), "changed: {sub}");
+    }
+}
