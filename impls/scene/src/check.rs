@@ -136,6 +136,7 @@ fn image(d: &Description) -> Result<(), SceneError> {
             target,
             up,
             scale,
+            ..
         } => {
             let p = "image.camera.look_at";
             finite(&format!("{p}.position"), position)?;

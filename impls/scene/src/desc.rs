@@ -47,8 +47,8 @@ pub struct Image {
 #[serde(deny_unknown_fields, rename_all = "snake_case")]
 pub enum Camera {
     /// A camera at `position` looking at `target`: u = (x - w/2) / scale,
-    /// v = -((y - h/2) / scale), d = normalize(u, v, -1) turned into the
-    /// camera basis.
+    /// v = -((y - h/2) / scale), and the ray direction (u, v) on the image
+    /// plane at distance 1 in the camera basis of `handedness`.
     LookAt {
         position: [f64; 3],
         target: [f64; 3],
@@ -57,6 +57,10 @@ pub enum Camera {
         /// image height).
         #[serde(default)]
         scale: Option<f64>,
+        /// The coordinate system the scene is written in (default: the
+        /// seed's, right-handed).
+        #[serde(default)]
+        handedness: Handedness,
     },
     /// The BBC demo's formula: with n = `row_origin` - y, u = (x - cx) /
     /// scale, v = (n - cy) / scale, w = 1 / sqrt(u*u + v*v + 1), and the
@@ -69,6 +73,42 @@ pub enum Camera {
         row_origin: u32,
         rows: [u32; 2],
     },
+}
+
+/// The handedness of a scene's coordinates: which way the look-at camera's
+/// image x runs. Mirroring it mirrors the image and nothing else.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(try_from = "String")]
+pub enum Handedness {
+    /// Right-handed, the seed's (spec section 5), OpenGL's: with x to the
+    /// right and y up on the screen, z points at the viewer. The basis is
+    /// back = normalize(position - target), right = normalize(cross(up,
+    /// back)), up' = cross(back, right), and d = normalize(u, v, -1) in it;
+    /// a camera looking along +z sees +x on its left.
+    #[default]
+    Right,
+    /// Left-handed, Shadertoy's `normalize(vec3(uv, 1))` and I<3IQ's: z
+    /// points into the screen. The basis is forward = normalize(target -
+    /// position), right = normalize(cross(up, forward)), up' =
+    /// cross(forward, right), and d = normalize(u, v, 1) in it; a camera
+    /// looking along +z sees +x on its right.
+    Left,
+}
+
+impl TryFrom<String> for Handedness {
+    type Error = String;
+
+    /// `"right"` or `"left"` (a string of another type is refused by serde
+    /// as an invalid type, naming the field all the same).
+    fn try_from(s: String) -> Result<Self, String> {
+        match s.as_str() {
+            "right" => Ok(Handedness::Right),
+            "left" => Ok(Handedness::Left),
+            _ => Err(format!(
+                "unknown handedness `{s}`, expected `right` or `left`"
+            )),
+        }
+    }
 }
 
 /// How a shade in [0, 1] becomes a pixel.

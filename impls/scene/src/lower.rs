@@ -6,8 +6,8 @@
 use crate::build::{Builder, Surf};
 use crate::check::Checked;
 use crate::desc::{
-    Axis, Background, Camera, Colour, Description, Material, Method, Node, Output, Texture,
-    Transform,
+    Axis, Background, Camera, Colour, Description, Handedness, Material, Method, Node, Output,
+    Texture, Transform,
 };
 use crate::ir::{
     BReg, Binary, Decision, Dither, Formulation, FuncId, Logic, Pixels, Program, Reg, Stmt, TReg,
@@ -405,17 +405,23 @@ impl Lower<'_> {
                 position,
                 target,
                 up,
+                handedness,
                 ..
             } => self.b.frame("camera", |b| {
                 let cam = b.kv(*position, "image.camera.look_at.position");
                 let at = b.kv(*target, "image.camera.look_at.target");
                 let up = b.kv(*up, "image.camera.look_at.up");
-                let f = b.vec(VecOp::Sub, cam, at);
+                // The basis's third vector: back for right-handed, forward
+                // for left-handed (the image's x is mirrored between them).
+                let f = match handedness {
+                    Handedness::Right => b.vec(VecOp::Sub, cam, at),
+                    Handedness::Left => b.vec(VecOp::Sub, at, cam),
+                };
                 let f = b.normalize(f);
                 let r = b.vec(VecOp::Cross, up, f);
                 let r = b.normalize(r);
                 let u = b.vec(VecOp::Cross, f, r);
-                // Rows r1 = (right.x, up'.x, forward.x), r2, r3.
+                // Rows r1 = (right.x, up'.x, f.x), r2, r3.
                 (0..3).flat_map(|i| [r + i, u + i, f + i]).collect()
             }),
             Camera::Direct { .. } => Vec::new(),
@@ -474,7 +480,10 @@ impl Lower<'_> {
     /// The look-at camera's ray: (origin, direction).
     fn look_at_ray(&mut self, x: Reg, n: Reg) -> (Reg, Reg) {
         let Camera::LookAt {
-            position, scale, ..
+            position,
+            scale,
+            handedness,
+            ..
         } = &self.d.image.camera
         else {
             unreachable!("called for the look-at camera")
@@ -490,8 +499,12 @@ impl Lower<'_> {
         let v = b.sub(n, hh);
         let v = b.div(v, s);
         let v = b.un(Unary::Neg, v);
-        let m1 = b.k(-1.0, "image.camera");
-        let d = b.v3(u, v, m1);
+        // The image plane is at -1 along back, +1 along forward.
+        let depth = match handedness {
+            Handedness::Right => b.k(-1.0, "image.camera"),
+            Handedness::Left => b.k(1.0, "image.camera.look_at.handedness"),
+        };
+        let d = b.v3(u, v, depth);
         let d = b.normalize(d);
         let rd = b.frame("ray", |b| {
             let rows: Vec<Reg> = (0..3)

@@ -112,6 +112,46 @@ fn camera_without_direction() {
 }
 
 #[test]
+fn an_unknown_or_malformed_handedness_is_refused() {
+    let e = error(|v| v["image"]["camera"]["look_at"]["handedness"] = json!("mirrored"));
+    expect(
+        &e,
+        &[
+            "image.camera.look_at.handedness",
+            "unknown handedness `mirrored`",
+            "expected `right` or `left`",
+        ],
+    );
+    let e = error(|v| v["image"]["camera"]["look_at"]["handedness"] = json!(1));
+    expect(
+        &e,
+        &[
+            "image.camera.look_at.handedness",
+            "invalid type: integer `1`, expected a string",
+        ],
+    );
+    let e = error(|v| v["image"]["camera"]["look_at"]["handedness"] = json!("Left"));
+    expect(
+        &e,
+        &[
+            "image.camera.look_at.handedness",
+            "unknown handedness `Left`",
+        ],
+    );
+}
+
+/// The default handedness is the seed's: stating it changes nothing, the
+/// other one changes the camera.
+#[test]
+fn right_handed_is_the_default() {
+    let mut v = seed();
+    v["image"]["camera"]["look_at"]["handedness"] = json!("right");
+    assert!(scene::is_seed(&scene::parse(&v.to_string()).unwrap()));
+    v["image"]["camera"]["look_at"]["handedness"] = json!("left");
+    assert!(!scene::is_seed(&scene::parse(&v.to_string()).unwrap()));
+}
+
+#[test]
 fn every_run_is_bounded() {
     let e = error(|v| v["method"]["sphere_trace"]["steps"] = json!(100000));
     expect(&e, &["method.sphere_trace.steps", "outside 1..=1024"]);

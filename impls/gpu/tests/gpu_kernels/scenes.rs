@@ -20,14 +20,18 @@ fn same(g: &Outcome<GpuPixel>, r: &Outcome<ScenePixel>) -> bool {
     })
 }
 
-/// Points around the scene, and those derived from it: near every
-/// surface, seam, blend region and repetition cell boundary.
+/// Points around the scene (512 in [-4, 4]^3, 64 farther out in
+/// [-32, 32]^3), and those derived from it: near every surface, seam,
+/// blend region and repetition cell boundary.
 fn points(scene: &scene::Checked) -> Vec<[F316; 3]> {
     let mut rng = Rng::new(17);
-    let mut points: Vec<[F316; 3]> = (0..512)
-        .map(|_| {
-            [(); 3]
-                .map(|_| F316::from_f64_truncating(rng.unit() * 8.0 - 4.0).expect("a small value"))
+    let mut points: Vec<[F316; 3]> = [(512, 4.0), (64, 32.0)]
+        .into_iter()
+        .flat_map(|(n, half)| vec![half; n])
+        .map(|half| {
+            [(); 3].map(|_| {
+                F316::from_f64_truncating((rng.unit() * 2.0 - 1.0) * half).expect("a small value")
+            })
         })
         .collect();
     let derived = vectors::gen::scene_derived::sdf_points(scene, 17, 8).unwrap();
@@ -39,10 +43,21 @@ fn points(scene: &scene::Checked) -> Vec<[F316; 3]> {
     points
 }
 
-/// ref-f316 and gpu-f316 from `path` agree on every pixel and SDF point;
-/// gpu-f32 renders (returns its level flips against ref-f64).
-fn check(path: &str) -> usize {
-    let Some(gpu) = gpu() else { return 0 };
+/// What [`check`] saw besides agreement.
+#[derive(Default)]
+struct Seen {
+    /// gpu-f32's level flips against ref-f64.
+    flips: usize,
+    /// Pixels and SDF points both Float316 sides answered out of domain.
+    out_of_domain: [usize; 2],
+}
+
+/// ref-f316 and gpu-f316 from `path` agree on every pixel and SDF point
+/// (a trap or out of domain is an outcome like a value); gpu-f32 renders.
+fn check(path: &str) -> Seen {
+    let Some(gpu) = gpu() else {
+        return Seen::default();
+    };
     let c = load(path);
     let f316 = Described::new(RefImpl::F316, &c, Settings::default()).unwrap();
     let kernel = gpu
@@ -64,8 +79,14 @@ fn check(path: &str) -> usize {
         bad.first().map(|&i| theirs[i]),
         bad.first().map(|&i| ours.pixels[i])
     );
+    let ood = |o: &Outcome<GpuPixel>| matches!(o, Outcome::OutOfDomain);
+    let ood_pixels = theirs.iter().filter(|o| ood(o)).count();
     let pts = points(&c);
     let g = kernel.sdf(gpu, &pts).unwrap();
+    let ood_sdf = g
+        .iter()
+        .filter(|o| matches!(o, Outcome::OutOfDomain))
+        .count();
     for (p, g) in paired(path, &pts, &g) {
         let r = f316.sdf(*p);
         let agree = g.same_as(&r, |(sd, col), v| {
@@ -84,20 +105,24 @@ fn check(path: &str) -> usize {
         )
         .expect("the f32 kernel compiles");
     let f32_image = f32_kernel.render(gpu).unwrap();
-    paired(path, &f64_image.pixels, &f32_image)
+    let flips = paired(path, &f64_image.pixels, &f32_image)
         .filter(|(b, a)| !a.same_as(b, |a, b| a.level == b.level))
-        .count()
+        .count();
+    Seen {
+        flips,
+        out_of_domain: [ood_pixels, ood_sdf],
+    }
 }
 
 #[test]
 fn seed_scene_generated() {
-    let flips = check("seed.json");
+    let flips = check("seed.json").flips;
     assert!(flips < 2000, "{flips}");
 }
 
 #[test]
 fn rtdemo_generated() {
-    let flips = check("rtdemo.json");
+    let flips = check("rtdemo.json").flips;
     assert!(flips < 2000, "{flips}");
 }
 
@@ -117,4 +142,17 @@ fn toon_generated() {
 #[test]
 fn a_new_combination_renders_everywhere() {
     check("tests/carved.json");
+}
+
+/// A scene that drives `floor` and `mod2` outside their modelled domain
+/// (a checker plane scaled by 0.001): gpu-f316 answers out of domain on
+/// exactly the pixels and SDF points where ref-f316 does (the sky and far
+/// floor; points beyond |x| or |z| of 16.384, or whose floors sum past
+/// 2^14), and the same values elsewhere.
+#[test]
+fn out_of_domain_as_the_reference() {
+    let Some(_) = gpu() else { return };
+    let [pixels, sdf] = check("tests/domain.json").out_of_domain;
+    assert!(pixels > 300, "{pixels} pixels out of domain");
+    assert!(sdf > 10, "{sdf} SDF points out of domain");
 }
