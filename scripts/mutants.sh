@@ -54,7 +54,10 @@ if [ "$which" = all ] || [ "$which" = compare ]; then
         --timeout 90 --build-timeout 1500 --cargo-test-arg=--lib || status=$?
 fi
 if [ "$which" = all ] || [ "$which" = gates ]; then
-    run gates -p harness \
+    # The gates span the three harness crates; each mutant is judged by
+    # the tests of all three (their libraries and the named suites).
+    run gates -p harness -p harness-report -p harness-cli \
+        --test-package harness --test-package harness-report --test-package harness-cli \
         --file harness/src/verdict.rs --file harness/src/merge.rs \
         --file harness-report/src/measure.rs --file harness-cli/src/commands/check.rs \
         --file harness-report/src/model.rs --file harness-cli/src/nightly/mod.rs \

@@ -3,7 +3,7 @@
 //! [`harness::explain`]): classes, changed decisions, top root causes, a
 //! class map, and each listed pixel's class and root cause.
 
-use super::steps::Step;
+use super::step::Step;
 use super::Night;
 use anyhow::Result;
 use harness::explain::{self, Class, Explainer, Explanation, Summary};

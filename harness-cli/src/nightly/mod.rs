@@ -8,7 +8,7 @@
 //! night.
 //!
 //! # Adding a step
-//! Write a unit struct implementing [`steps::Step`] (its `key` selects it
+//! Write a unit struct implementing [`step::Step`] (its `key` selects it
 //! with `--steps`, its `name` is its line in the log and the report's
 //! timings, `run` does the work through the [`Night`]) and add it to
 //! [`steps::all`] where it belongs in the order. A step that can find a
@@ -18,6 +18,7 @@
 mod explain;
 mod pairs;
 pub mod scenes;
+pub mod step;
 pub mod steps;
 
 use anyhow::Result;

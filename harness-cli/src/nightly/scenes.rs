@@ -9,7 +9,7 @@
 //! reaches (operations, operand classes, traps, over traced ref-f316
 //! pixels) and its cost per pixel on each implementation.
 
-use super::steps::Step;
+use super::step::Step;
 use super::Night;
 use crate::commands::render_scene::{compile_gpu, jack_refusal, kernel_image};
 use anyhow::{bail, Context, Result};

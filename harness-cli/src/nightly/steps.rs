@@ -1,6 +1,9 @@
-//! The nightly's steps, in the order they run ([`all`]).
+//! The nightly's steps, in the order they run ([`all`]); the explain and
+//! scenes steps have files of their own, and every step implements
+//! [`Step`](super::step::Step).
 
 use super::pairs::{self, PlannedPair};
+use super::step::Step;
 use super::{Night, Opened, Rendered};
 use anyhow::{Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
@@ -24,20 +27,6 @@ use harness_report::{RenderImages, BIT_EXACT, ERROR_FIGURES};
 use std::time::Instant;
 use vectors::gen::testfloat::{self, CaseLevel};
 use vectors::VectorSet;
-
-/// One step of the night.
-pub trait Step {
-    /// What `--steps` selects it by (the three level sets share `levels`).
-    fn key(&self) -> &'static str;
-    /// Its line in the log and in the report's step timings.
-    fn name(&self) -> String;
-    /// Whether it runs whatever `--steps` says (opening the cast).
-    fn always(&self) -> bool {
-        false
-    }
-    /// Do the work, adding results to `night.builder`'s report.
-    fn run(&self, night: &mut Night<'_>) -> Result<()>;
-}
 
 /// Every step, in order.
 pub fn all() -> Vec<Box<dyn Step>> {

@@ -7,7 +7,7 @@
 //! reads `in_words` and writes `out_words` words per item. A scene kernel's
 //! source is compiled after the prelude: those bindings and the Bayer matrix.
 
-use crate::context::{lock, Device, Health};
+use crate::device::{lock, Device, Health};
 use crate::error::GpuError;
 use crate::image::bayer_wgsl;
 use std::sync::{mpsc, Mutex};
@@ -43,37 +43,6 @@ pub(crate) struct Kernel {
     /// How long one batch may run before the device counts as stuck
     /// (`None`: no limit, for our own kernels, whose loops are bounded).
     time_limit: Option<Duration>,
-}
-
-/// The bind group layout of shaders/io.wgsl.
-pub(crate) fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    };
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("kernel io"),
-        entries: &[
-            storage(0, true),
-            storage(1, false),
-            wgpu::BindGroupLayoutEntry {
-                binding: 2,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            },
-        ],
-    })
 }
 
 /// Run `f` inside validation, out-of-memory and internal error scopes and
@@ -349,7 +318,7 @@ impl Kernel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::context::Device;
+    use crate::device::Device;
 
     /// A malformed shader through the pipeline-creation function is a
     /// `Compile` error naming the kernel, not a panic. Needs an adapter

@@ -27,6 +27,7 @@
 //! [`Gpu::new_unless_skipped`].
 
 mod context;
+mod device;
 mod error;
 mod float316;
 mod float32;
@@ -35,8 +36,10 @@ mod kernel;
 mod scene_kernel;
 mod scene_wgsl;
 pub mod shader;
+mod words;
 
-pub use context::{AdapterDescription, Gpu};
+pub use common::AdapterDescription;
+pub use context::Gpu;
 pub use error::GpuError;
 pub use image::all_pixels;
 pub use scene_kernel::{GpuNum, GpuPixel, SceneKernel};

@@ -4,9 +4,9 @@
 
 use crate::context::Gpu;
 use crate::error::GpuError;
-use crate::float316::{outcome, push_triple, triple};
 use crate::kernel::{compile, Kernel};
 use crate::scene_wgsl::{generate, strides};
+use crate::words::{outcome, push_triple, triple};
 use common::{Outcome, F316};
 use scene::{Formulation, Program};
 

@@ -18,12 +18,12 @@ mod guard;
 
 pub use convention::{Language, Provides, Shade, ShaderNumbers};
 
-use crate::context::{AdapterDescription, Device};
+use crate::device::Device;
 use crate::error::GpuError;
-use crate::float316::{outcome, push_triple, triple};
 use crate::image::{all_pixels, dither_f32, pixel_words};
 use crate::kernel::{compile_source, Kernel};
-use common::{Op, OpValue, Outcome, F316};
+use crate::words::{outcome, push_triple, triple};
+use common::{AdapterDescription, Op, OpValue, Outcome, F316};
 use convention::Entry;
 use std::borrow::Cow;
 use std::path::Path;
@@ -336,7 +336,7 @@ impl Compiled {
             .ok_or_else(|| self.not_provided("op(code, a, b)"))?;
         let mut words = Vec::with_capacity(7 * cases.len());
         for &(op, a, b) in cases {
-            words.push(crate::float316::op_code(op));
+            words.push(crate::words::op_code(op));
             push_triple(&mut words, a);
             push_triple(&mut words, b);
         }

@@ -31,7 +31,7 @@ impl OsState {
             profile,
             divide,
             keys,
-            heap_head: crate::memory::HEAP_BASE,
+            heap_head: crate::ram::HEAP_BASE,
             row: 0,
             col: 0,
             color: true,

@@ -5,10 +5,8 @@
 //! [`Ctx::desktop_alloc`]).
 
 use crate::context::Ctx;
+use crate::ram::{HEAP_BASE, HEAP_END};
 use crate::{Profile, Ram, Stop};
-
-/// The desktop's last heap word; a block "address" past it ends its list.
-pub(crate) const HEAP_END: i32 = 16383;
 
 /// The desktop's heap header, as its built-in `Memory.init` writes it: one
 /// block at 2048 of capacity 14334 (`RAM[2048]`) whose next block is
@@ -17,11 +15,6 @@ pub(crate) fn desktop_header(ram: &mut Ram) {
     ram.write(HEAP_BASE, (HEAP_END + 1 - (HEAP_BASE + 2)) as i16);
     ram.write(HEAP_BASE + 1, (HEAP_END + 1) as i16);
 }
-
-/// Address of the initial free block.
-pub(crate) const HEAP_BASE: i32 = 2048;
-/// Size of the initial free block (data words after its 2-word header).
-pub(crate) const HEAP_SIZE: i32 = 14334;
 
 /// A free-list walk longer than this has revisited a block: every block
 /// address is one of 65536 word values or the out-of-range marker.

@@ -66,11 +66,8 @@ impl Os {
         ram.write(0, 256);
         match self.state.profile {
             Profile::Web => {
-                ram.write(crate::memory::HEAP_BASE, 0);
-                ram.write(
-                    crate::memory::HEAP_BASE + 1,
-                    crate::memory::HEAP_SIZE as i16,
-                );
+                ram.write(crate::ram::HEAP_BASE, 0);
+                ram.write(crate::ram::HEAP_BASE + 1, crate::ram::HEAP_SIZE as i16);
             }
             // As the desktop's built-in Memory.init writes it (a VM that
             // never calls Memory.init clears it again).

@@ -6,6 +6,12 @@ pub const RAM_SIZE: usize = 24577;
 pub const SCREEN: usize = 16384;
 /// The keyboard word.
 pub const KBD: usize = 24576;
+/// Address of the heap's initial free block.
+pub(crate) const HEAP_BASE: i32 = 2048;
+/// Size of the initial free block (data words after its 2-word header).
+pub(crate) const HEAP_SIZE: i32 = 14334;
+/// The desktop's last heap word; a block "address" past it ends its list.
+pub(crate) const HEAP_END: i32 = 16383;
 
 /// 24577 signed 16-bit words. Reads outside 0..=24576 give -1 and writes
 /// outside are dropped, as in the web IDE; nothing here panics.
