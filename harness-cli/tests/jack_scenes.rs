@@ -217,3 +217,43 @@ fn cost_reports_instructions_time_rom_and_a_map() {
     let [wx, wy] = [&c["worst"][0], &c["worst"][1]].map(|v| v.as_u64().unwrap() as u32);
     assert_eq!(map.get_pixel(wx, wy).0, [255], "the worst pixel is white");
 }
+
+/// The whole-program capture of a scene entry: `Main.main` of the program
+/// generated from the scene with carved shapes draws ref-f316's image on
+/// the Hack screen (white where its level is 1, the rest of the screen
+/// untouched), about 4.4 G VM instructions.
+#[test]
+fn a_scene_entrys_whole_program_draws_the_reference_image() {
+    let cast = scene_entry("tests/carved");
+    let gen = cast.open("gen").unwrap();
+    let screen = gen
+        .program_screen(None, false)
+        .expect("the bindings capture the screen")
+        .unwrap();
+    let checked = scene::load(&scene("tests/carved")).unwrap();
+    let image = reference::Described::new(
+        reference::RefImpl::F316,
+        &checked,
+        reference::Settings::default(),
+    )
+    .unwrap()
+    .render();
+    assert_eq!((screen.width, screen.height), (512, 256));
+    let differing: Vec<(usize, usize)> = (0..256)
+        .flat_map(|y| (0..512).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let want = if x < image.width && y < image.height {
+                image.pixels[y * image.width + x].value().unwrap().level == 1
+            } else {
+                true
+            };
+            screen.white[y * 512 + x] != want
+        })
+        .collect();
+    assert!(
+        differing.is_empty(),
+        "{} pixels differ, first {:?}",
+        differing.len(),
+        differing.first()
+    );
+}

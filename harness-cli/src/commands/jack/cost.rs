@@ -369,6 +369,34 @@ mod tests {
         assert_eq!(every_nth(23), "every 23rd pixel of every 23rd row");
     }
 
+    /// A division whose quotient the web IDE floors, planted in the seed
+    /// program's `Image.pixel` (-1 / 2 is 0 on the desktop, -1 on the web,
+    /// times x & 1): the odd pixels are named, the even ones are not.
+    #[test]
+    fn a_division_the_web_floors_is_named_at_its_pixels() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../vectors/scenes/seed.json");
+        let mut g = scene_jack::emit_file(&path).unwrap();
+        let image = g
+            .sources
+            .classes
+            .iter_mut()
+            .find(|c| c.name == "Image.jack")
+            .unwrap();
+        let clean = "return Image.levelOf(level);";
+        assert!(image.text.contains(clean));
+        image.text = image.text.replace(
+            clean,
+            "return Image.levelOf(level) + (((0 - 1) / 2) * (x & 1));",
+        );
+        let pixels = [(0, 0), (1, 0), (2, 100), (3, 100)];
+        let runner = Runner::new(&g.sources, Profile::Desktop).unwrap();
+        let desktop: Vec<_> = pixels.iter().map(|&(x, y)| runner.pixel(x, y)).collect();
+        let found = web_differences(&g.sources, &pixels, &desktop).unwrap();
+        let at: Vec<(u32, u32)> = found.iter().map(|d| (d.x, d.y)).collect();
+        assert_eq!(at, [(1, 0), (3, 100)]);
+        assert_ne!(found[0].desktop, found[0].web);
+    }
+
     #[test]
     fn the_sample_takes_every_step_th_pixel_of_every_step_th_row() {
         assert_eq!(
