@@ -40,6 +40,20 @@ fn render(image: &SceneImage, scale: u32) -> RgbImage {
     )
 }
 
+/// `image`'s shades before the output step (clamped to [0, 1]) in greys,
+/// traps in [`TRAP_COLOUR`], each pixel `scale` x `scale` screen pixels: a
+/// subsampled image, whose dithered levels would alias.
+fn shades(image: &SceneImage, scale: u32) -> RgbImage {
+    RgbImage::from_fn(
+        image.width as u32 * scale,
+        image.height as u32 * scale,
+        |x, y| match &image.pixels[(y / scale) as usize * image.width + (x / scale) as usize] {
+            Outcome::Value(p) => Rgb([(p.value.value.clamp(0.0, 1.0) * 255.0).round() as u8; 3]),
+            _ => Rgb(TRAP_COLOUR),
+        },
+    )
+}
+
 /// `b` over `a`: `a` dimmed where their levels agree, [`B_WHITE_COLOUR`]
 /// where `b` is lighter, [`A_WHITE_COLOUR`] where `a` is, [`TRAP_COLOUR`]
 /// where one traps and the other does not; and the number of pixels that
@@ -107,9 +121,9 @@ pub fn pictures(
         let label = scene_jack::LABEL;
         add(
             format!("{name}-{label}"),
-            &render(&leg.image, step),
+            &shades(&leg.image, step),
             format!(
-                "{label}: {}, each drawn {step}x{step}",
+                "{label}: the shades of {}, each drawn {step}x{step}",
                 cost::every_nth(step)
             ),
         )?;
@@ -176,6 +190,21 @@ mod tests {
         );
         assert_eq!(img.get_pixel(0, 0), img.get_pixel(1, 1), "same: dimmed");
         assert!(overlay(&a, &image(4, &[Some(0)]), 1).is_none());
+    }
+
+    #[test]
+    fn shades_are_clamped_greys_and_traps_are_orange() {
+        let mut img = image(2, &[Some(0), Some(1), None]);
+        for (p, v) in img.pixels.iter_mut().zip([0.5, 1.7]) {
+            if let Outcome::Value(p) = p {
+                p.value.value = v;
+            }
+        }
+        let out = shades(&img, 2);
+        assert_eq!(out.dimensions(), (6, 2));
+        assert_eq!(out.get_pixel(1, 1), &Rgb([128; 3]));
+        assert_eq!(out.get_pixel(2, 0), &Rgb([255; 3]), "clamped");
+        assert_eq!(out.get_pixel(5, 1), &Rgb(TRAP_COLOUR));
     }
 
     #[test]
