@@ -64,10 +64,9 @@ fn the_scene_step_reports_use_reach_and_cost() {
         assert_eq!(c["pixels"], 320 * 240);
         assert!(c["per_pixel_s"].as_f64().unwrap() > 0.0, "{c}");
     }
-    assert!(s["unsupported"][0]
-        .as_str()
-        .unwrap()
-        .contains("renders the seed scene only"));
+    // Without the jack kind in the night, no Jack leg and no refusal.
+    assert_eq!(s["unsupported"], serde_json::json!([]));
+    assert!(s["jack"].is_null(), "{s}");
     let f32 = report["comparisons"]
         .as_array()
         .unwrap()
@@ -78,6 +77,71 @@ fn the_scene_step_reports_use_reach_and_cost() {
     assert_eq!(f32["cases"], 320 * 240);
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("<section id=scenes>") && html.contains("rtdemo"));
+}
+
+/// The generated Jack program of the scene with carved shapes, through
+/// its bindings: ops, SDF and every 2nd pixel of every 2nd row bit-exact
+/// with ref-f316, its cost figures, and the scene's pictures.
+#[test]
+fn the_scene_step_compares_the_generated_jack_program_and_shows_its_pictures() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("nightly");
+    // A relative path, from the package's folder where the test runs.
+    let o = night_of("ref-f316,jack", &out, "../vectors/scenes/tests/carved.json");
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let report = report(&out);
+    assert_eq!(report["problems"], serde_json::json!([]), "{report}");
+    let rows: Vec<&serde_json::Value> = report["comparisons"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["b"] == "jack-generated")
+        .collect();
+    let levels: Vec<&str> = rows.iter().map(|c| c["level"].as_str().unwrap()).collect();
+    assert_eq!(levels, ["ops", "sdf", "pixels"]);
+    for c in &rows {
+        assert_eq!(
+            (&c["a"], &c["policy"]),
+            (&"ref-f316".into(), &"bit-exact".into())
+        );
+        assert_eq!(c["divergences"], 0, "{c}");
+        assert!(c["cases"].as_u64().unwrap() > 100, "{c}");
+    }
+    assert_eq!(
+        rows[2]["cases"],
+        80 * 48,
+        "every 2nd pixel of the 160x96 scene"
+    );
+    let s = &report["scenes"][0];
+    let jack = &s["jack"];
+    assert_eq!(jack["step"], 2);
+    // scene-jack's figure over every pixel is 279 240.
+    let mean = jack["mean"].as_f64().unwrap();
+    assert!((200_000.0..400_000.0).contains(&mean), "{jack}");
+    assert!(jack["desktop_s"].as_f64().unwrap() > 0.0);
+    assert!(jack["rom_shared"].as_u64().unwrap() < jack["rom_words"].as_u64().unwrap());
+    let pictures: Vec<&str> = s["pictures"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["image"].as_str().unwrap())
+        .collect();
+    for p in &pictures {
+        assert!(out.join(p).is_file(), "{p}");
+    }
+    for want in [
+        "images/scene-carved-ref-f316.png",
+        "images/scene-carved-jack-generated.png",
+        "images/scene-carved-jack-generated-vs-ref-f316.png",
+        "images/scene-carved-jack-generated-cost.png",
+    ] {
+        assert!(pictures.contains(&want), "{want} in {pictures:?}");
+    }
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(
+        html.contains("Generated Jack program")
+            && html.contains("scene-carved-jack-generated-cost.png")
+    );
 }
 
 fn report(out: &Path) -> serde_json::Value {

@@ -907,8 +907,70 @@ fn scenes(h: &mut String, r: &Report) {
             );
         }
         h.push_str("</table>");
+        if let Some(j) = &s.jack {
+            scene_jack(h, j);
+        }
+        if !s.pictures.is_empty() {
+            h.push_str("<div class=figs>");
+            for p in &s.pictures {
+                let _ = write!(
+                    h,
+                    "<figure><img class=px src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>",
+                    esc(&p.image),
+                    esc(&p.caption),
+                    esc(&p.caption)
+                );
+            }
+            h.push_str("</div>");
+        }
     }
     h.push_str("</section>\n");
+}
+
+/// The cost of a scene's generated Jack program.
+fn scene_jack(h: &mut String, j: &SceneJackCost) {
+    let fits = |words: u64| {
+        if words <= j.rom_words {
+            "fits"
+        } else {
+            "does not fit"
+        }
+    };
+    let _ = write!(
+        h,
+        "<p>Generated Jack program, step {} in x and y ({} pixels measured): \
+         <b>{:.0}</b> VM instructions per pixel (mean), max {}; the whole image {} VM instructions: \
+         about <b>{}</b> on the official desktop VM emulator at 1.4 M/s ({} by the hand-written seed program's \
+         9 h 45 min there), {} on ours. {} VM commands: about {} Hack ROM words in line ({} the {}), \
+         {} with shared call/return/compare routines ({}).</p>",
+        j.step,
+        j.pixels_measured,
+        j.mean,
+        j.max,
+        j.whole_image_instructions,
+        duration(j.desktop_s),
+        duration(j.desktop_seed_scale_s),
+        duration(j.ours_s),
+        j.vm_commands,
+        j.rom_textbook,
+        fits(j.rom_textbook),
+        j.rom_words,
+        j.rom_shared,
+        fits(j.rom_shared),
+    );
+}
+
+/// `s` seconds as `9 h 45 min`, `3 min 20 s` or `4.2 s`.
+pub fn duration(s: f64) -> String {
+    if s >= 3600.0 {
+        let m = (s / 60.0).round() as u64;
+        format!("{} h {:02} min", m / 60, m % 60)
+    } else if s >= 60.0 {
+        let t = s.round() as u64;
+        format!("{} min {:02} s", t / 60, t % 60)
+    } else {
+        format!("{s:.1} s")
+    }
 }
 
 /// Most recent runs shown in the trend table.
@@ -1023,6 +1085,13 @@ mod tests {
             "<td>threshold flip; root cause inv_sqrt in pixel(*,*) &gt; normalize (90%)</td>"
         ));
         assert!(!page.contains("not localizable (see above)"));
+    }
+
+    #[test]
+    fn durations_read_as_hours_minutes_or_seconds() {
+        assert_eq!(duration(35_100.0), "9 h 45 min");
+        assert_eq!(duration(200.0), "3 min 20 s");
+        assert_eq!(duration(4.24), "4.2 s");
     }
 
     #[test]

@@ -216,6 +216,12 @@ impl ReportBuilder {
         Ok(rel)
     }
 
+    /// Write a picture of a described scene into the report's images as
+    /// `scene-NAME.png` (`name` is made a file name); its relative path.
+    pub fn write_scene_picture(&self, name: &str, img: &image::RgbImage) -> Result<String> {
+        self.write_png(&format!("scene-{}.png", file_stem(name)), img)
+    }
+
     fn write_text(&self, name: &str, text: &str) -> Result<String> {
         let rel = format!("images/{name}");
         let path = self.stage.path().join(&rel);

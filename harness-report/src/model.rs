@@ -165,6 +165,47 @@ pub struct SceneRow {
     pub costs: Vec<SceneCost>,
     /// Implementations that do not render it, and why.
     pub unsupported: Vec<String>,
+    /// What the Jack program generated from it costs, when it was made.
+    #[serde(default)]
+    pub jack: Option<SceneJackCost>,
+    /// Its pictures: each leg's render, difference overlays, the Jack
+    /// program's cost map.
+    #[serde(default)]
+    pub pictures: Vec<ScenePicture>,
+}
+
+/// The cost of the Jack program generated from a described scene, measured
+/// on every `step`-th pixel of every `step`-th row.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SceneJackCost {
+    pub step: u32,
+    pub pixels_measured: u64,
+    /// VM instructions per pixel (desktop clock): mean and max.
+    pub mean: f64,
+    pub max: u64,
+    /// `Main.init` and the estimated whole image, VM instructions.
+    pub init_instructions: u64,
+    pub whole_image_instructions: u64,
+    /// The whole image on the official desktop VM emulator at 1.4 M VM
+    /// instructions per second, and by the hand-written seed program's
+    /// 9 h 45 min there; on our emulator at the rate measured; seconds.
+    pub desktop_s: f64,
+    pub desktop_seed_scale_s: f64,
+    pub ours_s: f64,
+    /// Size in VM commands, Hack ROM words estimated with every command in
+    /// line and with shared call/return/compare routines, the ROM's words.
+    pub vm_commands: u64,
+    pub rom_textbook: u64,
+    pub rom_shared: u64,
+    pub rom_words: u64,
+}
+
+/// One picture of a described scene.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ScenePicture {
+    /// The image, relative path.
+    pub image: String,
+    pub caption: String,
 }
 
 /// The cost of one whole-image render of a described scene.

@@ -2,6 +2,8 @@
 //! `commands/jack/`.
 
 mod compile;
+pub mod cost;
+mod emit;
 mod run;
 mod test;
 
@@ -14,6 +16,10 @@ pub enum JackCommand {
     Run(run::RunArgs),
     /// Run a course VM emulator test script (.tst), compared with its .cmp.
     Test(test::TestArgs),
+    /// Write the Jack program generated from a scene description, with its bindings.toml.
+    Emit(emit::EmitArgs),
+    /// What the Jack program generated from a scene costs: VM instructions per pixel, time, ROM.
+    Cost(cost::CostArgs),
 }
 
 /// Run a Jack subcommand.
@@ -22,5 +28,7 @@ pub fn run(cmd: JackCommand) -> anyhow::Result<std::process::ExitCode> {
         JackCommand::Compile(args) => compile::run(args),
         JackCommand::Run(args) => run::run(args),
         JackCommand::Test(args) => test::run(args),
+        JackCommand::Emit(args) => emit::run(args),
+        JackCommand::Cost(args) => cost::run(args),
     }
 }

@@ -43,7 +43,8 @@ pub struct NightlyArgs {
     #[arg(long = "impls", value_delimiter = ',', value_name = "NAME,...")]
     pub implementations: Option<Vec<String>>,
     /// A described scene for the scenes step: a shipped scene's name
-    /// (`rtdemo`) or a file (repeatable; default every shipped scene).
+    /// (`rtdemo`) or a file (repeatable; default every shipped scene and
+    /// the test scene tests/carved.json).
     #[arg(long = "scene", value_name = "NAME")]
     pub scenes: Vec<String>,
     /// Run only shard K/N of the committed and TestFloat sets (K counts
@@ -96,7 +97,7 @@ pub fn run(args: NightlyArgs, mut cast: Cast) -> Result<ExitCode> {
         shard: args.shard.unwrap_or(Shard::WHOLE),
         allow_unavailable: args.allow_unavailable,
         scenes: if args.scenes.is_empty() {
-            nightly::scenes::shipped()?
+            nightly::scenes::nightly_default()?
         } else {
             args.scenes
                 .iter()

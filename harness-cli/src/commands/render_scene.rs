@@ -90,9 +90,11 @@ pub fn render(
 /// renders the seed scene only.
 pub fn jack_refusal(scene: &scene::Checked, file: &Path) -> String {
     format!(
-        "jack: the hand-written Jack program renders the seed scene only, and {} (`{}`) is another scene; a Jack program generated from a description does not exist yet",
+        "jack: the hand-written Jack program renders the seed scene only, and {} (`{}`) is another scene; generate one from the description with `harness jack emit --scene {} --out DIR`, or declare it in harness.toml with `kind = \"jack\"` and `scene = \"{}\"`",
         file.display(),
-        scene.description.name
+        scene.description.name,
+        file.display(),
+        file.display()
     )
 }
 

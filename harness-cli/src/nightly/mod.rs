@@ -17,6 +17,8 @@
 
 mod explain;
 mod pairs;
+mod scene_jack;
+mod scene_pictures;
 pub mod scenes;
 pub mod step;
 pub mod steps;

@@ -11,13 +11,16 @@
 
 use super::step::Step;
 use super::Night;
-use crate::commands::render_scene::{compile_gpu, jack_refusal, kernel_image};
+use super::{scene_jack, scene_pictures};
+use crate::commands::render_scene::{compile_gpu, kernel_image};
 use anyhow::{bail, Context, Result};
 use common::{Op, Outcome, TraceRecord, F316};
 use harness::compare::Thresholds;
 use harness::implementation::Numbers;
 use harness::verdict::Missing;
-use harness_report::model::{Comparison, DivergenceExample, ErrorFigures, SceneCost, SceneRow};
+use harness_report::model::{
+    Comparison, DivergenceExample, ErrorFigures, SceneCost, SceneJackCost, SceneRow,
+};
 use harness_report::{BIT_EXACT, ERROR_FIGURES};
 use reference::{Described, RefImpl, SceneImage, ScenePixel, SdfValue, Settings};
 use std::collections::{BTreeMap, BTreeSet};
@@ -39,6 +42,18 @@ pub fn shipped() -> Result<Vec<PathBuf>> {
         .filter(|p| p.extension().is_some_and(|x| x == "json"))
         .collect();
     files.sort();
+    Ok(files)
+}
+
+/// The scene no shipped description uses the shapes of: carved shapes
+/// (`vectors/scenes/tests/carved.json`), a scene nobody ported by hand.
+pub const TEST_SCENE: &str = "tests/carved.json";
+
+/// The scenes of a night without `--scene`: every shipped one, then
+/// [`TEST_SCENE`].
+pub fn nightly_default() -> Result<Vec<PathBuf>> {
+    let mut files = shipped()?;
+    files.push(shipped_dir().join(TEST_SCENE));
     Ok(files)
 }
 
@@ -175,22 +190,50 @@ fn one_scene(night: &mut Night<'_>, gpu: Option<&gpu::Gpu>, file: &Path) -> Resu
         row.unsupported.push(
             "jack: the hand-written program answers the seed scene (compared in the levels, renders and pairs steps)".into(),
         );
-    } else {
-        row.unsupported.push(jack_refusal(&checked, file));
     }
     let find = |label: &str| images.iter().find(|(l, _)| l == label).map(|(_, i)| i);
     let mut comparisons = Vec::new();
     if let (Some(a), Some(b)) = (find("ref-f316"), find("gpu-f316")) {
-        comparisons.push(bit_exact_pixels(&scope, a, b));
+        comparisons.push(bit_exact_pixels(&scope, "ref-f316", "gpu-f316", a, b, 1));
     }
+    let mut points = sdf_points();
+    let derived = vectors::gen::scene_derived::sdf_set(&checked, DERIVED_SEED)?;
+    points.extend(derived.vectors.iter().filter_map(|v| match v {
+        vectors::Vector::Sdf(s) => Some(s.p),
+        _ => None,
+    }));
     if let (Some(d), Some((gpu, k))) = (&f316, gpu.zip(f316_kernel.as_ref())) {
-        let mut points = sdf_points();
-        let derived = vectors::gen::scene_derived::sdf_set(&checked, DERIVED_SEED)?;
-        points.extend(derived.vectors.iter().filter_map(|v| match v {
-            vectors::Vector::Sdf(s) => Some(s.p),
-            _ => None,
-        }));
         comparisons.push(bit_exact_sdf(&scope, d, gpu, k, &points)?);
+    }
+    // The generated Jack program, where the night has the jack kind and
+    // ref-f316 to compare it with.
+    let mut jack = None;
+    if let Some(d) = f316.as_ref().filter(|_| night.find("jack").is_some()) {
+        let start = Instant::now();
+        match scene_jack::run(night, file, &scope, d, &points, &images) {
+            Ok(leg) => {
+                let c = &leg.measured.cost;
+                row.costs.push(SceneCost {
+                    implementation: format!(
+                        "{} ({})",
+                        scene_jack::LABEL,
+                        crate::commands::jack::cost::every_nth(c.step)
+                    ),
+                    setup_s: 0.0,
+                    render_s: start.elapsed().as_secs_f64(),
+                    pixels: c.pixels_measured as u64,
+                    per_pixel_s: start.elapsed().as_secs_f64() / c.pixels_measured.max(1) as f64,
+                });
+                row.jack = Some(jack_cost(c));
+                comparisons.extend(leg.comparisons.iter().cloned());
+                jack = Some(leg);
+            }
+            Err(e) => night.not_compared(
+                format!("{scope}: {}", scene_jack::LABEL),
+                Missing::Failed,
+                format!("{e:#}"),
+            ),
+        }
     }
     if let Some(oracle) = find("ref-f64") {
         for label in ["ref-f32", "gpu-f32"] {
@@ -202,10 +245,30 @@ fn one_scene(night: &mut Night<'_>, gpu: Option<&gpu::Gpu>, file: &Path) -> Resu
     if let Some(d) = &f316 {
         coverage(&mut row, d)?;
     }
+    row.pictures = scene_pictures::pictures(&night.builder, &name, &images, jack.as_ref())?;
     let report = night.builder.report_mut();
     report.comparisons.extend(comparisons);
     report.scenes.push(row);
     Ok(())
+}
+
+/// The report's figures of a generated program's cost.
+fn jack_cost(c: &crate::commands::jack::cost::SceneCost) -> SceneJackCost {
+    SceneJackCost {
+        step: c.step,
+        pixels_measured: c.pixels_measured as u64,
+        mean: c.mean,
+        max: c.max,
+        init_instructions: c.init_instructions,
+        whole_image_instructions: c.whole_image_instructions,
+        desktop_s: c.desktop_s,
+        desktop_seed_scale_s: c.desktop_seed_scale_s,
+        ours_s: c.ours_s,
+        vm_commands: c.vm_commands as u64,
+        rom_textbook: c.rom_textbook as u64,
+        rom_shared: c.rom_shared as u64,
+        rom_words: c.rom_words as u64,
+    }
 }
 
 fn cost(label: &str, setup_s: f64, render_s: f64, image: &SceneImage) -> SceneCost {
@@ -281,14 +344,25 @@ fn compare_sizes(c: &mut Comparison, a: &SceneImage, b: &SceneImage) {
     }
 }
 
-fn pixel_case(i: usize, width: usize) -> String {
-    let width = width.max(1);
-    format!("pixel({},{})", i % width, i / width)
+/// The pixel at index `i` of an image `width` wide whose pixels are every
+/// `step`-th of the scene's.
+fn pixel_case(i: usize, width: usize, step: u32) -> String {
+    let (width, step) = (width.max(1), step as usize);
+    format!("pixel({},{})", i % width * step, i / width * step)
 }
 
-/// ref-f316 against gpu-f316 on every pixel: triple, level and outcome.
-fn bit_exact_pixels(scope: &str, a: &SceneImage, b: &SceneImage) -> Comparison {
-    let mut c = comparison("pixels", scope, "ref-f316", "gpu-f316", BIT_EXACT);
+/// Two Float316 renders `a` and `b` (labelled so) on every pixel they
+/// hold: triple, level and outcome. Their pixels are every `step`-th of
+/// every `step`-th row of the scene's.
+pub(super) fn bit_exact_pixels(
+    scope: &str,
+    a_label: &str,
+    b_label: &str,
+    a: &SceneImage,
+    b: &SceneImage,
+    step: u32,
+) -> Comparison {
+    let mut c = comparison("pixels", scope, a_label, b_label, BIT_EXACT);
     compare_sizes(&mut c, a, b);
     for (i, pa, pb) in side_by_side(&a.pixels, &b.pixels) {
         c.cases += 1;
@@ -299,7 +373,7 @@ fn bit_exact_pixels(scope: &str, a: &SceneImage, b: &SceneImage) -> Comparison {
         });
         if !same {
             diverged(&mut c, || {
-                example(pixel_case(i, a.width), pixel_text(pa), pixel_text(pb))
+                example(pixel_case(i, a.width, step), pixel_text(pa), pixel_text(pb))
             });
         }
     }
@@ -334,17 +408,26 @@ fn bit_exact_sdf(
     kernel: &gpu::SceneKernel,
     points: &[[F316; 3]],
 ) -> Result<Comparison> {
-    let theirs = kernel.sdf(gpu, points)?;
+    let theirs: Vec<SdfTriples> = kernel
+        .sdf(gpu, points)?
+        .into_iter()
+        .map(|o| o.map(|(sd, col)| (sd.triple, col.triple)))
+        .collect();
     Ok(compare_sdf(scope, points, |p| ours.sdf(p), &theirs))
 }
 
-/// `ours` at each of `points` against `theirs`, the kernel's answers to
-/// them in order (a point it did not answer diverges).
-fn compare_sdf(
+/// Another Float316 implementation's SDF answer: distance and colour
+/// triples (`None`: it gave no Float316 number).
+pub(super) type SdfTriples = Outcome<(Option<F316>, Option<F316>)>;
+
+/// ref-f316 (`ours`) at each of `points` against `theirs`, another
+/// implementation's answers to them in order (gpu-f316's; a point it did
+/// not answer diverges).
+pub(super) fn compare_sdf(
     scope: &str,
     points: &[[F316; 3]],
     ours: impl Fn([F316; 3]) -> Outcome<SdfValue>,
-    theirs: &[Outcome<(gpu::GpuNum, gpu::GpuNum)>],
+    theirs: &[SdfTriples],
 ) -> Comparison {
     let mut c = comparison("sdf", scope, "ref-f316", "gpu-f316", BIT_EXACT);
     for (_, p, g) in side_by_side(points, theirs) {
@@ -355,9 +438,7 @@ fn compare_sdf(
         );
         let r = p.map(|&p| ours(p));
         let same = r.as_ref().zip(g).is_some_and(|(r, g)| {
-            r.same_as(g, |v, (sd, col)| {
-                v.sd.triple == sd.triple && v.col.triple == col.triple
-            })
+            r.same_as(g, |v, &(sd, col)| v.sd.triple == sd && v.col.triple == col)
         });
         if !same {
             diverged(&mut c, || {
@@ -396,7 +477,7 @@ fn float_pixels(scope: &str, oracle: &SceneImage, label: &str, image: &SceneImag
                 let text = |q: Option<&Outcome<ScenePixel>>| {
                     q.map_or_else(|| "no pixel".into(), |q| format!("{q:?}"))
                 };
-                example(pixel_case(i, oracle.width), text(o), text(p))
+                example(pixel_case(i, oracle.width, 1), text(o), text(p))
             }),
         }
     }
@@ -522,6 +603,9 @@ mod tests {
         }
         let err = resolve("no-such-scene").unwrap_err().to_string();
         assert!(err.contains("rtdemo, sdf-engine, seed, toon"), "{err}");
+        let night = nightly_default().unwrap();
+        assert_eq!(night[..4], files[..]);
+        assert!(night[4].is_file() && night[4].ends_with(TEST_SCENE));
     }
 
     fn pixel(level: u8) -> Outcome<ScenePixel> {
@@ -546,8 +630,11 @@ mod tests {
     /// Both pixel comparisons, bit-exact and by error figures, of `a`
     /// against `b`: their (cases, divergences).
     fn both(a: &SceneImage, b: &SceneImage) -> [(u64, u64); 2] {
-        [bit_exact_pixels("s", a, b), float_pixels("s", a, "x", b)]
-            .map(|c| (c.cases, c.divergences))
+        [
+            bit_exact_pixels("s", "a", "b", a, b, 1),
+            float_pixels("s", a, "x", b),
+        ]
+        .map(|c| (c.cases, c.divergences))
     }
 
     #[test]
@@ -556,7 +643,7 @@ mod tests {
         assert_eq!(both(&a, &a), [(2, 0); 2]);
         let b = image(2, vec![pixel(1), Outcome::SysError(4)]);
         assert_eq!(both(&a, &b), [(2, 1); 2]);
-        let c = bit_exact_pixels("s", &a, &b);
+        let c = bit_exact_pixels("s", "a", "b", &a, &b, 1);
         assert_eq!(c.examples[0].case, "pixel(1,0)");
         assert_eq!(
             (c.examples[0].a.as_str(), c.examples[0].b.as_str()),
@@ -594,7 +681,7 @@ mod tests {
         };
         assert_eq!(both(&a, &short), [(4, 1); 2]);
         assert_eq!(both(&short, &a), [(4, 1); 2]);
-        let c = bit_exact_pixels("s", &a, &short);
+        let c = bit_exact_pixels("s", "a", "b", &a, &short, 1);
         assert_eq!(
             (c.examples[0].case.as_str(), c.examples[0].b.as_str()),
             ("pixel(1,1)", "no pixel")
@@ -603,7 +690,7 @@ mod tests {
         let row = image(4, a.pixels.clone());
         assert_eq!(both(&a, &row), [(5, 1); 2]);
         assert_eq!(
-            bit_exact_pixels("s", &a, &row).examples[0].case,
+            bit_exact_pixels("s", "a", "b", &a, &row, 1).examples[0].case,
             "image size"
         );
     }
@@ -622,11 +709,8 @@ mod tests {
                 Outcome::Value(SdfValue { sd: s, col: s })
             }
         };
-        let one = gpu::GpuNum {
-            value: 1.0,
-            triple: Some(F316::ONE),
-        };
-        let count = |theirs: &[Outcome<(gpu::GpuNum, gpu::GpuNum)>]| {
+        let one = Some(F316::ONE);
+        let count = |theirs: &[SdfTriples]| {
             let c = compare_sdf("s", &points, ours, theirs);
             (c.cases, c.divergences)
         };

@@ -685,7 +685,7 @@ impl Step for Speed {
 
 /// Implementations that gave no answers (or stopped before the end) on a
 /// set fail the night; each is a problem of the report too.
-fn record_failures(night: &mut Night<'_>, level: &runner::LevelReport) {
+pub(super) fn record_failures(night: &mut Night<'_>, level: &runner::LevelReport) {
     let failures: Vec<(String, ImplError)> = level
         .failures()
         .map(|(label, e)| (format!("{label} on {}", level.set), e.clone()))
@@ -700,7 +700,7 @@ fn record_failures(night: &mut Night<'_>, level: &runner::LevelReport) {
 /// figures against the oracle are measured, not judged: Float316 is judged
 /// bit for bit against the tracer, and its distance from f64 is what the
 /// explain step accounts for.
-fn summarise(night: &Night<'_>, c: &LevelComparison, set: &str) -> Comparison {
+pub(super) fn summarise(night: &Night<'_>, c: &LevelComparison, set: &str) -> Comparison {
     let tracer = night.find(&night.cast.tracer().name);
     let judged = c.policy == Policy::Exact
         || night

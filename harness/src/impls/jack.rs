@@ -26,7 +26,7 @@ use jack::{
     Bindings, BoundPixel, BoundProgram, Budgets, DivideRule, JackError, JackProgram, WholeRun,
 };
 use serde::de::IntoDeserializer;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use vectors::{Level, Vector};
 
@@ -46,6 +46,8 @@ enum Source {
     Seed,
     /// A folder of .jack or .vm files.
     Folder(PathBuf),
+    /// The cache folder of a program generated from a scene description.
+    Generated(PathBuf),
 }
 
 /// The levels `bindings` can answer.
@@ -180,25 +182,29 @@ impl Places {
     }
 }
 
+/// The bindings file `path` with its text: the bindings, and where each
+/// field was written.
+fn bindings_file(path: &Path, text: &str) -> Result<(Bindings, Places), FieldError> {
+    let mut places = Places::default();
+    let source = crate::cast::file::Source { file: path, text };
+    let bindings = toml::from_str(text).map_err(|e| {
+        let at = e.span().map_or(0, |s| s.start);
+        source.error(at, "", e.message().trim_end().to_string())
+    })?;
+    let table = crate::cast::file::parse(source)?;
+    for (k, v) in table.get_ref().iter() {
+        places.walk(v, k.get_ref().to_string(), &|p, at| source.error(at, p, ""));
+    }
+    Ok((bindings, places))
+}
+
 /// The bindings of a declared entry: inline fields, or a bindings file.
 fn declared_bindings(fields: &mut Fields<'_>) -> Result<(Bindings, Places), FieldError> {
     let mut places = Places::default();
     if let Some(path) = fields.path("bindings")? {
         let text =
             common::input::read_text(&path).map_err(|e| fields.error("bindings", e.to_string()))?;
-        let source = crate::cast::file::Source {
-            file: &path,
-            text: &text,
-        };
-        let bindings = toml::from_str(&text).map_err(|e| {
-            let at = e.span().map_or(0, |s| s.start);
-            source.error(at, "", e.message().trim_end().to_string())
-        })?;
-        let table = crate::cast::file::parse(source)?;
-        for (k, v) in table.get_ref().iter() {
-            places.walk(v, k.get_ref().to_string(), &|p, at| source.error(at, p, ""));
-        }
-        return Ok((bindings, places));
+        return bindings_file(&path, &text);
     }
     for key in BINDING_FIELDS {
         if let Some(value) = fields.raw(key) {
@@ -256,6 +262,9 @@ impl Kind for JackKind {
         let profile = fields
             .parsed::<Profile>("profile")?
             .unwrap_or(Profile::Desktop);
+        if let Some(scene) = fields.path("scene")? {
+            return generated(fields, &scene, profile);
+        }
         let Some(dir) = fields.path("program")? else {
             for key in BINDING_FIELDS.iter().chain(&["bindings"]) {
                 if fields.raw(key).is_some() {
@@ -284,6 +293,102 @@ impl Kind for JackKind {
     }
 }
 
+/// The entry `scene = FILE` declares: the Jack program generated from the
+/// description (crate `scene-jack`), written with its `bindings.toml` into
+/// the cache folder [`generated_dir`] names, then opened from there as a
+/// user's program is.
+fn generated(fields: &mut Fields<'_>, scene: &Path, profile: Profile) -> Result<Entry, FieldError> {
+    for key in BINDING_FIELDS.iter().chain(&["bindings", "program"]) {
+        if fields.raw(key).is_some() {
+            return Err(fields.error(
+                key,
+                "`scene` generates the program and its bindings; leave this field out",
+            ));
+        }
+    }
+    let sources = scene_jack::emit_file(scene)
+        .map_err(|e| fields.error("scene", e.to_string()))?
+        .sources;
+    let dir = generated_dir(scene, &sources);
+    write_generated(&dir, &sources).map_err(|e| {
+        fields.error(
+            "scene",
+            format!(
+                "cannot write the generated program into {}: {e}",
+                dir.display()
+            ),
+        )
+    })?;
+    let (bindings, places) = bindings_file(&dir.join("bindings.toml"), &sources.bindings)?;
+    let about = format!(
+        "the Jack program generated from {} (in {}) under the {} OS profile, through its bindings",
+        scene.display(),
+        dir.display(),
+        profile.name()
+    );
+    Ok(entry("jack", Source::Generated(dir), profile, bindings, places).about(about))
+}
+
+/// The cache folder of a generated program: under the system's temporary
+/// directory, named by the scene file's stem and a hash of everything
+/// generated, so that a changed scene or back end never reuses stale files.
+fn generated_dir(scene: &Path, sources: &scene_jack::JackSources) -> PathBuf {
+    // FNV-1a, 64 bits: stable across runs and Rust versions.
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    let files = sources
+        .classes
+        .iter()
+        .map(|c| (c.name.as_str(), c.text.as_str()))
+        .chain([("bindings.toml", sources.bindings.as_str())]);
+    for (name, text) in files {
+        for b in name.bytes().chain([0]).chain(text.bytes()).chain([0]) {
+            hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    let stem = scene
+        .file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    std::env::temp_dir()
+        .join("f316-harness-jack")
+        .join(format!("{stem}-{hash:016x}"))
+}
+
+/// Write `sources` into `dir` unless it is there already: into a fresh
+/// sibling first, renamed into place, so that a folder of that name is
+/// always whole.
+fn write_generated(dir: &Path, sources: &scene_jack::JackSources) -> std::io::Result<()> {
+    if dir.is_dir() {
+        return Ok(());
+    }
+    let parent = dir.parent().expect("the cache folder has a parent");
+    std::fs::create_dir_all(parent)?;
+    let tmp = fresh_dir(parent)?;
+    sources.write_to(&tmp)?;
+    match std::fs::rename(&tmp, dir) {
+        Ok(()) => Ok(()),
+        // Another process wrote the same folder first.
+        Err(_) if dir.is_dir() => std::fs::remove_dir_all(&tmp),
+        Err(e) => {
+            let _ = std::fs::remove_dir_all(&tmp);
+            Err(e)
+        }
+    }
+}
+
+/// A new empty folder in `parent`, named by this process and a counter.
+fn fresh_dir(parent: &Path) -> std::io::Result<PathBuf> {
+    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    loop {
+        let n = NEXT.fetch_add(1, Ordering::Relaxed);
+        let tmp = parent.join(format!(".tmp-{}-{n}", std::process::id()));
+        match std::fs::create_dir(&tmp) {
+            Ok(()) => return Ok(tmp),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+            Err(e) => return Err(e),
+        }
+    }
+}
+
 /// Opens a bound program under its profile (`web-divide`: with a flooring
 /// `Math.divide`).
 struct JackOpener {
@@ -299,7 +404,9 @@ impl Opener for JackOpener {
         request.seed_scene_only()?;
         let mut program = match &self.source {
             Source::Seed => JackProgram::from_jack(&jack::sources::SOURCES, self.profile),
-            Source::Folder(dir) => JackProgram::from_dir(dir, self.profile),
+            Source::Folder(dir) | Source::Generated(dir) => {
+                JackProgram::from_dir(dir, self.profile)
+            }
         }
         .map_err(|e| ImplError::Failed(e.to_string()))?;
         if request.label.variants.iter().any(|v| v == WEB_DIVIDE) {
@@ -309,8 +416,17 @@ impl Opener for JackOpener {
         }
         // A program that does not compile, or never reaches its bindings'
         // ready point, is a failure of the port, not of this machine.
+        // A generated program answers its own scene, where the probes'
+        // seed answers do not apply; its bindings give each role its own
+        // argument by construction.
+        let probe = !matches!(self.source, Source::Generated(_));
         let bound = BoundProgram::open(&program, &self.bindings, Budgets::default())
-            .and_then(|bound| check_sdf_roles(&bound, &self.bindings).map(|()| bound))
+            .and_then(|bound| {
+                if probe {
+                    check_sdf_roles(&bound, &self.bindings)?;
+                }
+                Ok(bound)
+            })
             .map_err(|e| match e {
                 JackError::Bind(e) => ImplError::Failed(self.places.locate(&e)),
                 e => ImplError::Failed(e.to_string()),

@@ -11,9 +11,8 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let file = args.next().expect("a scene file");
     let step: u32 = args.next().map_or(1, |s| s.parse().expect("STEP"));
-    let checked = scene::load(Path::new(&file)).unwrap_or_else(|e| panic!("{e}"));
-    let p = scene::lower(&checked, scene::Formulation::Float316);
-    let j = scene_jack::emit(&p).unwrap_or_else(|e| panic!("{e}"));
+    let g = scene_jack::emit_file(Path::new(&file)).unwrap_or_else(|e| panic!("{e}"));
+    let (p, j) = (g.program, g.sources);
     let profile = hack_vm::Profile::Desktop;
     let size = cost::size(&cost::compile(&j, profile).expect("compiles"));
     println!(

@@ -45,6 +45,18 @@ pub enum EmitError {
     Statics(usize),
 }
 
+/// Why a scene file gives no Jack program.
+#[derive(Debug, thiserror::Error)]
+pub enum FileError {
+    /// The description cannot be read or is refused (the error names the
+    /// file and the field).
+    #[error(transparent)]
+    Scene(#[from] scene::SceneError),
+    /// Its program cannot be written in Jack.
+    #[error("{file}: {error}")]
+    Emit { file: String, error: EmitError },
+}
+
 /// One generated class.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct JackFile {
@@ -111,6 +123,29 @@ fn statics_of(text: &str) -> usize {
         .filter_map(|l| l.trim_start().strip_prefix("static "))
         .map(|l| l.split("//").next().unwrap_or("").split(',').count())
         .sum()
+}
+
+/// A scene description with its Float316 program and that program's Jack
+/// program.
+pub struct Generated {
+    pub checked: scene::Checked,
+    pub program: Program,
+    pub sources: JackSources,
+}
+
+/// The Jack program of the scene description in `path`.
+pub fn emit_file(path: &Path) -> Result<Generated, FileError> {
+    let checked = scene::load(path)?;
+    let program = scene::lower(&checked, Formulation::Float316);
+    let sources = emit(&program).map_err(|error| FileError::Emit {
+        file: path.display().to_string(),
+        error,
+    })?;
+    Ok(Generated {
+        checked,
+        program,
+        sources,
+    })
 }
 
 /// The Jack program of `p`, a Float316 program.
