@@ -5,12 +5,12 @@
 
 use crate::exit::Exit;
 use crate::machine::{
-    Frame, Machine, Watcher, ARG_OK, DESKTOP_TEST, HOST, LOCAL_OK, MAX_DEPTH, THAT_OK, THAT_ZERO,
-    THIS_OK,
+    Frame, Machine, Watcher, ARG_OK, HOST, LOCAL_OK, MAX_DEPTH, NEAR, NEAR_THAT, NEAR_THIS,
+    THAT_OK, THAT_ZERO, THIS_OK,
 };
 use crate::program::{Bin, Code, Op, Operand, Program, ARG, CONST, LCL, PTR, THAT, THIS};
 use crate::timing::{Timing, STACK_BASE, STACK_LAST};
-use jack_os::{math, Builtin, Ram, Stop, RAM_SIZE};
+use jack_os::{math, Builtin, Profile, Ram, Stop, RAM_SIZE};
 
 /// The VM registers RAM[0..=4], cached: SP, and LCL, ARG, THIS, THAT in
 /// a table that fused operands index by their base (`ABS`, `CONST` and
@@ -150,12 +150,12 @@ fn fast_sp(sp: u16) -> bool {
 }
 
 /// Whether none of `operands` can fail in this invocation (see
-/// [`crate::program::Operand::need`]).
+/// [`crate::program::Operand::need`]): the web IDE's flags, and under the
+/// desktop profile `ARGS_FIT` and the pointers' [`near`] bits.
 #[inline(always)]
-fn operands_ok<const N: usize>(operands: [Operand; N], flags: u8, seg: &[u16; 8]) -> bool {
+fn operands_ok<const N: usize>(operands: [Operand; N], flags: u8) -> bool {
     let need = operands.iter().fold(0, |n, o| n | o.need);
-    let web = need & !DESKTOP_TEST;
-    flags & web == web && (need & DESKTOP_TEST == 0 || desktop_operands_ok(operands, seg, flags))
+    flags & need == need
 }
 
 #[inline(always)]
@@ -235,16 +235,68 @@ pub(crate) fn desktop_that_value_ok(v: i16) -> bool {
     v == 0 || (HEAP_START..=THAT_END).contains(&i32::from(v))
 }
 
-/// Desktop: whether a fused instruction's `this`/`that` operands all pass
-/// the desktop's address tests with the pointers as they are (the web IDE's
-/// tests are the flags of [`operands_ok`]).
+/// Desktop: the [`NEAR_THIS`] and [`NEAR_THAT`] bits of the pointers as
+/// they are: set where every offset below [`NEAR`] passes the desktop's
+/// address test, so that a fused instruction tests its `this`/`that`
+/// operands with the flags (the desktop loop keeps these bits in its
+/// flags, sets them where a pointer changes, and leaves them out of the
+/// machine's and the frames'). `this i` with THIS in 2048..=16383 - 63
+/// stays in the heap; `that i` with THAT from its range's floor (2048, or
+/// 0 after a `pop pointer 1` of 0) to 24576 - 63 stays in its range.
+/// Neither sum wraps, so each passes [`desktop_this_ok`] or
+/// [`desktop_that_ok`].
 #[inline(always)]
-fn desktop_operands_ok<const N: usize>(operands: [Operand; N], seg: &[u16; 8], flags: u8) -> bool {
-    operands.iter().all(|o| match usize::from(o.base) {
-        THIS => desktop_this_ok(seg[THIS], o.off),
-        THAT => desktop_that_ok(seg[THAT], o.off, flags),
-        _ => true,
-    })
+fn near(seg: &[u16; 8], flags: u8) -> u8 {
+    let floor = if flags & THAT_ZERO != 0 {
+        0
+    } else {
+        HEAP_START
+    };
+    this_near(seg[THIS] as i16) | that_near_above(seg[THAT] as i16, floor)
+}
+
+/// Desktop: the [`near`] bit of THAT at `v` with the `that` range's floor
+/// at `floor`.
+#[inline(always)]
+fn that_near_above(v: i16, floor: i32) -> u8 {
+    if (floor..=THAT_END - NEAR_END).contains(&i32::from(v)) {
+        NEAR_THAT
+    } else {
+        0
+    }
+}
+
+/// `flags` with the [`near`] bits of the pointers as they are.
+#[inline(always)]
+fn with_near(flags: u8, seg: &[u16; 8]) -> u8 {
+    flags & !NEAR_BITS | near(seg, flags)
+}
+
+/// Both [`near`] bits.
+const NEAR_BITS: u8 = NEAR_THIS | NEAR_THAT;
+
+/// How far below its segment's end a pointer must lie for [`NEAR`] offsets.
+const NEAR_END: i32 = NEAR as i32 - 1;
+
+/// Desktop: the [`near`] bit of THIS at `v`.
+#[inline(always)]
+fn this_near(v: i16) -> u8 {
+    if (HEAP_START..=HEAP_END - NEAR_END).contains(&i32::from(v)) {
+        NEAR_THIS
+    } else {
+        0
+    }
+}
+
+/// Desktop: the [`near`] bit of THAT at `v`, stored by a `pop pointer 1`
+/// that passed the desktop's test (0, with THAT_ZERO set, or 2048..=24576).
+#[inline(always)]
+fn that_near(v: i16) -> u8 {
+    if i32::from(v) <= THAT_END - NEAR_END {
+        NEAR_THAT
+    } else {
+        0
+    }
 }
 
 /// Desktop: the highest SP at a built-in call (its arguments pushed) that
@@ -256,6 +308,22 @@ impl Machine {
     /// Run instructions of `code` (its fused array if `fused`, else its plain
     /// one) until the step count reaches `stop_at` (None) or the run ends (Some).
     pub(crate) fn exec<const W: bool>(
+        &mut self,
+        program: &Program,
+        code: &Code,
+        fused: bool,
+        stop_at: u64,
+        watch: &mut Option<(&[bool], &mut dyn Watcher)>,
+    ) -> Flow {
+        // One loop per profile, so that neither tests the profile per instruction.
+        match self.os.profile() {
+            Profile::Desktop => self.exec_as::<W, true>(program, code, fused, stop_at, watch),
+            Profile::Web => self.exec_as::<W, false>(program, code, fused, stop_at, watch),
+        }
+    }
+
+    /// [`Machine::exec`] under the desktop profile (`D`) or the web one.
+    fn exec_as<const W: bool, const D: bool>(
         &mut self,
         program: &Program,
         code: &Code,
@@ -285,9 +353,9 @@ impl Machine {
         let mut profile_mark = self.profile_mark;
         let scratch = &mut self.scratch;
         let beyond_end = &mut self.beyond_end;
-        let os_profile = os.profile();
         let divide = os.divide_rule();
-        let timing = Timing::of(os_profile);
+        let timing = Timing::of(if D { Profile::Desktop } else { Profile::Web });
+        debug_assert_eq!(timing, Timing::of(os.profile()));
         let (function_step, stack_check) = (timing.function_step, timing.stack_check);
         let plain = &code.plain[..];
         let ops = if fused { &code.fused[..] } else { plain };
@@ -297,6 +365,9 @@ impl Machine {
             mut sp,
             base: mut seg,
         } = Regs::load(w);
+        if D {
+            flags = with_near(flags, &seg);
+        }
 
         let halt: Option<Halt> = 'run: loop {
             macro_rules! rd {
@@ -317,6 +388,10 @@ impl Machine {
                         w[usize::from(a)] = v;
                     } else {
                         sp = write_slow(sp, &mut seg, a, v);
+                        if D {
+                            // A register word: a pointer may have changed.
+                            flags = with_near(flags, &seg);
+                        }
                     }
                 }};
             }
@@ -387,32 +462,43 @@ impl Machine {
                     push!($e);
                 }};
             }
-            // The checked forms (all of the desktop's `this`/`that`): the web
-            // IDE's test that the invocation set the pointer, or the
-            // desktop's address test.
-            macro_rules! this_ok {
-                ($bit:expr, $msg:expr, $desktop:expr) => {
-                    if function_step {
-                        $desktop;
+            // The test of a checked form (all of the desktop's `this`/`that`):
+            // the web IDE's that the invocation set the pointer, or the
+            // desktop's address test, at once for a near offset of a near
+            // pointer and in full for the others.
+            macro_rules! checked {
+                (THIS, $i:expr) => {
+                    checked!(@NEAR_THIS, $i, THIS_OK, THIS_UNINIT, desktop_this_ok(seg[THIS], $i))
+                };
+                (THAT, $i:expr) => {
+                    checked!(@NEAR_THAT, $i, THAT_OK, THAT_UNINIT, desktop_that_ok(seg[THAT], $i, flags))
+                };
+                (@$near:expr, $i:expr, $bit:expr, $msg:expr, $exact:expr) => {
+                    if D {
+                        if $i >= NEAR || flags & $near == 0 {
+                            if !$exact {
+                                break 'run Some(Halt::Error(SEGMENT_SPACE.into()));
+                            }
+                        }
                     } else if flags & $bit == 0 {
                         break 'run Some(Halt::Error($msg.into()));
                     }
                 };
             }
-            // Desktop: the address tests of `this i` and `that i`.
-            macro_rules! desktop_this {
-                ($i:expr) => {
-                    if !desktop_this_ok(seg[THIS], $i) {
-                        break 'run Some(Halt::Error(SEGMENT_SPACE.into()));
-                    }
+            // `push`/`pop` of `this i` or `that i` (`$s`: THIS or THAT), after
+            // the test of the checked form if `checked`.
+            macro_rules! this_that {
+                (push $s:tt $i:expr) => {
+                    push!(rd!(seg[$s].wrapping_add($i)))
                 };
-            }
-            macro_rules! desktop_that {
-                ($i:expr) => {
-                    if !desktop_that_ok(seg[THAT], $i, flags) {
-                        break 'run Some(Halt::Error(SEGMENT_SPACE.into()));
-                    }
-                };
+                (pop $s:tt $i:expr) => {{
+                    let v = pop!();
+                    wr!(seg[$s].wrapping_add($i), v)
+                }};
+                (checked $dir:tt $s:tt $i:expr) => {{
+                    checked!($s, $i);
+                    this_that!($dir $s $i)
+                }};
             }
             macro_rules! charge {
                 () => {
@@ -448,6 +534,10 @@ impl Machine {
                         clock + u64::from(timing.handover_step && b.blocks() && c.stop.is_none());
                     w = words(ram);
                     Regs { sp, base: seg } = Regs::load(w);
+                    if D {
+                        // The built-in may have written a pointer's word.
+                        flags = with_near(flags, &seg);
+                    }
                     if let Some(stop) = c.stop {
                         if function_step {
                             // Desktop: the run ends inside the built-in,
@@ -475,7 +565,7 @@ impl Machine {
             // and every operand sure to pass its profile's tests.
             macro_rules! fast {
                 ($($o:expr),+) => {
-                    fast_sp(sp) && operands_ok([$($o),+], flags, &seg)
+                    fast_sp(sp) && operands_ok([$($o),+], flags)
                 };
             }
             // Undo the fetch and let plain code run from here.
@@ -490,10 +580,22 @@ impl Machine {
             // which passes the desktop's test without setting THAT_ZERO.
             macro_rules! desktop_that_store {
                 ($v:expr) => {
-                    if function_step && !desktop_that_base_ok($v) {
+                    if D && !desktop_that_base_ok($v) {
                         deopt!();
                     }
                 };
+            }
+            // A fused `pop pointer 1` of `v` (desktop: checked by
+            // `desktop_that_store!`).
+            macro_rules! set_that {
+                ($v:expr) => {{
+                    let v: i16 = $v;
+                    seg[THAT] = v as u16;
+                    flags = (flags | THAT_OK) & !THAT_ZERO;
+                    if D {
+                        flags = flags & !NEAR_THAT | that_near(v);
+                    }
+                }};
             }
             // Read a fused operand (its checks were done by `operands_ok`).
             macro_rules! src {
@@ -566,15 +668,14 @@ impl Machine {
                     let at = usize::from(sp);
                     let saved = (w[at], w[at + 1]);
                     let a = push_push_op!(Bin::Add, $index, $base);
-                    if function_step && !desktop_that_base_ok(a) {
+                    if D && !desktop_that_base_ok(a) {
                         (w[at], w[at + 1]) = saved;
                         sp = at as u16;
                         deopt!();
                     }
                     let top = sp - 1;
                     sp = top;
-                    seg[THAT] = a as u16;
-                    flags = (flags | THAT_OK) & !THAT_ZERO;
+                    set_that!(a);
                     let v = rd!(seg[THAT]);
                     w[top as usize] = v;
                     (top, v)
@@ -624,6 +725,11 @@ impl Machine {
                     cur = fr.caller;
                     nargs = fr.nargs;
                     flags = fr.flags;
+                    if D {
+                        // (No THAT_ZERO after a return.)
+                        flags |= this_near(seg[THIS] as i16)
+                            | that_near_above(seg[THAT] as i16, HEAP_START);
+                    }
                     if W && fr.watched {
                         if let Some((_, watcher)) = watch {
                             Regs { sp, base: seg }.store(w);
@@ -687,16 +793,10 @@ impl Machine {
                     }
                     push!(rd!(seg[ARG].wrapping_add(i)))
                 }
-                Op::PushThis(i) => push!(rd!(seg[THIS].wrapping_add(i))),
-                Op::PushThisChk(i) => {
-                    this_ok!(THIS_OK, THIS_UNINIT, desktop_this!(i));
-                    push!(rd!(seg[THIS].wrapping_add(i)))
-                }
-                Op::PushThat(i) => push!(rd!(seg[THAT].wrapping_add(i))),
-                Op::PushThatChk(i) => {
-                    this_ok!(THAT_OK, THAT_UNINIT, desktop_that!(i));
-                    push!(rd!(seg[THAT].wrapping_add(i)))
-                }
+                Op::PushThis(i) => this_that!(push THIS i),
+                Op::PushThisChk(i) => this_that!(checked push THIS i),
+                Op::PushThat(i) => this_that!(push THAT i),
+                Op::PushThatChk(i) => this_that!(checked push THAT i),
                 Op::PushAbs(a) => push!(w[a as usize]),
                 Op::PushPtr(0) => push!(seg[THIS] as i16),
                 Op::PushPtr(_) => push!(seg[THAT] as i16),
@@ -711,38 +811,29 @@ impl Machine {
                     let v = pop!();
                     wr!(seg[ARG].wrapping_add(i), v)
                 }
-                Op::PopThis(i) => {
-                    let v = pop!();
-                    wr!(seg[THIS].wrapping_add(i), v)
-                }
-                Op::PopThisChk(i) => {
-                    this_ok!(THIS_OK, THIS_UNINIT, desktop_this!(i));
-                    let v = pop!();
-                    wr!(seg[THIS].wrapping_add(i), v)
-                }
-                Op::PopThat(i) => {
-                    let v = pop!();
-                    wr!(seg[THAT].wrapping_add(i), v)
-                }
-                Op::PopThatChk(i) => {
-                    this_ok!(THAT_OK, THAT_UNINIT, desktop_that!(i));
-                    let v = pop!();
-                    wr!(seg[THAT].wrapping_add(i), v)
-                }
+                Op::PopThis(i) => this_that!(pop THIS i),
+                Op::PopThisChk(i) => this_that!(checked pop THIS i),
+                Op::PopThat(i) => this_that!(pop THAT i),
+                Op::PopThatChk(i) => this_that!(checked pop THAT i),
                 Op::PopAbs(a) => {
                     let v = pop!();
                     w[a as usize] = v;
                 }
                 Op::PopPtr(0) => {
-                    if function_step && !desktop_this_value_ok(rd!(sp.wrapping_sub(1))) {
-                        break Some(Halt::Error(THIS_RANGE.into()));
+                    if D {
+                        let v = rd!(sp.wrapping_sub(1));
+                        let near = this_near(v);
+                        if near == 0 && !desktop_this_value_ok(v) {
+                            break Some(Halt::Error(THIS_RANGE.into()));
+                        }
+                        flags = flags & !NEAR_THIS | near;
                     }
                     seg[THIS] = pop!() as u16;
                     flags |= THIS_OK;
                 }
                 Op::PopPtr(_) => {
-                    let v = rd!(sp.wrapping_sub(1));
-                    if function_step {
+                    if D {
+                        let v = rd!(sp.wrapping_sub(1));
                         if !desktop_that_value_ok(v) {
                             break Some(Halt::Error(THAT_RANGE.into()));
                         }
@@ -751,6 +842,7 @@ impl Machine {
                         } else {
                             flags & !THAT_ZERO
                         };
+                        flags = flags & !NEAR_THAT | that_near(v);
                     }
                     seg[THAT] = pop!() as u16;
                     flags |= THAT_OK;
@@ -868,12 +960,12 @@ impl Machine {
                         ret_pc: pc as u32,
                         ret: ret as i16,
                         nargs,
-                        flags: flags & !THAT_ZERO,
+                        flags: flags & !(THAT_ZERO | NEAR_BITS),
                         watched,
                     });
                     cur = callee as u32;
                     nargs = n;
-                    flags = f.entry_flags(n) | (flags & THAT_ZERO);
+                    flags = f.entry_flags(n) | (flags & (THAT_ZERO | NEAR_BITS));
                     pc = f.start as usize;
                     if function_step {
                         // Desktop: the callee's `function` line is the next step.
@@ -891,18 +983,18 @@ impl Machine {
                 Op::Return => do_return!(),
                 Op::Function { n_vars, method } => {
                     zero_locals!(n_vars);
-                    if method
-                        && nargs >= 1
-                        && fast_sp(sp)
-                        && (!function_step || desktop_this_value_ok(rd!(seg[ARG])))
-                    {
-                        // The method's `push argument 0; pop pointer 0`.
+                    if method && nargs >= 1 && fast_sp(sp) {
+                        // The method's `push argument 0; pop pointer 0`
+                        // (desktop: of a value its test takes).
                         let this = rd!(seg[ARG]);
-                        w[usize::from(sp)] = this;
-                        seg[THIS] = this as u16;
-                        flags |= THIS_OK;
-                        steps += 2;
-                        pc += 2;
+                        let near = if D { this_near(this) } else { 0 };
+                        if !D || near != 0 || desktop_this_value_ok(this) {
+                            w[usize::from(sp)] = this;
+                            seg[THIS] = this as u16;
+                            flags = flags & !NEAR_THIS | near | THIS_OK;
+                            steps += 2;
+                            pc += 2;
+                        }
                     }
                 }
                 Op::Halt => {
@@ -1062,8 +1154,7 @@ impl Machine {
                     skip!(op, 3);
                     w[top - 2] = a;
                     sp -= 2;
-                    seg[THAT] = a as u16;
-                    flags = (flags | THAT_OK) & !THAT_ZERO;
+                    set_that!(a);
                     let v = rd!(seg[THAT]);
                     w[top - 2] = v;
                     sp += 1;
@@ -1089,8 +1180,7 @@ impl Machine {
                     // pop temp 0; pop pointer 1; push temp 0; pop that 0
                     w[5] = v;
                     sp -= 1;
-                    seg[THAT] = w[sp as usize] as u16;
-                    flags = (flags | THAT_OK) & !THAT_ZERO;
+                    set_that!(w[sp as usize]);
                     w[sp as usize] = v;
                     wr!(seg[THAT], v);
                 }
@@ -1110,7 +1200,7 @@ impl Machine {
         self.steps = steps;
         self.cur = cur;
         self.nargs = nargs;
-        self.flags = flags;
+        self.flags = flags & !NEAR_BITS;
         self.profile_mark = profile_mark;
         match halt {
             Some(halt) => self.end_at(halt),

@@ -11,7 +11,7 @@
 //! would fail) it does nothing and the plain commands run instead, so errors
 //! and step counts are exactly those of the plain commands.
 
-use crate::machine::{ARGS_FIT, DESKTOP_TEST, THAT_OK, THIS_OK};
+use crate::machine::{ARGS_FIT, NEAR, NEAR_THAT, NEAR_THIS, THAT_OK, THIS_OK};
 use crate::program::{Bin, Dst, Op, Operand, Src, ABS, ARG, CONST, LCL, PTR, THAT, THIS};
 
 /// The most VM commands one fused instruction stands for.
@@ -40,7 +40,7 @@ pub(crate) fn fuse(plain: &[Op], starts: &[u32], desktop: bool) -> Vec<Op> {
                 method: true,
             },
             _ => match longest(&plain[i..]) {
-                fused if desktop && pops_pointer(fused) => plain[i],
+                fused if desktop && (pops_pointer(fused) || far(fused)) => plain[i],
                 fused if desktop => with_operands(fused, desktop_need),
                 fused => fused,
             },
@@ -48,20 +48,31 @@ pub(crate) fn fuse(plain: &[Op], starts: &[u32], desktop: bool) -> Vec<Op> {
         .collect()
 }
 
-/// Desktop: a `this`/`that` operand needs the desktop's address test, not
-/// the web IDE's flag.
+/// Desktop: a `this`/`that` operand needs its pointer's near bit (see
+/// [`crate::exec`]), not the web IDE's flag.
 fn desktop_need(o: Operand) -> Operand {
-    match usize::from(o.base) {
-        THIS | THAT => Operand {
-            need: DESKTOP_TEST,
-            ..o
-        },
-        _ => o,
-    }
+    let need = match usize::from(o.base) {
+        THIS => NEAR_THIS,
+        THAT => NEAR_THAT,
+        _ => return o,
+    };
+    Operand { need, ..o }
+}
+
+/// Desktop: whether fused instruction `op` has a `this`/`that` operand at
+/// an offset of [`NEAR`] or more, which its near bits do not cover (the
+/// plain commands test such an access in full).
+fn far(op: Op) -> bool {
+    let mut far = false;
+    with_operands(op, |o| {
+        far |= matches!(usize::from(o.base), THIS | THAT) && o.off >= NEAR;
+        o
+    });
+    far
 }
 
 /// `op` with `f` applied to each of its operands.
-fn with_operands(op: Op, f: fn(Operand) -> Operand) -> Op {
+fn with_operands(op: Op, mut f: impl FnMut(Operand) -> Operand) -> Op {
     match op {
         Op::Push2(a, b) => Op::Push2(f(a), f(b)),
         Op::Move(a, d) => Op::Move(f(a), f(d)),

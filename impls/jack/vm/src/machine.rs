@@ -39,9 +39,15 @@ pub(crate) const ARGS_FIT: u8 = 16;
 /// inherits it, its frame keeps the caller's flags without it, and
 /// compiled code never runs while it is set (see [`crate::exec`]).
 pub(crate) const THAT_ZERO: u8 = 32;
-/// Never a flag: in a fused operand's `need` (desktop code only), the
-/// operand is a `this`/`that` access whose address the desktop tests.
-pub(crate) const DESKTOP_TEST: u8 = 64;
+/// Desktop, inside the interpreter's loop only (never in a machine's or a
+/// frame's flags): every `this i` (`that i`) with `i` below [`NEAR`]
+/// passes the desktop's address test with the pointer as it is. A fused
+/// operand's `need` (desktop code) holds the bit of its pointer.
+pub(crate) const NEAR_THIS: u8 = 64;
+pub(crate) const NEAR_THAT: u8 = 128;
+/// The `this`/`that` offsets that [`NEAR_THIS`] and [`NEAR_THAT`] cover;
+/// desktop code fuses no access at a larger one.
+pub(crate) const NEAR: u16 = 64;
 
 /// `ret_pc` of the frame below a call made by [`Machine::call`].
 pub(crate) const HOST: u32 = u32::MAX;

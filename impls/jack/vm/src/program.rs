@@ -181,7 +181,8 @@ pub(crate) const PTR: usize = 6;
 
 /// The operand of a fused `push` or the target of a fused `pop`: read or
 /// written without a branch on its kind. `need` holds the invocation flags
-/// (`THIS_OK`, `THAT_OK`, `ARGS_FIT`) without which the access could fail,
+/// (`THIS_OK`, `THAT_OK`, `ARGS_FIT`; desktop code: `NEAR_THIS`,
+/// `NEAR_THAT` for `this`/`that`) without which the access could fail,
 /// so a fused instruction checks all its operands with one test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Operand {

@@ -530,6 +530,27 @@ fn the_desktop_tests_each_this_and_that_address_instead_of_the_web_ides_pointer_
     assert!(matches!(e, Exit::RuntimeError { .. }), "{e}");
 }
 
+/// Fused instructions let a `this`/`that` offset below 64 through at once
+/// where the pointer leaves room for every such offset (crate::exec); at
+/// the border, one word either side, each access still gets the desktop's
+/// answer.
+#[test]
+fn at_the_end_of_the_heap_and_the_screen_fused_accesses_get_the_desktops_answer() {
+    for (p, seg, room, last) in [(0, "this", 16320, 16383), (1, "that", 24513, 24576)] {
+        for base in [room, room + 1] {
+            let text = format!(
+                "{MAIN}push constant {base}\npop pointer {p}\npush {seg} 63\npush constant 1\nadd\n\
+                 pop temp 0\n{END}"
+            );
+            if base + 63 <= last {
+                desktop_halts(&text);
+            } else {
+                assert_eq!(desktop_error(&text), "Out of segment space in Main.main.3");
+            }
+        }
+    }
+}
+
 #[test]
 fn after_a_pop_pointer_1_of_0_that_reaches_from_word_0_until_a_return() {
     // RAM[5..] through THAT = 0, in the function and in its callee.
