@@ -118,12 +118,41 @@ pub fn check(d: Description) -> Result<Checked, SceneError> {
     for name in &materials {
         material(&d, name)?;
     }
-    Ok(Checked {
+    let checked = Checked {
         description: d,
         materials,
         spheres,
         shapes,
-    })
+    };
+    variants(&checked)?;
+    Ok(checked)
+}
+
+/// Each `variants[i].site` names a site of the Float316 program, once.
+fn variants(c: &Checked) -> Result<(), SceneError> {
+    let chosen = &c.description.variants;
+    if chosen.is_empty() {
+        return Ok(());
+    }
+    let program = crate::lower::lower_untuned(c, crate::ir::Formulation::Float316);
+    let sites = crate::sites::sites(&program);
+    for (i, v) in chosen.iter().enumerate() {
+        let field = format!("variants[{i}].site");
+        if !sites.contains(&v.site) {
+            return Err(err(
+                field,
+                format!(
+                    "no call site `{}` with a variant; the sites are: {}",
+                    v.site,
+                    sites.join(", ")
+                ),
+            ));
+        }
+        if chosen[..i].iter().any(|w| w.site == v.site) {
+            return Err(err(field, format!("site `{}` is listed twice", v.site)));
+        }
+    }
+    Ok(())
 }
 
 fn image(d: &Description) -> Result<(), SceneError> {
