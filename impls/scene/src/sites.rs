@@ -198,7 +198,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.starts_with("variants[0].variant: unknown variant `newton-7`"),
+            e.starts_with("variants[0].variant: unknown variant `newton-7`, expected `newton-1`"),
             "{e}"
         );
         let twice = r#"[{"site": "pixel/normalize", "variant": "newton-1"},
