@@ -11,11 +11,12 @@ use scene_jack::cost::Runner;
 use support::*;
 
 /// The seed with the shadow ray's `normalize`, the shadow's `length` and
-/// the torus's second `sqrt` at one Newton step
-/// (`vectors/scenes/tests/seed-tuned.json`, as gpu-f316's test uses it).
+/// the torus's second `sqrt` at one Newton step, and the shadow march at
+/// 16 steps (`vectors/scenes/tests/seed-tuned.json`, as gpu-f316's test
+/// uses it).
 fn tuned_seed() -> Checked {
     let c = checked("tests/seed-tuned");
-    assert_eq!(c.description.variants.len(), 3);
+    assert_eq!(c.description.variants.len(), 4);
     c
 }
 

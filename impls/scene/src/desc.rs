@@ -42,8 +42,8 @@ pub struct Description {
 pub struct SiteVariant {
     /// The site's name (`pixel/shadow/normalize`).
     pub site: String,
-    /// The variant (`newton-1`).
-    pub variant: crate::ir::Tuning,
+    /// The variant (`"newton-1"`, `{"steps": 16}`).
+    pub variant: crate::sites::Choice,
 }
 
 /// Image size, camera and output.
