@@ -238,3 +238,17 @@ fn pixels_lie_on_the_edges_their_category_names() {
         validates(name, Level::Pixels, set);
     }
 }
+
+/// A scene with tuned call sites (whose names only its whole program has)
+/// derives the points its untuned scene derives: they are found in f64,
+/// where no site has a variant.
+#[test]
+fn a_tuned_scene_derives_the_untuned_scenes_points() {
+    let tuned = scene("tests/seed-tuned");
+    assert!(!tuned.description.variants.is_empty());
+    let plain = scene("seed");
+    assert_eq!(
+        sdf_points(&tuned, 5, 4).unwrap(),
+        sdf_points(&plain, 5, 4).unwrap()
+    );
+}

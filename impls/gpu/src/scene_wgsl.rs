@@ -7,7 +7,7 @@
 
 use common::F316;
 use scene::ir::{
-    Binary, Dither, Formulation, FuncId, Function, Logic, Program, Stmt, Unary, VecOp,
+    Binary, Dither, Formulation, FuncId, Function, Logic, Program, Stmt, Tuning, Unary, VecOp,
 };
 use std::collections::{BTreeSet, HashMap};
 use std::fmt::Write;
@@ -178,6 +178,8 @@ struct Emitter<'a> {
     p: &'a Program,
     indent: usize,
     loops: usize,
+    /// The variant of the tuned call site being written, if any.
+    tuning: Option<Tuning>,
 }
 
 impl Emitter<'_> {
@@ -277,6 +279,20 @@ impl Emitter<'_> {
         self.line(l.trim_end());
     }
 
+    /// `call` (a library call `f(...)`) as the tuned site's variant of `f`
+    /// (`sqrt316_newton1(...)`); unchanged outside a tuned site, and in
+    /// float programs, whose operations have no such variants.
+    fn tuned(&self, call: String) -> String {
+        let suffix = match (self.tuning, self.t.0) {
+            (Some(Tuning::Newton1), Formulation::Float316) => "_newton1",
+            _ => return call,
+        };
+        match call.split_once('(') {
+            Some((head, rest)) => format!("{head}{suffix}({rest}"),
+            None => call,
+        }
+    }
+
     fn stmt(&mut self, s: &Stmt) {
         let t = self.t;
         let r = |r: &u16| format!("r{r}");
@@ -285,7 +301,10 @@ impl Emitter<'_> {
             Stmt::Uniform { dst, index } => self.line(&format!("r{dst} = U[{index}];")),
             Stmt::Table { dst, table } => self.line(&format!("r{dst} = T{table}[PIX];")),
             Stmt::Copy { dst, src } => self.line(&format!("r{dst} = r{src};")),
-            Stmt::Unary { dst, op, a } => self.line(&format!("r{dst} = {};", t.unary(*op, &r(a)))),
+            Stmt::Unary { dst, op, a } => {
+                let e = self.tuned(t.unary(*op, &r(a)));
+                self.line(&format!("r{dst} = {e};"))
+            }
             Stmt::Binary { dst, op, a, b } => {
                 self.line(&format!("r{dst} = {};", t.binary(*op, &r(a), &r(b))))
             }
@@ -295,7 +314,7 @@ impl Emitter<'_> {
                 } else {
                     t.vector(*b)
                 };
-                let e = t.vec_op(*op, &t.vector(*a), &bv);
+                let e = self.tuned(t.vec_op(*op, &t.vector(*a), &bv));
                 self.line(&format!(
                     "{{ let v = {e}; r{dst} = v.x; r{} = v.y; r{} = v.z; }}",
                     dst + 1,
@@ -306,7 +325,10 @@ impl Emitter<'_> {
                 "r{dst} = {};",
                 t.dot(&t.vector(*a), &t.vector(*b))
             )),
-            Stmt::Length { dst, a } => self.line(&format!("r{dst} = {};", t.length(&t.vector(*a)))),
+            Stmt::Length { dst, a } => {
+                let e = self.tuned(t.length(&t.vector(*a)));
+                self.line(&format!("r{dst} = {e};"))
+            }
             Stmt::Gt { dst, a, b } => {
                 let e = match t.0 {
                     Formulation::Float316 => format!("gt(r{a}, r{b})"),
@@ -366,6 +388,13 @@ impl Emitter<'_> {
                 self.line("{");
                 self.block(body);
                 self.line("}");
+            }
+            Stmt::Tuned { variant, body } => {
+                let before = self.tuning.replace(*variant);
+                self.line("{");
+                self.block(body);
+                self.line("}");
+                self.tuning = before;
             }
             // Only engines that explain runs take another side.
             Stmt::Decide { .. } => {}
@@ -454,6 +483,7 @@ fn function(out: &mut String, t: Target, p: &Program, i: usize, f: &Function) {
         p,
         indent: 0,
         loops: 0,
+        tuning: None,
     };
     e.block(&f.body);
     let mut fields: Vec<String> = f.results.iter().map(|r| format!("r{r}")).collect();
@@ -755,5 +785,21 @@ mod tests {
         }
         let f32 = generate(&program("toon", Formulation::Ieee));
         assert!(f32.contains("fn normalize3(") && !f32.contains("fn scene("));
+    }
+
+    /// A tuned site calls its variant, which only a tuned program carries.
+    #[test]
+    fn tuned_sites_call_their_variants() {
+        let tuned = generate(&program("tests/seed-tuned", Formulation::Float316));
+        for used in [
+            "fn sqrt316_newton1(",
+            "fn vlength_newton1(",
+            "fn vnormalize_newton1(",
+            "= sqrt316_newton1(r",
+        ] {
+            assert!(tuned.contains(used), "{used}");
+        }
+        let seed = generate(&program("seed", Formulation::Float316));
+        assert!(!seed.contains("_newton1"));
     }
 }

@@ -24,6 +24,8 @@ pub enum Trap {
 /// A branch decision of the pipeline, as [`Engine::decide`] reports it
 /// (defined with the scene's intermediate form, which marks them).
 pub use scene::ir::Decision;
+/// An operation variant chosen for one call site.
+pub use scene::ir::Tuning;
 
 /// A result inside the scene: a value or a trap.
 pub type R<T> = Result<T, Trap>;
@@ -111,6 +113,16 @@ pub trait Engine {
     {
         let _ = name;
         f(self)
+    }
+
+    /// Compute with the operation variant `tuning` from now on (`None`:
+    /// the engine's own arithmetic), for the statements of a tuned call
+    /// site; returns the previous choice. Only the Float316 engine has
+    /// such variants; the default ignores them.
+    #[inline(always)]
+    fn set_tuning(&mut self, tuning: Option<Tuning>) -> Option<Tuning> {
+        let _ = tuning;
+        None
     }
 
     /// The pipeline took the branch `decision` (`taken`) on `operands`

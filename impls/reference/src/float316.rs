@@ -10,7 +10,7 @@
 //! compiles away and the operations inline into the scene code.
 
 use crate::consts::Consts;
-use crate::engine::{Engine, Trap, R};
+use crate::engine::{Engine, Trap, Tuning, R};
 use crate::formulation::{self, Formulated, Formulation};
 use crate::settings::{Arith, ArithSource, SpecArith};
 use crate::tracer::{Recorder, Tracer, Untraced};
@@ -94,6 +94,8 @@ impl Traceable for bool {
 pub struct F316Engine<Rec: Recorder = Untraced, A: ArithSource = Arith> {
     arith: A,
     recorder: Rec,
+    /// The variant of a tuned call site being run, if any.
+    tuning: Option<Tuning>,
 }
 
 impl F316Engine {
@@ -102,6 +104,7 @@ impl F316Engine {
         F316Engine {
             arith,
             recorder: Untraced,
+            tuning: None,
         }
     }
 }
@@ -113,6 +116,7 @@ impl F316Engine<Untraced, SpecArith> {
         F316Engine {
             arith: SpecArith,
             recorder: Untraced,
+            tuning: None,
         }
     }
 }
@@ -123,6 +127,7 @@ impl<'t> F316Engine<&'t mut Tracer> {
         F316Engine {
             arith,
             recorder: tracer,
+            tuning: None,
         }
     }
 }
@@ -145,6 +150,16 @@ impl<Rec: Recorder, A: ArithSource> F316Engine<Rec, A> {
         result
     }
 
+    /// Newton steps in `sqrt` and `invSqrt`: the tuned site's, else the
+    /// arithmetic's.
+    #[inline(always)]
+    fn newton_steps(&self) -> u8 {
+        match self.tuning {
+            Some(t) => t.newton_steps(),
+            None => self.arith.arith().newton_steps,
+        }
+    }
+
     /// `halve(a)`: exponent minus 1 when `a.e > 0`.
     #[inline(always)]
     pub fn halve(&mut self, a: F316) -> R<F316> {
@@ -159,7 +174,7 @@ impl<Rec: Recorder, A: ArithSource> F316Engine<Rec, A> {
             }
             let x2 = F316::new(0, j::sub(x.e, 1), x.m);
             let mut y = F316::new(0, j::sub(190, j::halve(x.e)), M_MIN);
-            for _ in 0..s.arith.arith().newton_steps {
+            for _ in 0..s.newton_steps() {
                 let t = s.mul(x2, y)?;
                 let t = s.mul(t, y)?;
                 let t = s.sub(THREE_HALVES, t)?;
@@ -498,6 +513,10 @@ impl<Rec: Recorder, A: ArithSource> Engine for F316Engine<Rec, A> {
         Ok(t)
     }
 
+    fn set_tuning(&mut self, tuning: Option<Tuning>) -> Option<Tuning> {
+        std::mem::replace(&mut self.tuning, tuning)
+    }
+
     #[inline(always)]
     fn gt(&mut self, a: F316, b: F316) -> R<bool> {
         self.traced(Op::Gt, &[a, b], |_| Ok(gt(a, b)))
@@ -530,7 +549,7 @@ impl<Rec: Recorder, A: ArithSource> Engine for F316Engine<Rec, A> {
                 return Err(Trap::SysError(2));
             }
             let mut g = sqrt_guess(&s.arith.arith(), x);
-            for _ in 0..s.arith.arith().newton_steps {
+            for _ in 0..s.newton_steps() {
                 // The start value has x's mantissa: its quotient needs no
                 // long division (a traced run records the div as usual).
                 let t = match div_by_same_mantissa(x, g) {

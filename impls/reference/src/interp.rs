@@ -118,7 +118,9 @@ fn count_writes(block: &[Stmt], writes: &mut [u32]) {
                 count_writes(otherwise, writes);
             }
             Stmt::Switch { cases, .. } => cases.iter().for_each(|c| count_writes(c, writes)),
-            Stmt::Loop { body, .. } | Stmt::Frame { body, .. } => count_writes(body, writes),
+            Stmt::Loop { body, .. } | Stmt::Frame { body, .. } | Stmt::Tuned { body, .. } => {
+                count_writes(body, writes)
+            }
             _ => {}
         }
     }
@@ -158,6 +160,10 @@ fn flatten(
             Stmt::Loop { count, body, .. } => out.push(Stmt::Loop {
                 count,
                 name: None,
+                body: flatten(body, writes, fi, hoisted),
+            }),
+            Stmt::Tuned { variant, body } => out.push(Stmt::Tuned {
+                variant,
                 body: flatten(body, writes, fi, hoisted),
             }),
             other => out.push(other),
@@ -440,6 +446,14 @@ fn exec<E: Engine>(
             }
             Stmt::Frame { name, body } => {
                 if e.frame(|| name.clone(), |e| exec(e, cx, m, f, body))? == Flow::Break {
+                    return Ok(Flow::Break);
+                }
+            }
+            Stmt::Tuned { variant, body } => {
+                let before = e.set_tuning(Some(*variant));
+                let flow = exec(e, cx, m, f, body);
+                e.set_tuning(before);
+                if flow? == Flow::Break {
                     return Ok(Flow::Break);
                 }
             }

@@ -5,7 +5,7 @@
 //! count changes between neighbouring pixels).
 
 use crate::consts::Consts;
-use crate::engine::{Decision, Engine, R};
+use crate::engine::{Decision, Engine, Tuning, R};
 use crate::vec3::V3;
 use common::F316;
 
@@ -74,6 +74,10 @@ impl<E: Engine> Engine for Recorder<'_, E> {
     }
     fn mul_add(&mut self, a: E::N, b: E::N, c: E::N) -> R<E::N> {
         self.inner.mul_add(a, b, c)
+    }
+
+    fn set_tuning(&mut self, tuning: Option<Tuning>) -> Option<Tuning> {
+        self.inner.set_tuning(tuning)
     }
 
     fn decide(&mut self, decision: Decision, operands: [E::N; 2], taken: bool) -> bool {

@@ -18,7 +18,7 @@
 //! root causes.
 
 use crate::consts::Consts;
-use crate::engine::{Decision, Engine, R};
+use crate::engine::{Decision, Engine, Tuning, R};
 use crate::formulation::{self, Formulated, Formulation};
 use crate::vec3::V3;
 use common::F316;
@@ -543,6 +543,10 @@ impl<E: Formulated> Engine for ShadowEngine<E> {
         let r = f(self);
         self.paths.pop();
         r
+    }
+
+    fn set_tuning(&mut self, tuning: Option<Tuning>) -> Option<Tuning> {
+        self.inner.set_tuning(tuning)
     }
 
     fn decide(&mut self, decision: Decision, operands: [Sh<E::N>; 2], taken: bool) -> bool {

@@ -174,7 +174,7 @@ impl Scan {
                     self.loops.push((start, self.at));
                 }
                 Stmt::Break { cond } => self.read(B, *cond),
-                Stmt::Frame { body, .. } => self.block(body),
+                Stmt::Frame { body, .. } | Stmt::Tuned { body, .. } => self.block(body),
                 // Back ends that only compute emit nothing for a decision.
                 Stmt::Decide { .. } => {}
                 Stmt::Call {

@@ -6,7 +6,7 @@
 use crate::alloc::{plan, Place, Plan};
 use crate::EmitError;
 use common::F316;
-use scene::ir::{Binary, FuncId, Function, Logic, Program, Stmt, Unary, VecOp};
+use scene::ir::{Binary, FuncId, Function, Logic, Program, Stmt, Tuning, Unary, VecOp};
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
@@ -82,6 +82,8 @@ struct Emitter<'a> {
     counters: usize,
     consts: BTreeSet<u16>,
     uses_uniforms: bool,
+    /// The variant of the tuned call site being written, if any.
+    tuning: Option<Tuning>,
 }
 
 impl Emitter<'_> {
@@ -114,6 +116,15 @@ impl Emitter<'_> {
             }
             Place::Param(k) => format!("p{k}"),
             Place::Unused => unreachable!("a mentioned register has a place"),
+        }
+    }
+
+    /// The suffix of the subroutine that computes the tuned site's variant
+    /// (`Newton1`: `sqrtNewton1`), empty outside a tuned site.
+    fn variant(&self) -> &'static str {
+        match self.tuning {
+            None => "",
+            Some(Tuning::Newton1) => "Newton1",
         }
     }
 
@@ -226,7 +237,7 @@ impl Emitter<'_> {
             Stmt::Unary { dst, op, a } => {
                 let (d, a) = (self.dst(*dst), self.r(*a));
                 let l = match op {
-                    Unary::Sqrt => format!("do {a}.sqrt({d});"),
+                    Unary::Sqrt => format!("do {a}.sqrt{}({d});", self.variant()),
                     Unary::Floor => format!("do {a}.floor({d});"),
                     Unary::Mod2 => format!("do {a}.mod2({d});"),
                     Unary::Double => format!("do Ops.double({a}, {d});"),
@@ -267,7 +278,9 @@ impl Emitter<'_> {
                     VecOp::Sub => format!("do Ops.sub3({va}, {}, {d});", self.r3(*b)),
                     VecOp::Scale => format!("do Ops.scale3({va}, {}, {d});", self.r(*b)),
                     VecOp::Cross => format!("do Ops.cross3({va}, {}, {d});", self.r3(*b)),
-                    VecOp::Normalize => format!("do Ops.normalize3({va}, {d});"),
+                    VecOp::Normalize => {
+                        format!("do Ops.normalize3{}({va}, {d});", self.variant())
+                    }
                 };
                 self.line(&l);
             }
@@ -277,7 +290,8 @@ impl Emitter<'_> {
             }
             Stmt::Length { dst, a } => {
                 let (d, va) = (self.dst(*dst), self.r3(*a));
-                self.line(&format!("do Ops.length3({va}, {d});"));
+                let v = self.variant();
+                self.line(&format!("do Ops.length3{v}({va}, {d});"));
             }
             Stmt::Gt { dst, a, b } => {
                 let (d, a, b) = (self.b(*dst), self.r(*a), self.r(*b));
@@ -359,6 +373,12 @@ impl Emitter<'_> {
             Stmt::Frame { name, body } => {
                 self.line(&format!("// {name}"));
                 self.statements(body)?;
+            }
+            Stmt::Tuned { variant, body } => {
+                self.line(&format!("// {variant}"));
+                let before = self.tuning.replace(*variant);
+                self.statements(body)?;
+                self.tuning = before;
             }
             // Only engines that explain runs take another side.
             Stmt::Decide { .. } => {}
@@ -453,6 +473,7 @@ pub fn class(p: &Program, id: FuncId, names: &[Names]) -> Result<FunctionClass, 
         counters: 0,
         consts: BTreeSet::new(),
         uses_uniforms: false,
+        tuning: None,
     };
     for (k, s) in e.plan.copied_params.clone() {
         e.line(&format!("do r{s}.copy(p{k});"));

@@ -165,7 +165,7 @@ pub fn emit(p: &Program) -> Result<JackSources, EmitError> {
     let ops = library::shake(library::OPS, &library::called(&code), OPS_DOC);
     let float_roots = format!("{code}{}", ops.as_deref().unwrap_or(""));
     let float = library::shake(
-        library::FLOAT316,
+        &library::float316(),
         &library::called(&float_roots),
         FLOAT316_DOC,
     )

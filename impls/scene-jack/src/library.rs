@@ -2,7 +2,8 @@
 //! hand-written Float316 class (`impls/jack/raymarcher/Float316.jack`,
 //! whose subroutines are kept character for character) and `Ops`
 //! (`src/jack/Ops.jack`, the IR statements that are several Float316
-//! operations). A subroutine is kept when a kept text names it after a dot
+//! operations), with the variants of tuned call sites
+//! (`src/jack/Float316Variants.jack`) added to Float316. A subroutine is kept when a kept text names it after a dot
 //! or calls it on `this`; a static is kept when a kept subroutine other
 //! than `init` names it, and `init` keeps the statements that make kept
 //! statics (with the locals they need).
@@ -11,8 +12,22 @@ use std::collections::BTreeSet;
 
 /// The hand-written Float316 class.
 pub const FLOAT316: &str = include_str!("../../jack/raymarcher/Float316.jack");
+/// Variants of Float316's subroutines for tuned call sites, appended to
+/// the class by [`float316`].
+pub const FLOAT316_VARIANTS: &str = include_str!("jack/Float316Variants.jack");
 /// The vector and composite helpers.
 pub const OPS: &str = include_str!("jack/Ops.jack");
+
+/// The hand-written Float316 class with the variants' subroutines added
+/// before its closing brace (a program keeps them only when it calls them).
+pub fn float316() -> String {
+    let end = FLOAT316.rfind('}').expect("the class ends with a brace");
+    format!(
+        "{}\n{FLOAT316_VARIANTS}{}",
+        &FLOAT316[..end],
+        &FLOAT316[end..]
+    )
+}
 
 /// A library class split into its parts.
 struct Class<'a> {

@@ -118,12 +118,62 @@ pub fn check(d: Description) -> Result<Checked, SceneError> {
     for name in &materials {
         material(&d, name)?;
     }
-    Ok(Checked {
+    let checked = Checked {
         description: d,
         materials,
         spheres,
         shapes,
-    })
+    };
+    variants(&checked)?;
+    Ok(checked)
+}
+
+/// Each `variants[i].site` names a site of the Float316 program, once,
+/// and its variant fits the site: `newton-1` an operation, `steps` a loop
+/// (1 to the loop's count).
+fn variants(c: &Checked) -> Result<(), SceneError> {
+    use crate::sites::{Choice, Kind};
+    let chosen = &c.description.variants;
+    if chosen.is_empty() {
+        return Ok(());
+    }
+    let program = crate::lower::lower_untuned(c, crate::ir::Formulation::Float316);
+    let sites = crate::sites::sites(&program);
+    for (i, v) in chosen.iter().enumerate() {
+        let field = format!("variants[{i}].site");
+        let Some(&(_, kind)) = sites.iter().find(|(name, _)| *name == v.site) else {
+            let names: Vec<&str> = sites.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(err(
+                field,
+                format!(
+                    "no call site `{}` with a variant; the sites are: {}",
+                    v.site,
+                    names.join(", ")
+                ),
+            ));
+        };
+        if chosen[..i].iter().any(|w| w.site == v.site) {
+            return Err(err(field, format!("site `{}` is listed twice", v.site)));
+        }
+        let field = format!("variants[{i}].variant");
+        match (v.variant, kind) {
+            (Choice::Newton1, Kind::Op) => {}
+            (Choice::Steps(n), Kind::Loop(count)) => in_range(&field, n, 1, count)?,
+            (Choice::Newton1, Kind::Loop(_)) => {
+                return Err(err(
+                    field,
+                    format!("`{}` is a loop: it takes `steps`", v.site),
+                ))
+            }
+            (Choice::Steps(_), Kind::Op) => {
+                return Err(err(
+                    field,
+                    format!("`{}` is an operation: it takes `newton-1`", v.site),
+                ))
+            }
+        }
+    }
+    Ok(())
 }
 
 fn image(d: &Description) -> Result<(), SceneError> {

@@ -30,6 +30,20 @@ pub struct Description {
     pub nodes: BTreeMap<String, Node>,
     /// The node that is the scene.
     pub root: String,
+    /// Operation variants chosen per call site (Float316 programs only;
+    /// see [`crate::sites`]).
+    #[serde(default)]
+    pub variants: Vec<SiteVariant>,
+}
+
+/// One call site's operation variant.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SiteVariant {
+    /// The site's name (`pixel/shadow/normalize`).
+    pub site: String,
+    /// The variant (`"newton-1"`, `{"steps": 16}`).
+    pub variant: crate::sites::Choice,
 }
 
 /// Image size, camera and output.

@@ -80,6 +80,43 @@ pub enum VecOp {
     Normalize,
 }
 
+/// A variant of an operation chosen for one call site (a [`Stmt::Tuned`]
+/// statement); the spec's arithmetic elsewhere.
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, serde::Deserialize,
+)]
+pub enum Tuning {
+    /// One Newton step in `sqrt` and `invSqrt` (the spec takes two): for
+    /// `sqrt`, `length` and `normalize`.
+    #[serde(rename = "newton-1")]
+    Newton1,
+}
+
+impl Tuning {
+    /// Every variant a site can take.
+    pub const ALL: [Tuning; 1] = [Tuning::Newton1];
+
+    /// Its name in a description (`newton-1`).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Tuning::Newton1 => "newton-1",
+        }
+    }
+
+    /// Newton steps in `sqrt` and `invSqrt` under this variant.
+    pub const fn newton_steps(self) -> u8 {
+        match self {
+            Tuning::Newton1 => 1,
+        }
+    }
+}
+
+impl std::fmt::Display for Tuning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// A statement.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub enum Stmt {
@@ -209,6 +246,12 @@ pub enum Stmt {
     /// A named frame of a trace's call path (no effect on values).
     Frame {
         name: String,
+        body: Vec<Stmt>,
+    },
+    /// Run `body` (one `sqrt`, `length` or `normalize` statement, see
+    /// [`crate::sites`]) with the operation variant `variant`.
+    Tuned {
+        variant: Tuning,
         body: Vec<Stmt>,
     },
     /// The pipeline takes the branch `decision` here, as `taken` holds it,
@@ -446,6 +489,10 @@ fn unnamed(block: Vec<Stmt>) -> Vec<Stmt> {
                 name: None,
                 body: unnamed(body),
             }),
+            Stmt::Tuned { variant, body } => out.push(Stmt::Tuned {
+                variant,
+                body: unnamed(body),
+            }),
             other => out.push(other),
         }
     }
@@ -461,7 +508,9 @@ impl Stmt {
                 then, otherwise, ..
             } => vec![then, otherwise],
             Stmt::Switch { cases, .. } => cases.iter().map(Vec::as_slice).collect(),
-            Stmt::Loop { body, .. } | Stmt::Frame { body, .. } => vec![body],
+            Stmt::Loop { body, .. } | Stmt::Frame { body, .. } | Stmt::Tuned { body, .. } => {
+                vec![body]
+            }
             _ => Vec::new(),
         }
     }
@@ -532,6 +581,10 @@ fn check_block(
             Stmt::Frame { body, .. } => {
                 check_block(p, index, f, body, in_loop)?;
                 true
+            }
+            Stmt::Tuned { body, .. } => {
+                check_block(p, index, f, body, in_loop)?;
+                body.len() == 1 && crate::sites::op_of(&body[0]).is_some()
             }
             Stmt::Decide { taken, a, b, .. } => {
                 let taken_ok = match taken {

@@ -11,6 +11,7 @@ pub mod check;
 pub mod desc;
 pub mod ir;
 pub mod lower;
+pub mod sites;
 pub mod stats;
 
 pub use check::Checked;

@@ -29,8 +29,25 @@ struct Lower<'a> {
     sdf: FuncId,
 }
 
-/// Lower `checked` to a program in formulation `form`.
+/// Lower `checked` to a program in formulation `form`, with the
+/// description's per-site variants (Float316 only: they are variants of
+/// Float316's operations).
 pub fn lower(checked: &Checked, form: Formulation) -> Program {
+    let mut p = lower_untuned(checked, form);
+    if form == Formulation::Float316 {
+        let chosen = checked
+            .description
+            .variants
+            .iter()
+            .map(|v| (v.site.clone(), v.variant))
+            .collect();
+        crate::sites::tune(&mut p, &chosen);
+    }
+    p
+}
+
+/// Lower `checked` with the spec's operations at every site.
+pub fn lower_untuned(checked: &Checked, form: Formulation) -> Program {
     let d = &checked.description;
     let mut l = Lower {
         d,

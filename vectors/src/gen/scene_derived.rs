@@ -57,6 +57,9 @@ pub enum SceneVectorsError {
 fn as_root(scene: &Checked, root: &str) -> Result<Described, SceneVectorsError> {
     let mut d = scene.description.clone();
     d.root = root.to_string();
+    // Sites are named from the whole scene's root, and the float
+    // references these fields run on ignore variants anyway.
+    d.variants.clear();
     let bad = |message: String| SceneVectorsError::Node {
         node: root.to_string(),
         message,

@@ -250,6 +250,12 @@ fn mod2(a: F) -> F {
 }
 
 fn sqrt316(x: F) -> F {
+    return sqrt316_steps(x, 2);
+}
+
+// sqrt with `steps` Newton steps (the spec takes 2; a tuned call site of a
+// scene may take 1).
+fn sqrt316_steps(x: F, steps: i32) -> F {
     if (x.s == 1) {
         sys_error(2);
         return x;
@@ -258,7 +264,7 @@ fn sqrt316(x: F) -> F {
     if ((x.e & 1) == 1) {
         g.e = w(x.e / 2 + 64);
     }
-    for (var k = 0; k < 2; k++) {
+    for (var k = 0; k < steps; k++) {
         let t = div(x, g);
         g = halve(add(g, t));
     }
@@ -266,13 +272,18 @@ fn sqrt316(x: F) -> F {
 }
 
 fn inv_sqrt(x: F) -> F {
+    return inv_sqrt_steps(x, 2);
+}
+
+// invSqrt with `steps` Newton steps (the spec takes 2).
+fn inv_sqrt_steps(x: F, steps: i32) -> F {
     if (x.s == 1) {
         sys_error(3);
         return x;
     }
     let x2 = F(0, w(x.e - 1), x.m);
     var y = F(0, w(190 - x.e / 2), 8192);
-    for (var k = 0; k < 2; k++) {
+    for (var k = 0; k < steps; k++) {
         var t = mul(x2, y);
         t = mul(t, y);
         t = sub(ONE_HALF, t);

@@ -13,6 +13,19 @@ fn clamp01_316(d: F) -> F {
     return d;
 }
 
+// The newton-1 variants of a tuned call site: one Newton step.
+fn sqrt316_newton1(x: F) -> F {
+    return sqrt316_steps(x, 1);
+}
+
+fn vlength_newton1(v: V) -> F {
+    return sqrt316_newton1(vdot(v, v));
+}
+
+fn vnormalize_newton1(v: V) -> V {
+    return scale(v, inv_sqrt_steps(vdot(v, v), 1));
+}
+
 // `c ? t : f` for triples (WGSL's select takes scalars and vectors only).
 fn select316(f: F, t: F, c: bool) -> F {
     if (c) {

@@ -136,6 +136,15 @@ fn toon_generated() {
     check("toon.json");
 }
 
+/// The seed with three call sites at one Newton step (`variants`): the
+/// kernel computes those sites' variants as ref-f316 does, on every pixel
+/// and SDF point (scene-jack's and reference's tests show the variants
+/// change the answers of their sites).
+#[test]
+fn seed_with_tuned_sites_generated() {
+    check("tests/seed-tuned.json");
+}
+
 /// A scene written for this test, with combinations and shapes no other
 /// scene or test uses (intersection, subtraction, cylinder, round box,
 /// scale), renders on every implementation with no code written for it.
