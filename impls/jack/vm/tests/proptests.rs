@@ -199,6 +199,11 @@ fn statement() -> impl Strategy<Value = Stmt> {
             "push constant 7\nreturn",
         ]).prop_map(|r| Stmt::Raw(r.to_string())),
         1 => (0u16..8).prop_map(|k| Stmt::Raw(arg_beside_stack(k))),
+        // An `argument` read above a pushed word (where ARG lies beside
+        // the stack, the word it reads may be held in a register).
+        2 => (0i16..40, 0u16..3).prop_map(|(c, i)| {
+            Stmt::Let(vec![format!("push constant {c}\npush argument {i}\nadd")], "pop temp 0".to_string())
+        }),
     ];
     leaf.prop_recursive(3, 24, 4, |inner| {
         let body = prop::collection::vec(inner, 0..4);
@@ -258,9 +263,12 @@ fn structured_case() -> impl Strategy<Value = EngineCase> {
         prop::option::of(1u64..50),
         prop::option::of(any::<u8>()),
         pad(),
+        // ARG beside the stack from the function's start, where the entry
+        // test must see it for every later `argument` access.
+        prop::option::weighted(0.5, 2u16..5),
     )
-        .prop_map(|(stmts, args, web, budgets, hold, watched, pad)| {
-            let mut body = Vec::new();
+        .prop_map(|(stmts, args, web, budgets, hold, watched, pad, arg)| {
+            let mut body: Vec<String> = arg.map(arg_beside_stack).into_iter().collect();
             render(&stmts, &mut 0, &mut body);
             EngineCase {
                 src: random_program(body, Vec::new(), pad),
@@ -286,6 +294,10 @@ fn enter(program: &std::sync::Arc<Program>, config: Config, args: &[i16]) -> Mac
 /// that deep in the program), and the functions it may call.
 fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
     let mut lines: Vec<String> = body;
+    // Each forward skip (see [`forward_skip`]) gets its own label.
+    for (i, line) in lines.iter_mut().enumerate() {
+        *line = line.replace("SKIP#", &format!("SKIP{i}"));
+    }
     for (k, at) in labels.into_iter().enumerate() {
         lines.insert(at.min(lines.len()), format!("label L{k}"));
     }
@@ -332,21 +344,60 @@ fn engine_case() -> impl Strategy<Value = EngineCase> {
         prop::collection::vec(0usize..60, 3),
         prop::collection::vec(any::<i16>(), 2..=2),
         any::<bool>(),
-        prop::collection::vec(0u64..200, 0..4),
+        prop::collection::vec(budget(), 1..5),
         prop::option::of(1u64..50),
         prop::option::of(any::<u8>()),
         pad(),
+        // Early in the function, where most budgets stop.
+        prop::option::weighted(0.3, forward_skip()),
+        prop::option::weighted(
+            0.1,
+            (
+                prop_oneof![3 => Just(257u16), 1 => 255u16..259],
+                prop_oneof![3 => Just(1791u16), 1 => 1788u16..1795],
+            ),
+        ),
     )
         .prop_map(
-            |(body, labels, args, web, budgets, hold, watched, pad)| EngineCase {
-                src: random_program(body, labels, pad),
-                args,
-                web,
-                budgets,
-                hold,
-                watched,
+            |(mut body, labels, args, web, mut budgets, hold, watched, pad, skip, long)| {
+                body.splice(0..0, skip);
+                if let Some((sp, pushes)) = long {
+                    body.insert(0, stack_long_block(sp, pushes));
+                    // The first stop after the block: a stop inside it
+                    // leaves it to the interpreter.
+                    if let Some(b) = budgets.first_mut() {
+                        *b += u64::from(pushes) + 8;
+                    }
+                }
+                EngineCase {
+                    src: random_program(body, labels, pad),
+                    args,
+                    web,
+                    budgets,
+                    hold,
+                    watched,
+                }
             },
         )
+}
+
+/// A budget of the random programs' runs: most end within 20 steps, so
+/// most budgets stop there (on every step of the paths that fall
+/// through into blocks which do not test the budget).
+fn budget() -> impl Strategy<Value = u64> {
+    prop_oneof![3 => 0u64..24, 1 => 0u64..200]
+}
+
+/// SP set to `sp`, then a block of `pushes` pushes (code whose depths are
+/// not static, where each block tests its stack range on entry: at 1,791
+/// pushes from 256 the desktop's range is one word), then SP set back to
+/// `sp` by its last push.
+fn stack_long_block(sp: u16, pushes: u16) -> String {
+    format!(
+        "push constant 0\nif-goto LONG\npush constant 1\nlabel LONG\npush constant {sp}\npop constant 0\n\
+         {}push constant {sp}\npop constant 0",
+        "push constant 1\n".repeat(usize::from(pushes - 1))
+    )
 }
 
 /// The length of the function before `Main.f` (see [`random_program`]):
@@ -649,6 +700,7 @@ fn command() -> impl Strategy<Value = String> {
         1 => (0u8..3).prop_map(|l| format!("if-goto L{l}")),
         1 => (0u8..3).prop_map(|l| format!("goto L{l}")),
         1 => Just("return".to_string()),
+        3 => forward_skip(),
         1 => (0u16..8).prop_map(arg_beside_stack),
         // Shapes the fuser turns into one instruction: runs of moves
         // between consecutive words, and an array read into a variable.
@@ -659,4 +711,17 @@ fn command() -> impl Strategy<Value = String> {
             format!("push {a} {i}\npush {b} {j}\nadd\npop pointer 1\npush that 0\npop {d} {k}")
         }),
     ]
+}
+
+/// A forward branch, mostly not taken, over straight code that falls
+/// through into its target: a block that does not test the budget, which
+/// the block before it must cover (`SKIP#` becomes a label of its own).
+fn forward_skip() -> impl Strategy<Value = String> {
+    (0u16..3, 1usize..7).prop_map(|(c, n)| {
+        format!(
+            "push constant {}\nif-goto SKIP#\n{}label SKIP#",
+            c / 2,
+            "push constant 1\npop temp 0\n".repeat(n)
+        )
+    })
 }
