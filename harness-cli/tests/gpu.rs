@@ -144,11 +144,11 @@ fn a_users_float316_wgsl_agrees_bit_for_bit_with_ref_f316_at_every_level() {
 fn a_wrong_float316_op_in_a_users_wgsl_is_an_ops_divergence() {
     let dir = tempfile::tempdir().unwrap();
     let one_step = |text: &str| {
-        let two = "for (var k = 0; k < 2; k++) {\n        let t = div(x, g);";
-        assert!(text.contains(two), "sqrt316's Newton loop");
+        let two = "fn sqrt316(x: F) -> F {\n    return sqrt316_steps(x, 2);";
+        assert!(text.contains(two), "sqrt316's two Newton steps");
         text.replace(
             two,
-            "for (var k = 0; k < 1; k++) {\n        let t = div(x, g);",
+            "fn sqrt316(x: F) -> F {\n    return sqrt316_steps(x, 1);",
         )
     };
     let Some(mine) = user_float316(dir.path(), one_step) else {
