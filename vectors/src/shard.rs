@@ -70,9 +70,7 @@ impl FromStr for Shard {
 /// FNV-1a (64 bits) over the vector's slug: stable across runs, machines
 /// and versions of the generators.
 pub fn identity_hash(vector: &Vector) -> u64 {
-    vector.slug().bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    })
+    common::hash::fnv1a(vector.slug().bytes())
 }
 
 #[cfg(test)]

@@ -333,18 +333,14 @@ fn generated(fields: &mut Fields<'_>, scene: &Path, profile: Profile) -> Result<
 /// directory, named by the scene file's stem and a hash of everything
 /// generated, so that a changed scene or back end never reuses stale files.
 fn generated_dir(scene: &Path, sources: &scene_jack::JackSources) -> PathBuf {
-    // FNV-1a, 64 bits: stable across runs and Rust versions.
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
     let files = sources
         .classes
         .iter()
         .map(|c| (c.name.as_str(), c.text.as_str()))
         .chain([("bindings.toml", sources.bindings.as_str())]);
-    for (name, text) in files {
-        for b in name.bytes().chain([0]).chain(text.bytes()).chain([0]) {
-            hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
-    }
+    let hash = common::hash::fnv1a(
+        files.flat_map(|(name, text)| name.bytes().chain([0]).chain(text.bytes()).chain([0])),
+    );
     let stem = scene
         .file_stem()
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned());

@@ -7,6 +7,7 @@
 
 pub mod adapter;
 pub mod f316;
+pub mod hash;
 pub mod image_consts;
 pub mod input;
 pub mod jack_int;
