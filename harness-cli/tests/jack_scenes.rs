@@ -116,13 +116,17 @@ fn a_scene_entry_generates_the_seed_program_bit_exact_with_ref_f316() {
     support::assert_diverges_on_the_small_ops_set(reference.as_ref(), web.as_ref());
 }
 
-/// rtdemo's program answers ops and SDF queries (its four levels are not
-/// one bit): its operations are ref-f316's, and its SDF the reference's
+/// rtdemo's program answers ops and SDF queries, and its image through the
+/// whole program's screen (its four levels are not one bit: no pixel
+/// statements): its operations are ref-f316's, and its SDF the reference's
 /// interpretation of rtdemo.
 #[test]
 fn a_scene_entry_for_rtdemo_answers_its_own_scene() {
     let cast = scene_entry("rtdemo");
-    assert_eq!(cast.get("gen").unwrap().levels, [Level::Ops, Level::Sdf]);
+    assert_eq!(
+        cast.get("gen").unwrap().levels,
+        [Level::Ops, Level::Sdf, Level::Image]
+    );
     let gen = cast.open("gen").unwrap();
     let reference = Cast::builtin().open("ref-f316").unwrap();
     let set = vectors::load_named(vectors::named::small_set_name(Level::Ops)).unwrap();

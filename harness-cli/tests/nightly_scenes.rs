@@ -80,8 +80,9 @@ fn the_scene_step_reports_use_reach_and_cost() {
 }
 
 /// The generated Jack program of the scene with carved shapes, through
-/// its bindings: ops, SDF and every 2nd pixel of every 2nd row bit-exact
-/// with ref-f316, its cost figures, and the scene's pictures.
+/// its bindings: ops, SDF, every pixel and `Main.main`'s whole screen
+/// bit-exact with ref-f316, its cost figures (every pixel measured, the
+/// whole program timed), its outcomes, and the scene's pictures.
 #[test]
 fn the_scene_step_compares_the_generated_jack_program_and_shows_its_pictures() {
     let dir = tempfile::tempdir().unwrap();
@@ -95,10 +96,14 @@ fn the_scene_step_compares_the_generated_jack_program_and_shows_its_pictures() {
         .as_array()
         .unwrap()
         .iter()
-        .filter(|c| c["b"] == "jack-generated")
+        .filter(|c| {
+            c["b"]
+                .as_str()
+                .is_some_and(|b| b.starts_with("jack-generated"))
+        })
         .collect();
     let levels: Vec<&str> = rows.iter().map(|c| c["level"].as_str().unwrap()).collect();
-    assert_eq!(levels, ["ops", "sdf", "pixels"]);
+    assert_eq!(levels, ["ops", "sdf", "pixels", "screen"]);
     for c in &rows {
         assert_eq!(
             (&c["a"], &c["policy"]),
@@ -109,16 +114,32 @@ fn the_scene_step_compares_the_generated_jack_program_and_shows_its_pictures() {
     }
     assert_eq!(
         rows[2]["cases"],
-        80 * 48,
-        "every 2nd pixel of the 160x96 scene"
+        160 * 96,
+        "every pixel of the 160x96 scene"
     );
+    assert_eq!(rows[3]["cases"], 512 * 256, "every pixel of the screen");
     let s = &report["scenes"][0];
     let jack = &s["jack"];
-    assert_eq!(jack["step"], 2);
-    // scene-jack's figure over every pixel is 279 240.
+    assert_eq!(
+        (&jack["step"], &jack["pixels_measured"]),
+        (&1.into(), &(160 * 96).into())
+    );
+    // docs/scenes.md's figure over every pixel is 287 411.
     let mean = jack["mean"].as_f64().unwrap();
     assert!((200_000.0..400_000.0).contains(&mean), "{jack}");
     assert!(jack["desktop_s"].as_f64().unwrap() > 0.0);
+    assert!(jack["main_s"].as_f64().unwrap() > 0.0, "{jack}");
+    assert!(s["cpu_s"].as_f64().unwrap() > 0.0, "{s}");
+    let outcomes: Vec<String> = s["outcomes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|o| format!("{} {} {}", o["implementation"], o["level"], o["cases"]))
+        .collect();
+    assert!(
+        outcomes.contains(&"\"jack-generated\" \"pixels\" 15360".to_string()),
+        "{outcomes:?}"
+    );
     assert!(jack["rom_shared"].as_u64().unwrap() < jack["rom_words"].as_u64().unwrap());
     let pictures: Vec<&str> = s["pictures"]
         .as_array()
@@ -134,6 +155,7 @@ fn the_scene_step_compares_the_generated_jack_program_and_shows_its_pictures() {
         "images/scene-carved-jack-generated.png",
         "images/scene-carved-jack-generated-vs-ref-f316.png",
         "images/scene-carved-jack-generated-cost.png",
+        "images/scene-carved-jack-generated-main.png",
     ] {
         assert!(pictures.contains(&want), "{want} in {pictures:?}");
     }

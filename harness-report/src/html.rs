@@ -907,6 +907,14 @@ fn scenes(h: &mut String, r: &Report) {
             );
         }
         h.push_str("</table>");
+        scene_outcomes(h, &s.outcomes);
+        if let Some(cpu) = s.cpu_s {
+            let _ = write!(
+                h,
+                "<p>The step's CPU time on this scene: {} (every thread).</p>",
+                duration(cpu)
+            );
+        }
         if let Some(j) = &s.jack {
             scene_jack(h, j);
         }
@@ -927,6 +935,62 @@ fn scenes(h: &mut String, r: &Report) {
     h.push_str("</section>\n");
 }
 
+/// How each implementation's answers for a scene ended, and whether the
+/// Float316 ones agree on how many are out of domain.
+fn scene_outcomes(h: &mut String, outcomes: &[SceneOutcomes]) {
+    if outcomes.is_empty() {
+        return;
+    }
+    h.push_str(
+        "<p>Outcomes: answers out of the modelled domain (each stopped at the one Float316 operation that left it), \
+         <code>Sys.error</code> and hangs, per implementation and level.</p>",
+    );
+    table_head(
+        h,
+        [
+            "implementation",
+            "level",
+            "answers",
+            "out of domain",
+            "Sys.error",
+            "hang",
+        ],
+    );
+    for o in outcomes {
+        row(
+            h,
+            &[
+                td_code(&o.implementation),
+                td(esc(&o.level)),
+                td_n(o.cases),
+                td_n(o.out_of_domain),
+                td_n(o.sys_error),
+                td_n(o.hang),
+            ],
+        );
+    }
+    h.push_str("</table>");
+    for level in ["pixels", "sdf"] {
+        let counts: std::collections::BTreeSet<(u64, u64)> = outcomes
+            .iter()
+            .filter(|o| o.level == level && is_float316(&o.implementation))
+            .map(|o| (o.cases, o.out_of_domain))
+            .collect();
+        if counts.len() > 1 {
+            let _ = write!(
+                h,
+                "<p class=warn>The Float316 implementations disagree on how many {level} answers are out of domain.</p>"
+            );
+        }
+    }
+}
+
+/// Whether a scene leg computes in Float316 (`ref-f316`, `gpu-f316`, the
+/// generated Jack program).
+fn is_float316(label: &str) -> bool {
+    label.ends_with("f316") || label.starts_with("jack")
+}
+
 /// The cost of a scene's generated Jack program.
 fn scene_jack(h: &mut String, j: &SceneJackCost) {
     let fits = |words: u64| {
@@ -936,20 +1000,30 @@ fn scene_jack(h: &mut String, j: &SceneJackCost) {
             "does not fit"
         }
     };
+    let measured = if j.step == 1 {
+        "every pixel".to_string()
+    } else {
+        format!("one pixel in each {0}x{0} block", j.step)
+    };
+    let main = j.main_s.map_or_else(
+        || "Main.main did not finish".to_string(),
+        |s| format!("Main.main measured at {} on one thread", duration(s)),
+    );
     let _ = write!(
         h,
-        "<p>Generated Jack program, step {} in x and y ({} pixels measured): \
+        "<p>Generated Jack program, {} measured ({} pixels): \
          <b>{:.0}</b> VM instructions per pixel (mean), max {}; the whole image {} VM instructions: \
          about <b>{}</b> on the official desktop VM emulator at 1.4 M/s ({} by the hand-written seed program's \
-         9 h 45 min there), {} on ours. {} VM commands: about {} Hack ROM words in line ({} the {}), \
+         9 h 45 min there); on ours {}, {} with the pixels in parallel. {} VM commands: about {} Hack ROM words in line ({} the {}), \
          {} with shared call/return/compare routines ({}).</p>",
-        j.step,
+        measured,
         j.pixels_measured,
         j.mean,
         j.max,
         j.whole_image_instructions,
         duration(j.desktop_s),
         duration(j.desktop_seed_scale_s),
+        main,
         duration(j.ours_s),
         j.vm_commands,
         j.rom_textbook,
@@ -1092,6 +1166,31 @@ mod tests {
         assert_eq!(duration(35_100.0), "9 h 45 min");
         assert_eq!(duration(200.0), "3 min 20 s");
         assert_eq!(duration(4.24), "4.2 s");
+    }
+
+    /// The outcomes table, and a warning when the Float316 legs (not the
+    /// float ones, which answer values there) count differently.
+    #[test]
+    fn scene_outcomes_warn_when_the_float316_legs_disagree() {
+        let o = |implementation: &str, out_of_domain| SceneOutcomes {
+            implementation: implementation.into(),
+            level: "pixels".into(),
+            cases: 10,
+            out_of_domain,
+            ..SceneOutcomes::default()
+        };
+        let mut h = String::new();
+        scene_outcomes(
+            &mut h,
+            &[o("ref-f64", 0), o("ref-f316", 3), o("gpu-f316", 3)],
+        );
+        assert!(
+            h.contains("<td class=n>3</td>") && !h.contains("disagree"),
+            "{h}"
+        );
+        let mut h = String::new();
+        scene_outcomes(&mut h, &[o("ref-f316", 3), o("jack-generated", 2)]);
+        assert!(h.contains("disagree on how many pixels answers"), "{h}");
     }
 
     #[test]

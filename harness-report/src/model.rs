@@ -172,10 +172,35 @@ pub struct SceneRow {
     /// program's cost map.
     #[serde(default)]
     pub pictures: Vec<ScenePicture>,
+    /// How each implementation's answers ended, per level: out of the
+    /// modelled domain, `Sys.error`, hang.
+    #[serde(default)]
+    pub outcomes: Vec<SceneOutcomes>,
+    /// CPU seconds the step spent on the scene (every thread), where the
+    /// system tells.
+    #[serde(default)]
+    pub cpu_s: Option<f64>,
+}
+
+/// How one implementation's answers for a described scene ended at one
+/// level.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SceneOutcomes {
+    pub implementation: String,
+    /// `pixels` (every pixel it rendered) or `sdf` (the step's query
+    /// points).
+    pub level: String,
+    pub cases: u64,
+    /// Answers out of the modelled domain: each stopped at the one Float316
+    /// operation that left it.
+    pub out_of_domain: u64,
+    pub sys_error: u64,
+    pub hang: u64,
 }
 
 /// The cost of the Jack program generated from a described scene, measured
-/// on every `step`-th pixel of every `step`-th row.
+/// on every `step`-th pixel of every `step`-th row (the nightly: every
+/// pixel).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct SceneJackCost {
     pub step: u32,
@@ -198,6 +223,10 @@ pub struct SceneJackCost {
     pub rom_textbook: u64,
     pub rom_shared: u64,
     pub rom_words: u64,
+    /// `Main.main` drawing the whole image on our emulator, one thread,
+    /// measured (seconds), when it finished.
+    #[serde(default)]
+    pub main_s: Option<f64>,
 }
 
 /// One picture of a described scene.

@@ -43,8 +43,8 @@ pub struct NightlyArgs {
     #[arg(long = "impls", value_delimiter = ',', value_name = "NAME,...")]
     pub implementations: Option<Vec<String>>,
     /// A described scene for the scenes step: a shipped scene's name
-    /// (`rtdemo`) or a file (repeatable; default every shipped scene and
-    /// the test scene tests/carved.json).
+    /// (`rtdemo`) or a file (repeatable; default every shipped scene, the
+    /// test scene tests/carved.json and every scene of examples/scenes).
     #[arg(long = "scene", value_name = "NAME")]
     pub scenes: Vec<String>,
     /// Run only shard K/N of the committed and TestFloat sets (K counts

@@ -1,41 +1,69 @@
 //! The scenes step's Jack leg: the program generated from each scene
 //! (crate `scene-jack`), opened through a cast entry `scene = FILE` as a
 //! user's program is opened through its bindings, and compared with
-//! ref-f316 bit for bit: every bound operation on the small ops set, the
-//! SDF at the step's query points, and every [`STEP`]-th pixel of every
-//! [`STEP`]-th row (level and shade) through `Image.pixel`, the pass that
-//! also measures its cost (`harness jack cost`). Those pixels are compared
-//! with gpu-f316's too where it rendered the scene. The whole-program
-//! screen is not run here (the seed's takes 22 G VM instructions; scene-jack's
-//! ignored test compares it).
+//! ref-f316 bit for bit:
+//!
+//! - every bound operation on the small ops set;
+//! - the SDF at the step's query points;
+//! - every drawn pixel (level and shade) through `Image.pixel`, pixels in
+//!   parallel on copies of the program after `Main.init` (the engine
+//!   compiles the program once the first 100 M steps are interpreted): the
+//!   pass that also measures its cost (`harness jack cost --step 1`);
+//! - the whole program's screen: `Main.main`, unmodified, through the
+//!   bindings' whole-program capture, against the screen the reference's
+//!   levels make by the program's documented rule
+//!   (`scene_jack::expected_screen`), and for the seed scene against the
+//!   committed render as well.
+//!
+//! The pixels and the screen are compared with gpu-f316's too where it
+//! rendered the scene.
 
-use super::scenes::{bit_exact_pixels, compare_sdf, SdfTriples};
+use super::scenes::{bit_exact_pixels, compare_sdf, comparison, diverged, example, SdfTriples};
 use super::Night;
 use crate::commands::jack::cost::{self, Measured};
 use anyhow::{bail, Context, Result};
+use common::image_consts::{HEIGHT, WIDTH};
 use common::{Outcome, F316};
 use hack_vm::Exit;
 use harness::cast::Cast;
 use harness::implementation::{Answer, Implementation, Num};
 use harness_report::model::Comparison;
+use harness_report::BIT_EXACT;
 use rayon::prelude::*;
-use reference::{Described, Scalar, SceneImage, ScenePixel};
+use reference::{Scalar, SceneImage, ScenePixel, SdfValue};
 use std::path::Path;
+use std::time::Instant;
 use vectors::{Level, SdfVector, Vector};
 
 /// The generated program's label in the report.
 pub const LABEL: &str = "jack-generated";
 
-/// Every `STEP`-th pixel of every `STEP`-th row is compared and measured.
-pub const STEP: u32 = 2;
+/// The label of the generated program's screen.
+pub fn screen_label() -> String {
+    super::steps::screen_label(LABEL)
+}
 
 /// What the leg found: its comparison rows, the measured pixels (their
-/// cost figures and answers) and those pixels as an image.
+/// cost figures and answers), those pixels as an image, its SDF answers
+/// and `Main.main`'s screen.
 pub struct JackLeg {
     pub comparisons: Vec<Comparison>,
     pub measured: Measured,
-    /// The measured pixels, `ceil(width / STEP)` a row.
+    /// Every drawn pixel, row by row.
     pub image: SceneImage,
+    /// The answers at the step's SDF query points.
+    pub sdf: Vec<SdfTriples>,
+    /// The seconds the pixel pass took (every drawn pixel, in parallel).
+    pub pixels_s: f64,
+    /// `Main.main`'s screen, or why the run gave none.
+    pub screen: Result<MainScreen, String>,
+}
+
+/// The screen `Main.main` left, and the seconds it took on one thread.
+pub struct MainScreen {
+    /// 512x256, row by row, `true` = white.
+    pub white: Vec<bool>,
+    pub seconds: f64,
 }
 
 /// `path` as a TOML literal string.
@@ -62,37 +90,75 @@ fn open(file: &Path) -> Result<Box<dyn Implementation>> {
     Ok(cast.open(LABEL)?)
 }
 
-/// Run the leg for the scene of `file`: `f316` is its ref-f316, `points`
-/// the SDF query points, `images` the legs' renders so far.
-pub fn run(
-    night: &mut Night<'_>,
-    file: &Path,
-    scope: &str,
-    f316: &Described,
-    points: &[[F316; 3]],
-    images: &[(String, SceneImage)],
-) -> Result<JackLeg> {
-    let generated = scene_jack::emit_file(file)?;
-    let program = open(file)?;
-    let mut comparisons = ops(night, scope, program.as_ref())?;
-    let theirs = sdf(program.as_ref(), points)?;
-    let mut sdf_row = compare_sdf(scope, points, |p| f316.sdf(p), &theirs);
+/// What the leg compares against: the scene, its ref-f316 SDF answers at
+/// `points`, and the Float316 legs' renders so far (`images`).
+pub struct Judges<'a> {
+    pub file: &'a Path,
+    pub scope: &'a str,
+    pub points: &'a [[F316; 3]],
+    pub ref_sdf: &'a [Outcome<SdfValue>],
+    pub images: &'a [(String, SceneImage)],
+}
+
+/// Run the leg.
+pub fn run(night: &mut Night<'_>, j: &Judges<'_>) -> Result<JackLeg> {
+    let generated = scene_jack::emit_file(j.file)?;
+    let program = open(j.file)?;
+    let mut comparisons = ops(night, j.scope, program.as_ref())?;
+    let sdf = sdf(program.as_ref(), j.points)?;
+    let mut sdf_row = compare_sdf(j.scope, j.points, j.ref_sdf, &sdf);
     sdf_row.b = LABEL.into();
     comparisons.push(sdf_row);
-    let measured = cost::measure_generated(file, &generated, STEP, false)?;
+    let start = Instant::now();
+    let measured = cost::measure_generated(j.file, &generated, 1, false)?;
+    let pixels_s = start.elapsed().as_secs_f64();
     let image = measured_image(&measured, generated.program.pixels.levels)?;
-    for (label, theirs) in images {
-        if label == "ref-f316" || label == "gpu-f316" {
-            let sampled = subsample(theirs, STEP);
-            comparisons.push(bit_exact_pixels(
-                scope, label, LABEL, &sampled, &image, STEP,
+    let float316 = j
+        .images
+        .iter()
+        .filter(|(label, _)| label == "ref-f316" || label == "gpu-f316");
+    for (label, theirs) in float316.clone() {
+        let (drawn, beyond) = crop(theirs, image.width, image.height);
+        let mut row = bit_exact_pixels(j.scope, label, LABEL, &drawn, &image);
+        if beyond > 0 {
+            row.findings.push(format!(
+                "{beyond} pixels beyond the {}x{} screen are not drawn by Main.main and not compared",
+                WIDTH, HEIGHT
             ));
         }
+        comparisons.push(row);
+    }
+    let start = Instant::now();
+    let screen = match program.program_screen(
+        Some(measured.cost.whole_image_instructions),
+        night.options.progress,
+    ) {
+        Some(Ok(bitmap)) => Ok(MainScreen {
+            white: bitmap.white,
+            seconds: start.elapsed().as_secs_f64(),
+        }),
+        Some(Err(e)) => Err(e.to_string()),
+        None => Err("the bindings have no whole-program capture".into()),
+    };
+    for (label, theirs) in float316 {
+        comparisons.push(screen_row(
+            j.scope,
+            label,
+            &generated.program,
+            theirs,
+            &screen,
+        ));
+    }
+    if scene::is_seed(&generated.checked) {
+        comparisons.push(committed_row(j.scope, &screen)?);
     }
     Ok(JackLeg {
         comparisons,
         measured,
         image,
+        sdf,
+        pixels_s,
+        screen,
     })
 }
 
@@ -155,6 +221,10 @@ fn sdf(program: &dyn Implementation, points: &[[F316; 3]]) -> Result<Vec<SdfTrip
 /// answers as the bindings make it answer (`Sys.error(316)`: out of
 /// domain); one that stops otherwise fails the leg.
 fn measured_image(m: &Measured, levels: u8) -> Result<SceneImage> {
+    let c = &m.cost;
+    if c.step != 1 {
+        bail!("the leg compares every pixel; step {} measured", c.step);
+    }
     let pixels = m
         .pixels
         .iter()
@@ -178,31 +248,128 @@ fn measured_image(m: &Measured, levels: u8) -> Result<SceneImage> {
             },
         })
         .collect::<Result<Vec<_>>>()?;
-    let c = &m.cost;
     Ok(SceneImage {
-        width: c.width.div_ceil(c.step) as usize,
-        height: c.height.div_ceil(c.step) as usize,
+        width: c.width as usize,
+        height: c.height as usize,
         levels,
         pixels,
     })
 }
 
-/// Every `step`-th pixel of every `step`-th row of `image`.
-pub fn subsample(image: &SceneImage, step: u32) -> SceneImage {
-    let step = step as usize;
-    let rows = (0..image.height).step_by(step);
-    let width = image.width.div_ceil(step);
-    SceneImage {
-        width,
-        height: image.height.div_ceil(step),
+/// The top-left `width` x `height` pixels of `image` (the part the Hack
+/// screen shows), and how many pixels lie beyond them.
+fn crop(image: &SceneImage, width: usize, height: usize) -> (SceneImage, usize) {
+    let (w, h) = (width.min(image.width), height.min(image.height));
+    let pixels: Vec<_> = (0..h)
+        .flat_map(|y| image.pixels[y * image.width..][..w].iter().copied())
+        .collect();
+    let beyond = image.pixels.len() - pixels.len();
+    let cropped = SceneImage {
+        width: w,
+        height: h,
         levels: image.levels,
-        pixels: rows
-            .flat_map(|y| {
-                (0..image.width)
-                    .step_by(step)
-                    .map(move |x| image.pixels[y * image.width + x])
-            })
-            .collect(),
+        pixels,
+    };
+    (cropped, beyond)
+}
+
+/// `Main.main`'s screen against the one `theirs` (labelled `label`, a
+/// render of `program`'s scene) makes by the program's screen rule. Where
+/// `theirs` stops at a drawn pixel, `Main.main` must stop as well (one
+/// case: the run's end).
+fn screen_row(
+    scope: &str,
+    label: &str,
+    program: &scene::Program,
+    theirs: &SceneImage,
+    screen: &Result<MainScreen, String>,
+) -> Comparison {
+    let expected = scene_jack::expected_screen(program, |x, y| {
+        theirs
+            .pixels
+            .get(y as usize * theirs.width + x as usize)
+            .and_then(|p| p.value())
+            .map(|p| p.level)
+    });
+    let mut c = comparison("screen", scope, label, &screen_label(), BIT_EXACT);
+    match (expected, screen) {
+        (Ok(want), Ok(got)) => compare_screens(&mut c, &want, &got.white),
+        (Err((x, y)), Err(stopped)) => {
+            c.cases = 1;
+            c.findings.push(format!(
+                "{label} stops at pixel ({x},{y}); Main.main stops too: {stopped}"
+            ));
+        }
+        (Err((x, y)), Ok(_)) => {
+            c.cases = 1;
+            diverged(&mut c, || {
+                example(
+                    "Main.main".into(),
+                    format!("stops at pixel ({x},{y})"),
+                    "draws the whole image".into(),
+                )
+            });
+        }
+        (Ok(_), Err(stopped)) => {
+            c.cases = 1;
+            diverged(&mut c, || {
+                example(
+                    "Main.main".into(),
+                    "draws the whole image".into(),
+                    stopped.clone(),
+                )
+            });
+        }
+    }
+    c
+}
+
+/// The seed scene's screen against the committed render of the original
+/// program (`vectors/images/seed-float316-512x256.png`).
+fn committed_row(scope: &str, screen: &Result<MainScreen, String>) -> Result<Comparison> {
+    let committed = harness_report::measure::spec_image()?;
+    let mut c = comparison(
+        "screen",
+        scope,
+        "committed render",
+        &screen_label(),
+        BIT_EXACT,
+    );
+    match screen {
+        Ok(got) => compare_screens(&mut c, committed.data(), &got.white),
+        Err(stopped) => {
+            c.cases = 1;
+            diverged(&mut c, || {
+                example(
+                    "Main.main".into(),
+                    "draws the whole image".into(),
+                    stopped.clone(),
+                )
+            });
+        }
+    }
+    Ok(c)
+}
+
+/// Two 512x256 screens, pixel by pixel, into `c`.
+fn compare_screens(c: &mut Comparison, want: &[bool], got: &[bool]) {
+    let colour = |w: Option<&bool>| match w {
+        Some(true) => "white",
+        Some(false) => "black",
+        None => "no pixel",
+    };
+    for i in 0..want.len().max(got.len()) {
+        c.cases += 1;
+        let (a, b) = (want.get(i), got.get(i));
+        if a != b {
+            diverged(c, || {
+                example(
+                    format!("pixel({},{})", i % WIDTH, i / WIDTH),
+                    colour(a).into(),
+                    colour(b).into(),
+                )
+            });
+        }
     }
 }
 
@@ -210,33 +377,51 @@ pub fn subsample(image: &SceneImage, step: u32) -> SceneImage {
 mod tests {
     use super::*;
 
-    #[test]
-    fn subsampling_keeps_every_step_th_pixel_of_every_step_th_row() {
-        let pixels = (0..15)
-            .map(|i| {
-                Outcome::Value(ScenePixel {
-                    value: Scalar {
-                        value: f64::from(i),
-                        triple: None,
-                    },
-                    level: 0,
-                })
-            })
-            .collect();
-        let image = SceneImage {
-            width: 5,
-            height: 3,
+    fn image(width: usize, height: usize) -> SceneImage {
+        SceneImage {
+            width,
+            height,
             levels: 2,
-            pixels,
-        };
-        let s = subsample(&image, 2);
-        assert_eq!((s.width, s.height), (3, 2));
-        let values: Vec<f64> = s
+            pixels: (0..width * height)
+                .map(|i| {
+                    Outcome::Value(ScenePixel {
+                        value: Scalar {
+                            value: i as f64,
+                            triple: None,
+                        },
+                        level: 0,
+                    })
+                })
+                .collect(),
+        }
+    }
+
+    #[test]
+    fn cropping_keeps_the_top_left_pixels_and_counts_the_rest() {
+        let (c, beyond) = crop(&image(5, 3), 3, 2);
+        assert_eq!((c.width, c.height, beyond), (3, 2, 9));
+        let values: Vec<f64> = c
             .pixels
             .iter()
             .map(|p| p.value().unwrap().value.value)
             .collect();
-        assert_eq!(values, [0.0, 2.0, 4.0, 10.0, 12.0, 14.0]);
+        assert_eq!(values, [0.0, 1.0, 2.0, 5.0, 6.0, 7.0]);
+        let (same, none) = crop(&image(4, 2), 512, 256);
+        assert_eq!((same.width, same.height, none), (4, 2, 0));
+    }
+
+    #[test]
+    fn screens_differ_pixel_by_pixel_and_a_run_that_stops_diverges() {
+        let mut c = comparison("screen", "s", "a", "b", BIT_EXACT);
+        compare_screens(&mut c, &[true, false, true], &[true, true, true]);
+        assert_eq!((c.cases, c.divergences), (3, 1));
+        assert_eq!(
+            (c.examples[0].case.as_str(), c.examples[0].a.as_str()),
+            ("pixel(1,0)", "black")
+        );
+        let stopped: Result<MainScreen, String> = Err("Sys.error(316)".into());
+        let c = committed_row("s", &stopped).unwrap();
+        assert_eq!((c.cases, c.divergences), (1, 1));
     }
 
     #[test]

@@ -1,12 +1,14 @@
 //! The pictures of a described scene in the report, as the seed scene's
-//! renders section has them: each leg's render, each leg's difference
-//! overlay against the render it is judged by (a Float316 leg against
-//! ref-f316, a float leg against ref-f64), and the generated Jack
-//! program's measured pixels with their cost map.
+//! renders section has them: each leg's render (the generated Jack
+//! program's among them), each leg's difference overlay against the render
+//! it is judged by (a Float316 leg against ref-f316, a float leg against
+//! ref-f64), and the generated Jack program's cost map and the screen its
+//! `Main.main` drew.
 
 use super::scene_jack::{self, JackLeg};
 use crate::commands::jack::cost;
 use anyhow::Result;
+use common::image_consts::{HEIGHT, WIDTH};
 use common::Outcome;
 use harness_report::images::{A_WHITE_COLOUR, B_WHITE_COLOUR, TRAP_COLOUR};
 use harness_report::model::ScenePicture;
@@ -24,41 +26,32 @@ fn grey(p: &Outcome<ScenePixel>, levels: u8) -> Option<u8> {
     }
 }
 
-/// `image` in greys, traps in [`TRAP_COLOUR`], each pixel `scale` x
-/// `scale` screen pixels.
-fn render(image: &SceneImage, scale: u32) -> RgbImage {
-    RgbImage::from_fn(
-        image.width as u32 * scale,
-        image.height as u32 * scale,
-        |x, y| {
-            let p = &image.pixels[(y / scale) as usize * image.width + (x / scale) as usize];
-            match grey(p, image.levels) {
-                Some(g) => Rgb([g, g, g]),
-                None => Rgb(TRAP_COLOUR),
-            }
-        },
-    )
+/// `image` in greys, traps in [`TRAP_COLOUR`].
+fn render(image: &SceneImage) -> RgbImage {
+    RgbImage::from_fn(image.width as u32, image.height as u32, |x, y| {
+        match grey(
+            &image.pixels[y as usize * image.width + x as usize],
+            image.levels,
+        ) {
+            Some(g) => Rgb([g, g, g]),
+            None => Rgb(TRAP_COLOUR),
+        }
+    })
 }
 
-/// `image`'s shades before the output step (clamped to [0, 1]) in greys,
-/// traps in [`TRAP_COLOUR`], each pixel `scale` x `scale` screen pixels: a
-/// subsampled image, whose dithered levels would alias.
-fn shades(image: &SceneImage, scale: u32) -> RgbImage {
-    RgbImage::from_fn(
-        image.width as u32 * scale,
-        image.height as u32 * scale,
-        |x, y| match &image.pixels[(y / scale) as usize * image.width + (x / scale) as usize] {
-            Outcome::Value(p) => Rgb([(p.value.value.clamp(0.0, 1.0) * 255.0).round() as u8; 3]),
-            _ => Rgb(TRAP_COLOUR),
-        },
-    )
+/// A 512x256 screen, `true` = white.
+fn screen(white: &[bool]) -> RgbImage {
+    let (w, h) = (WIDTH as u32, HEIGHT as u32);
+    RgbImage::from_fn(w, h, |x, y| {
+        Rgb([if white[(y * w + x) as usize] { 255 } else { 0 }; 3])
+    })
 }
 
 /// `b` over `a`: `a` dimmed where their levels agree, [`B_WHITE_COLOUR`]
 /// where `b` is lighter, [`A_WHITE_COLOUR`] where `a` is, [`TRAP_COLOUR`]
 /// where one traps and the other does not; and the number of pixels that
 /// differ. `None` when the sizes differ.
-fn overlay(a: &SceneImage, b: &SceneImage, scale: u32) -> Option<(RgbImage, usize)> {
+fn overlay(a: &SceneImage, b: &SceneImage) -> Option<(RgbImage, usize)> {
     if (a.width, a.height) != (b.width, b.height) || a.pixels.len() != b.pixels.len() {
         return None;
     }
@@ -72,8 +65,8 @@ fn overlay(a: &SceneImage, b: &SceneImage, scale: u32) -> Option<(RgbImage, usiz
         }
     };
     let differing = (0..a.pixels.len()).filter(|&i| colour(i).1).count();
-    let img = RgbImage::from_fn(a.width as u32 * scale, a.height as u32 * scale, |x, y| {
-        colour((y / scale) as usize * a.width + (x / scale) as usize).0
+    let img = RgbImage::from_fn(a.width as u32, a.height as u32, |x, y| {
+        colour(y as usize * a.width + x as usize).0
     });
     Some((img, differing))
 }
@@ -108,32 +101,16 @@ pub fn pictures(
     };
     let find = |label: &str| images.iter().find(|(l, _)| l == label).map(|(_, i)| i);
     for (label, image) in images {
-        add(format!("{name}-{label}"), &render(image, 1), label.clone())?;
+        add(format!("{name}-{label}"), &render(image), label.clone())?;
         if let Some(base) = judged_by(label, images).and_then(|b| find(b).map(|i| (b, i))) {
-            if let Some((img, n)) = overlay(base.1, image, 1) {
+            if let Some((img, n)) = overlay(base.1, image) {
                 let caption = format!("{label} over {}: {n} pixels differ", base.0);
                 add(format!("{name}-{label}-vs-{}", base.0), &img, caption)?;
             }
         }
     }
     if let Some(leg) = jack {
-        let step = scene_jack::STEP;
         let label = scene_jack::LABEL;
-        add(
-            format!("{name}-{label}"),
-            &shades(&leg.image, step),
-            format!(
-                "{label}: the shades of {}, each drawn {step}x{step}",
-                cost::every_nth(step)
-            ),
-        )?;
-        if let Some(base) = find("ref-f316") {
-            let sampled = scene_jack::subsample(base, step);
-            if let Some((img, n)) = overlay(&sampled, &leg.image, step) {
-                let caption = format!("{label} over ref-f316 at the measured pixels: {n} differ");
-                add(format!("{name}-{label}-vs-ref-f316"), &img, caption)?;
-            }
-        }
         let map = image::DynamicImage::ImageLuma8(cost::cost_map(&leg.measured)).to_rgb8();
         let c = &leg.measured.cost;
         add(
@@ -144,6 +121,14 @@ pub fn pictures(
                 c.max, c.mean
             ),
         )?;
+        if let Ok(main) = &leg.screen {
+            let label = scene_jack::screen_label();
+            add(
+                format!("{name}-{label}"),
+                &screen(&main.white),
+                format!("{label}: the Hack screen Main.main drew"),
+            )?;
+        }
     }
     Ok(out)
 }
@@ -178,33 +163,32 @@ mod tests {
     fn the_overlay_marks_each_kind_of_difference() {
         let a = image(4, &[Some(0), Some(3), Some(1), None, Some(2)]);
         let b = image(4, &[Some(0), Some(1), Some(2), Some(2), Some(2)]);
-        let (img, n) = overlay(&a, &b, 2).unwrap();
+        let (img, n) = overlay(&a, &b).unwrap();
         assert_eq!(n, 3);
-        assert_eq!(img.dimensions(), (10, 2));
-        assert_eq!(img.get_pixel(2, 1), &Rgb(A_WHITE_COLOUR), "b darker");
-        assert_eq!(img.get_pixel(4, 0), &Rgb(B_WHITE_COLOUR), "b lighter");
+        assert_eq!(img.dimensions(), (5, 1));
+        assert_eq!(img.get_pixel(1, 0), &Rgb(A_WHITE_COLOUR), "b darker");
+        assert_eq!(img.get_pixel(2, 0), &Rgb(B_WHITE_COLOUR), "b lighter");
         assert_eq!(
-            img.get_pixel(6, 0),
+            img.get_pixel(3, 0),
             &Rgb(TRAP_COLOUR),
             "a trap against a value"
         );
-        assert_eq!(img.get_pixel(0, 0), img.get_pixel(1, 1), "same: dimmed");
-        assert!(overlay(&a, &image(4, &[Some(0)]), 1).is_none());
+        assert_eq!(
+            img.get_pixel(4, 0),
+            &Rgb([2 * 85 / 3 + 40; 3]),
+            "same: dimmed"
+        );
+        assert!(overlay(&a, &image(4, &[Some(0)])).is_none());
     }
 
     #[test]
-    fn shades_are_clamped_greys_and_traps_are_orange() {
-        let mut img = image(2, &[Some(0), Some(1), None]);
-        for (p, v) in img.pixels.iter_mut().zip([0.5, 1.7]) {
-            if let Outcome::Value(p) = p {
-                p.value.value = v;
-            }
-        }
-        let out = shades(&img, 2);
-        assert_eq!(out.dimensions(), (6, 2));
-        assert_eq!(out.get_pixel(1, 1), &Rgb([128; 3]));
-        assert_eq!(out.get_pixel(2, 0), &Rgb([255; 3]), "clamped");
-        assert_eq!(out.get_pixel(5, 1), &Rgb(TRAP_COLOUR));
+    fn a_screen_is_drawn_white_and_black() {
+        let mut white = vec![true; WIDTH * HEIGHT];
+        white[WIDTH + 3] = false;
+        let img = screen(&white);
+        assert_eq!(img.dimensions(), (512, 256));
+        assert_eq!(img.get_pixel(3, 1), &Rgb([0; 3]));
+        assert_eq!(img.get_pixel(4, 1), &Rgb([255; 3]));
     }
 
     #[test]

@@ -1,25 +1,28 @@
 //! The scene step: every described scene of the night (`--scene`, default
-//! every shipped one in `vectors/scenes/`) rendered from its description on
-//! each opened implementation that supports it: the Float316 ones compared
-//! bit for bit (gpu-f316 against ref-f316 on every pixel's shade and level,
-//! and on SDF queries: uniform ones and those derived from the scene, near
-//! its surfaces, seams and cell boundaries), the float ones by their error
-//! against ref-f64; and
-//! per scene what it uses (shapes, Float316 operations), what it never
-//! reaches (operations, operand classes, traps, over traced ref-f316
-//! pixels) and its cost per pixel on each implementation.
+//! every shipped one in `vectors/scenes/`, the test scene and the examples
+//! in `examples/scenes/`) rendered from its description on each opened
+//! implementation that supports it: the Float316 ones compared bit for bit
+//! (gpu-f316 and the generated Jack program against ref-f316 on every
+//! pixel's shade and level, and on SDF queries: uniform ones and those
+//! derived from the scene, near its surfaces, seams and cell boundaries;
+//! the Jack program's own screen too, [`super::scene_jack`]), the float ones
+//! by their error against ref-f64; and per scene what it uses (shapes,
+//! Float316 operations), what it never reaches (operations, operand
+//! classes, traps, over traced ref-f316 pixels), how each implementation's
+//! answers end (out of domain, `Sys.error`, hang), its cost per pixel on
+//! each implementation and the CPU time the step spent on it.
 
 use super::step::Step;
 use super::Night;
 use super::{scene_jack, scene_pictures};
 use crate::commands::render_scene::{compile_gpu, kernel_image};
 use anyhow::{bail, Context, Result};
-use common::{Op, Outcome, TraceRecord, F316};
+use common::{Op, Outcome, OutcomeKind, TraceRecord, F316};
 use harness::compare::Thresholds;
 use harness::implementation::Numbers;
 use harness::verdict::Missing;
 use harness_report::model::{
-    Comparison, DivergenceExample, ErrorFigures, SceneCost, SceneJackCost, SceneRow,
+    Comparison, DivergenceExample, ErrorFigures, SceneCost, SceneJackCost, SceneOutcomes, SceneRow,
 };
 use harness_report::{BIT_EXACT, ERROR_FIGURES};
 use reference::{Described, RefImpl, SceneImage, ScenePixel, SdfValue, Settings};
@@ -35,8 +38,23 @@ pub fn shipped_dir() -> PathBuf {
 
 /// Every shipped scene, by file name order.
 pub fn shipped() -> Result<Vec<PathBuf>> {
-    let dir = shipped_dir();
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+    descriptions(&shipped_dir())
+}
+
+/// The scene no shipped description uses the shapes of: carved shapes
+/// (`vectors/scenes/tests/carved.json`), a scene nobody ported by hand.
+pub const TEST_SCENE: &str = "tests/carved.json";
+
+/// The folder of the example scenes: descriptions written as a user
+/// writes their own.
+pub fn examples_dir() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/scenes");
+    dir.canonicalize().unwrap_or(dir)
+}
+
+/// The `.json` files of `dir`, by file name order.
+fn descriptions(dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .with_context(|| format!("cannot list {}", dir.display()))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "json"))
@@ -45,15 +63,12 @@ pub fn shipped() -> Result<Vec<PathBuf>> {
     Ok(files)
 }
 
-/// The scene no shipped description uses the shapes of: carved shapes
-/// (`vectors/scenes/tests/carved.json`), a scene nobody ported by hand.
-pub const TEST_SCENE: &str = "tests/carved.json";
-
-/// The scenes of a night without `--scene`: every shipped one, then
-/// [`TEST_SCENE`].
+/// The scenes of a night without `--scene`: every shipped one,
+/// [`TEST_SCENE`], then every example of [`examples_dir`].
 pub fn nightly_default() -> Result<Vec<PathBuf>> {
     let mut files = shipped()?;
     files.push(shipped_dir().join(TEST_SCENE));
+    files.extend(descriptions(&examples_dir())?);
     Ok(files)
 }
 
@@ -137,6 +152,7 @@ impl Step for Scenes {
 
 /// One scene through every opened implementation that supports it.
 fn one_scene(night: &mut Night<'_>, gpu: Option<&gpu::Gpu>, file: &Path) -> Result<()> {
+    let cpu_start = crate::cpu::process_seconds();
     let checked = scene::load(file)?;
     let name = checked.description.name.clone();
     let scope = format!("scene {name}");
@@ -191,10 +207,12 @@ fn one_scene(night: &mut Night<'_>, gpu: Option<&gpu::Gpu>, file: &Path) -> Resu
             "jack: the hand-written program answers the seed scene (compared in the levels, renders and pairs steps)".into(),
         );
     }
-    let find = |label: &str| images.iter().find(|(l, _)| l == label).map(|(_, i)| i);
     let mut comparisons = Vec::new();
-    if let (Some(a), Some(b)) = (find("ref-f316"), find("gpu-f316")) {
-        comparisons.push(bit_exact_pixels(&scope, "ref-f316", "gpu-f316", a, b, 1));
+    if let (Some(a), Some(b)) = (
+        find_image(&images, "ref-f316"),
+        find_image(&images, "gpu-f316"),
+    ) {
+        comparisons.push(bit_exact_pixels(&scope, "ref-f316", "gpu-f316", a, b));
     }
     let mut points = sdf_points();
     let derived = vectors::gen::scene_derived::sdf_set(&checked, DERIVED_SEED)?;
@@ -202,42 +220,47 @@ fn one_scene(night: &mut Night<'_>, gpu: Option<&gpu::Gpu>, file: &Path) -> Resu
         vectors::Vector::Sdf(s) => Some(s.p),
         _ => None,
     }));
-    if let (Some(d), Some((gpu, k))) = (&f316, gpu.zip(f316_kernel.as_ref())) {
-        comparisons.push(bit_exact_sdf(&scope, d, gpu, k, &points)?);
+    let ref_sdf: Vec<Outcome<SdfValue>> = match &f316 {
+        Some(d) => points.iter().map(|&p| d.sdf(p)).collect(),
+        None => Vec::new(),
+    };
+    let mut sdf_outcomes = Vec::new();
+    if !ref_sdf.is_empty() {
+        sdf_outcomes.push(outcomes("ref-f316", "sdf", &ref_sdf));
+    }
+    if let (Some(gpu), Some(k)) = (gpu, f316_kernel.as_ref().filter(|_| f316.is_some())) {
+        let theirs = gpu_sdf(gpu, k, &points)?;
+        comparisons.push(compare_sdf(&scope, &points, &ref_sdf, &theirs));
+        sdf_outcomes.push(outcomes("gpu-f316", "sdf", &theirs));
     }
     // The generated Jack program, where the night has the jack kind and
     // ref-f316 to compare it with.
-    let mut jack = None;
-    if let Some(d) = f316.as_ref().filter(|_| night.find("jack").is_some()) {
-        let start = Instant::now();
-        match scene_jack::run(night, file, &scope, d, &points, &images) {
-            Ok(leg) => {
-                let c = &leg.measured.cost;
-                row.costs.push(SceneCost {
-                    implementation: format!(
-                        "{} ({})",
-                        scene_jack::LABEL,
-                        crate::commands::jack::cost::every_nth(c.step)
-                    ),
-                    setup_s: 0.0,
-                    render_s: start.elapsed().as_secs_f64(),
-                    pixels: c.pixels_measured as u64,
-                    per_pixel_s: start.elapsed().as_secs_f64() / c.pixels_measured.max(1) as f64,
-                });
-                row.jack = Some(jack_cost(c));
-                comparisons.extend(leg.comparisons.iter().cloned());
-                jack = Some(leg);
-            }
-            Err(e) => night.not_compared(
-                format!("{scope}: {}", scene_jack::LABEL),
-                Missing::Failed,
-                format!("{e:#}"),
-            ),
-        }
+    let jack = if f316.is_some() && night.find("jack").is_some() {
+        let judges = scene_jack::Judges {
+            file,
+            scope: &scope,
+            points: &points,
+            ref_sdf: &ref_sdf,
+            images: &images,
+        };
+        jack_leg(night, &judges, &mut row)
+    } else {
+        None
+    };
+    if let Some(leg) = &jack {
+        sdf_outcomes.push(outcomes(scene_jack::LABEL, "sdf", &leg.sdf));
+        comparisons.extend(leg.comparisons.iter().cloned());
+        images.push((scene_jack::LABEL.into(), leg.image.clone()));
     }
-    if let Some(oracle) = find("ref-f64") {
+    // Pixels first, in the legs' order, then the SDF answers.
+    row.outcomes = images
+        .iter()
+        .map(|(label, image)| outcomes(label, "pixels", &image.pixels))
+        .chain(sdf_outcomes)
+        .collect();
+    if let Some(oracle) = find_image(&images, "ref-f64") {
         for label in ["ref-f32", "gpu-f32"] {
-            if let Some(image) = find(label) {
+            if let Some(image) = find_image(&images, label) {
                 comparisons.push(float_pixels(&scope, oracle, label, image));
             }
         }
@@ -246,14 +269,73 @@ fn one_scene(night: &mut Night<'_>, gpu: Option<&gpu::Gpu>, file: &Path) -> Resu
         coverage(&mut row, d)?;
     }
     row.pictures = scene_pictures::pictures(&night.builder, &name, &images, jack.as_ref())?;
+    row.cpu_s = cpu_start
+        .zip(crate::cpu::process_seconds())
+        .map(|(a, b)| b - a);
     let report = night.builder.report_mut();
     report.comparisons.extend(comparisons);
     report.scenes.push(row);
     Ok(())
 }
 
-/// The report's figures of a generated program's cost.
-fn jack_cost(c: &crate::commands::jack::cost::SceneCost) -> SceneJackCost {
+/// Run the generated Jack program's leg and put its costs into `row`; a
+/// leg that fails is not compared (and fails the night).
+fn jack_leg(
+    night: &mut Night<'_>,
+    judges: &scene_jack::Judges<'_>,
+    row: &mut SceneRow,
+) -> Option<scene_jack::JackLeg> {
+    let leg = match scene_jack::run(night, judges) {
+        Ok(leg) => leg,
+        Err(e) => {
+            night.not_compared(
+                format!("{}: {}", judges.scope, scene_jack::LABEL),
+                Missing::Failed,
+                format!("{e:#}"),
+            );
+            return None;
+        }
+    };
+    let drawn = leg.image.pixels.len() as u64;
+    let timed = |implementation: String, seconds: f64| SceneCost {
+        implementation,
+        setup_s: 0.0,
+        render_s: seconds,
+        pixels: drawn,
+        per_pixel_s: seconds / drawn.max(1) as f64,
+    };
+    row.costs
+        .push(timed(scene_jack::LABEL.into(), leg.pixels_s));
+    if let Ok(screen) = &leg.screen {
+        row.costs
+            .push(timed(scene_jack::screen_label(), screen.seconds));
+    }
+    row.jack = Some(jack_cost(&leg));
+    Some(leg)
+}
+
+/// The render labelled `label` among `images`.
+fn find_image<'a>(images: &'a [(String, SceneImage)], label: &str) -> Option<&'a SceneImage> {
+    images.iter().find(|(l, _)| l == label).map(|(_, i)| i)
+}
+
+/// How `label`'s `answers` at `level` end: counted by kind.
+fn outcomes<T>(label: &str, level: &str, answers: &[Outcome<T>]) -> SceneOutcomes {
+    let count = |kind: OutcomeKind| answers.iter().filter(|a| a.kind() == kind).count() as u64;
+    SceneOutcomes {
+        implementation: label.into(),
+        level: level.into(),
+        cases: answers.len() as u64,
+        out_of_domain: count(OutcomeKind::OutOfDomain),
+        sys_error: count(OutcomeKind::SysError),
+        hang: count(OutcomeKind::Hang),
+    }
+}
+
+/// The report's figures of a generated program's cost: its pixels'
+/// counts, and `Main.main`'s time on our emulator where it finished.
+fn jack_cost(leg: &scene_jack::JackLeg) -> SceneJackCost {
+    let c = &leg.measured.cost;
     SceneJackCost {
         step: c.step,
         pixels_measured: c.pixels_measured as u64,
@@ -268,6 +350,7 @@ fn jack_cost(c: &crate::commands::jack::cost::SceneCost) -> SceneJackCost {
         rom_textbook: c.rom_textbook as u64,
         rom_shared: c.rom_shared as u64,
         rom_words: c.rom_words as u64,
+        main_s: leg.screen.as_ref().ok().map(|s| s.seconds),
     }
 }
 
@@ -301,7 +384,7 @@ fn pixel_text(p: Option<&Outcome<ScenePixel>>) -> String {
     }
 }
 
-fn example(case: String, a: String, b: String) -> DivergenceExample {
+pub(super) fn example(case: String, a: String, b: String) -> DivergenceExample {
     DivergenceExample {
         case,
         a,
@@ -321,7 +404,7 @@ fn side_by_side<'a, T, U>(
 }
 
 /// One divergence of `c`, kept as an example while there are few.
-fn diverged(c: &mut Comparison, case: impl FnOnce() -> DivergenceExample) {
+pub(super) fn diverged(c: &mut Comparison, case: impl FnOnce() -> DivergenceExample) {
     c.divergences += 1;
     c.beyond_policy = true;
     if c.examples.len() < EXAMPLES {
@@ -344,23 +427,20 @@ fn compare_sizes(c: &mut Comparison, a: &SceneImage, b: &SceneImage) {
     }
 }
 
-/// The pixel at index `i` of an image `width` wide whose pixels are every
-/// `step`-th of the scene's.
-fn pixel_case(i: usize, width: usize, step: u32) -> String {
-    let (width, step) = (width.max(1), step as usize);
-    format!("pixel({},{})", i % width * step, i / width * step)
+/// The pixel at index `i` of an image `width` wide.
+fn pixel_case(i: usize, width: usize) -> String {
+    let width = width.max(1);
+    format!("pixel({},{})", i % width, i / width)
 }
 
 /// Two Float316 renders `a` and `b` (labelled so) on every pixel they
-/// hold: triple, level and outcome. Their pixels are every `step`-th of
-/// every `step`-th row of the scene's.
+/// hold: triple, level and outcome.
 pub(super) fn bit_exact_pixels(
     scope: &str,
     a_label: &str,
     b_label: &str,
     a: &SceneImage,
     b: &SceneImage,
-    step: u32,
 ) -> Comparison {
     let mut c = comparison("pixels", scope, a_label, b_label, BIT_EXACT);
     compare_sizes(&mut c, a, b);
@@ -373,7 +453,7 @@ pub(super) fn bit_exact_pixels(
         });
         if !same {
             diverged(&mut c, || {
-                example(pixel_case(i, a.width, step), pixel_text(pa), pixel_text(pb))
+                example(pixel_case(i, a.width), pixel_text(pa), pixel_text(pb))
             });
         }
     }
@@ -399,45 +479,41 @@ fn sdf_points() -> Vec<[F316; 3]> {
         .collect()
 }
 
-/// ref-f316 against gpu-f316 on SDF queries `points`: distance and colour
-/// triples.
-fn bit_exact_sdf(
-    scope: &str,
-    ours: &Described,
+/// gpu-f316's SDF at `points`: distance and colour triples.
+fn gpu_sdf(
     gpu: &gpu::Gpu,
     kernel: &gpu::SceneKernel,
     points: &[[F316; 3]],
-) -> Result<Comparison> {
-    let theirs: Vec<SdfTriples> = kernel
+) -> Result<Vec<SdfTriples>> {
+    Ok(kernel
         .sdf(gpu, points)?
         .into_iter()
         .map(|o| o.map(|(sd, col)| (sd.triple, col.triple)))
-        .collect();
-    Ok(compare_sdf(scope, points, |p| ours.sdf(p), &theirs))
+        .collect())
 }
 
 /// Another Float316 implementation's SDF answer: distance and colour
 /// triples (`None`: it gave no Float316 number).
 pub(super) type SdfTriples = Outcome<(Option<F316>, Option<F316>)>;
 
-/// ref-f316 (`ours`) at each of `points` against `theirs`, another
-/// implementation's answers to them in order (gpu-f316's; a point it did
-/// not answer diverges).
+/// ref-f316's answers `ours` at each of `points` against `theirs`,
+/// another implementation's answers to them in order (gpu-f316's; a point
+/// it did not answer diverges).
 pub(super) fn compare_sdf(
     scope: &str,
     points: &[[F316; 3]],
-    ours: impl Fn([F316; 3]) -> Outcome<SdfValue>,
+    ours: &[Outcome<SdfValue>],
     theirs: &[SdfTriples],
 ) -> Comparison {
     let mut c = comparison("sdf", scope, "ref-f316", "gpu-f316", BIT_EXACT);
-    for (_, p, g) in side_by_side(points, theirs) {
+    for (i, p, g) in side_by_side(points, theirs) {
         c.cases += 1;
         let point = p.map_or_else(
             || "an answer to no point".into(),
             |p| format!("sdf({:?},{:?},{:?})", p[0], p[1], p[2]),
         );
-        let r = p.map(|&p| ours(p));
-        let same = r.as_ref().zip(g).is_some_and(|(r, g)| {
+        let r = p.and(ours.get(i));
+        let same = r.zip(g).is_some_and(|(r, g)| {
             r.same_as(g, |v, &(sd, col)| v.sd.triple == sd && v.col.triple == col)
         });
         if !same {
@@ -477,7 +553,7 @@ fn float_pixels(scope: &str, oracle: &SceneImage, label: &str, image: &SceneImag
                 let text = |q: Option<&Outcome<ScenePixel>>| {
                     q.map_or_else(|| "no pixel".into(), |q| format!("{q:?}"))
                 };
-                example(pixel_case(i, oracle.width, 1), text(o), text(p))
+                example(pixel_case(i, oracle.width), text(o), text(p))
             }),
         }
     }
@@ -499,7 +575,7 @@ fn float_pixels(scope: &str, oracle: &SceneImage, label: &str, image: &SceneImag
     c
 }
 
-fn comparison(level: &str, scope: &str, a: &str, b: &str, policy: &str) -> Comparison {
+pub(super) fn comparison(level: &str, scope: &str, a: &str, b: &str, policy: &str) -> Comparison {
     Comparison {
         level: level.into(),
         scope: scope.into(),
@@ -606,6 +682,12 @@ mod tests {
         let night = nightly_default().unwrap();
         assert_eq!(night[..4], files[..]);
         assert!(night[4].is_file() && night[4].ends_with(TEST_SCENE));
+        assert!(
+            night[5..]
+                .iter()
+                .any(|f| f.ends_with("examples/scenes/still-life.json")),
+            "{night:?}"
+        );
     }
 
     fn pixel(level: u8) -> Outcome<ScenePixel> {
@@ -631,7 +713,7 @@ mod tests {
     /// against `b`: their (cases, divergences).
     fn both(a: &SceneImage, b: &SceneImage) -> [(u64, u64); 2] {
         [
-            bit_exact_pixels("s", "a", "b", a, b, 1),
+            bit_exact_pixels("s", "a", "b", a, b),
             float_pixels("s", a, "x", b),
         ]
         .map(|c| (c.cases, c.divergences))
@@ -643,7 +725,7 @@ mod tests {
         assert_eq!(both(&a, &a), [(2, 0); 2]);
         let b = image(2, vec![pixel(1), Outcome::SysError(4)]);
         assert_eq!(both(&a, &b), [(2, 1); 2]);
-        let c = bit_exact_pixels("s", "a", "b", &a, &b, 1);
+        let c = bit_exact_pixels("s", "a", "b", &a, &b);
         assert_eq!(c.examples[0].case, "pixel(1,0)");
         assert_eq!(
             (c.examples[0].a.as_str(), c.examples[0].b.as_str()),
@@ -681,7 +763,7 @@ mod tests {
         };
         assert_eq!(both(&a, &short), [(4, 1); 2]);
         assert_eq!(both(&short, &a), [(4, 1); 2]);
-        let c = bit_exact_pixels("s", "a", "b", &a, &short, 1);
+        let c = bit_exact_pixels("s", "a", "b", &a, &short);
         assert_eq!(
             (c.examples[0].case.as_str(), c.examples[0].b.as_str()),
             ("pixel(1,1)", "no pixel")
@@ -690,7 +772,7 @@ mod tests {
         let row = image(4, a.pixels.clone());
         assert_eq!(both(&a, &row), [(5, 1); 2]);
         assert_eq!(
-            bit_exact_pixels("s", "a", "b", &a, &row, 1).examples[0].case,
+            bit_exact_pixels("s", "a", "b", &a, &row).examples[0].case,
             "image size"
         );
     }
@@ -698,20 +780,17 @@ mod tests {
     #[test]
     fn sdf_answers_compare_sys_error_codes_and_count_missing_answers() {
         let points = [[F316::ZERO; 3], [F316::ONE; 3]];
-        let ours = |p: [F316; 3]| {
-            if p[0] == F316::ZERO {
-                Outcome::SysError(3)
-            } else {
-                let s = reference::Scalar {
-                    value: 1.0,
-                    triple: Some(F316::ONE),
-                };
-                Outcome::Value(SdfValue { sd: s, col: s })
-            }
+        let s = reference::Scalar {
+            value: 1.0,
+            triple: Some(F316::ONE),
         };
+        let ours = [
+            Outcome::SysError(3),
+            Outcome::Value(SdfValue { sd: s, col: s }),
+        ];
         let one = Some(F316::ONE);
         let count = |theirs: &[SdfTriples]| {
-            let c = compare_sdf("s", &points, ours, theirs);
+            let c = compare_sdf("s", &points, &ours, theirs);
             (c.cases, c.divergences)
         };
         assert_eq!(

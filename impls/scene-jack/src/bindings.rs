@@ -1,6 +1,7 @@
 //! The generated program's `bindings.toml` (docs/bindings.md): the harness
-//! reaches its Float316 class, the operations the program kept, the SDF
-//! and, for one-bit images, the pixel, as it reaches a user's program.
+//! reaches its Float316 class, the operations the program kept, the SDF,
+//! the pixel (for one-bit images) and the whole program, as it reaches a
+//! user's program.
 
 use crate::function::Names;
 use scene::ir::Program;
@@ -73,8 +74,13 @@ pub fn bindings(p: &Program, names: &[Names], float316: &str) -> String {
         };
         let _ = writeln!(t, "{op} = \"{call}\"");
     }
+    // The whole-program capture: a one-bit pixel's return is its white
+    // bit; a four-level image is read from the screen Main.main dithers.
+    t.push_str("\n[capture]\n");
     if one_bit {
-        t.push_str("\n[capture]\npixel = \"white = Image.pixel(x, y)\"\n");
+        t.push_str("pixel = \"white = Image.pixel(x, y)\"\n");
+    } else {
+        t.push_str("pixel = \"Image.pixel(x, y)\"\n");
     }
     t
 }

@@ -25,6 +25,38 @@ pub fn drawn(p: &Program) -> (u32, u32) {
     (p.pixels.width.min(SCREEN.0), p.pixels.height.min(SCREEN.1))
 }
 
+/// Whether screen pixel (x, y) is white for an image pixel of `level` out
+/// of `levels` (2 or 4): the rule `Image.white` writes in Jack (see the
+/// module).
+fn screen_white(levels: u8, level: u8, x: u32, y: u32) -> bool {
+    if levels == 2 {
+        return level == 1;
+    }
+    let b = [[0, 2], [3, 1]][(y % 2) as usize][(x % 2) as usize];
+    8 * u32::from(level) > 6 * b + 3
+}
+
+/// The Hack screen `Main.main` of `p` leaves, from each drawn pixel's
+/// output level as another implementation computed it (`level(x, y)`,
+/// `None` where that pixel's computation stops): 512x256, row by row,
+/// `true` = white, the pixels beyond the drawn image white (the cleared
+/// screen). `Err` gives the first pixel in drawing order (row by row)
+/// that stops, where `Main.main` stops too.
+pub fn expected_screen(
+    p: &Program,
+    level: impl Fn(u32, u32) -> Option<u8>,
+) -> Result<Vec<bool>, (u32, u32)> {
+    let (w, h) = drawn(p);
+    let mut white = vec![true; (SCREEN.0 * SCREEN.1) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            let l = level(x, y).ok_or((x, y))?;
+            white[(y * SCREEN.0 + x) as usize] = screen_white(p.pixels.levels, l, x, y);
+        }
+    }
+    Ok(white)
+}
+
 /// The `Image` class of `p`.
 pub fn image(p: &Program, names: &[Names]) -> Result<String, EmitError> {
     let px = &p.pixels;
@@ -257,4 +289,23 @@ class Main {{
 }}
 "
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Four levels light 0, 1, 3 and 4 pixels of each 2x2 cell; two levels
+    /// draw level 1 white.
+    #[test]
+    fn each_level_lights_its_share_of_a_2x2_cell() {
+        let cell = |levels: u8, level: u8| {
+            [(0, 0), (1, 0), (0, 1), (1, 1)]
+                .into_iter()
+                .filter(|&(x, y)| screen_white(levels, level, x + 6, y + 10))
+                .count()
+        };
+        assert_eq!([0, 1, 2, 3].map(|l| cell(4, l)), [0, 1, 3, 4]);
+        assert_eq!([0, 1].map(|l| cell(2, l)), [0, 4]);
+    }
 }

@@ -21,7 +21,7 @@ mod library;
 use scene::ir::{Formulation, InvalidProgram, Program};
 use std::path::Path;
 
-pub use driver::{drawn, SCREEN};
+pub use driver::{drawn, expected_screen, SCREEN};
 
 /// The `Sys.error` code of an operand out of the modelled domain (the
 /// hand-written Float316 class's, and a `switch` tag with no case).

@@ -85,34 +85,29 @@ fn carved_pixels_and_sdf_equal_the_reference() {
     check_sdf("tests/carved");
 }
 
-/// The documented four-level rule: white where 8 L > 6 B + 3, B the 2x2
-/// Bayer matrix [[0, 2], [3, 1]] at (x mod 2, y mod 2).
-fn four_level_white(level: u8, x: usize, y: usize) -> bool {
-    let b = [[0, 2], [3, 1]][y % 2][x % 2];
-    8 * u32::from(level) > 6 * b + 3
+#[test]
+fn the_example_still_lifes_pixels_and_sdf_equal_the_reference() {
+    check_pixels(STILL_LIFE, &[20, 96, 150, 191], 5);
+    check_sdf(STILL_LIFE);
 }
 
+/// rtdemo's `Main.main` draws its four levels by the documented 2x2 rule
+/// (`scene_jack::expected_screen` from the reference's levels).
 #[test]
 fn rtdemo_main_draws_its_four_levels_by_the_documented_rule() {
     let screen =
         scene_jack::cost::run_main(&emitted("rtdemo"), jack::Profile::Desktop, 5_000_000_000)
             .expect("Main.main ends");
     let image = reference("rtdemo").render();
-    let (w, h) = (512, 256);
-    let differing: Vec<(usize, usize)> = (0..h)
-        .flat_map(|y| (0..w).map(move |x| (x, y)))
-        .filter(|&(x, y)| {
-            let want = if x < image.width && y < image.height {
-                let level = image.pixels[y * image.width + x]
-                    .value()
-                    .expect("no trap")
-                    .level;
-                four_level_white(level, x, y)
-            } else {
-                true // not drawn
-            };
-            screen.white[y * w + x] != want
-        })
+    let want = scene_jack::expected_screen(&program("rtdemo"), |x, y| {
+        image.pixels[y as usize * image.width + x as usize]
+            .value()
+            .map(|p| p.level)
+    })
+    .expect("no trap");
+    let differing: Vec<(usize, usize)> = (0..want.len())
+        .filter(|&i| screen.white[i] != want[i])
+        .map(|i| (i % 512, i / 512))
         .collect();
     assert!(
         differing.is_empty(),
@@ -120,6 +115,8 @@ fn rtdemo_main_draws_its_four_levels_by_the_documented_rule() {
         differing.len(),
         &differing[..differing.len().min(5)]
     );
+    // Not all one colour: every level shows.
+    assert!(want.iter().any(|&w| w) && want.iter().any(|&w| !w));
 }
 
 /// The library classes keep what the scene calls, each subroutine exactly

@@ -6,7 +6,7 @@
 //! the program's size in VM commands against the Hack ROM, and a cost map.
 //! `--compare-profiles` runs the same pixels under the web IDE's profile
 //! too and names those whose answer changes. The nightly's scenes step
-//! measures through [`measure`].
+//! measures every pixel through [`measure_generated`].
 
 use anyhow::Context;
 use hack_vm::Profile;
@@ -252,7 +252,7 @@ pub fn cost_map(m: &Measured) -> image::GrayImage {
 
 /// Which pixels a step measures: `every pixel`, `every 2nd pixel of
 /// every 2nd row`.
-pub fn every_nth(step: u32) -> String {
+fn every_nth(step: u32) -> String {
     let suffix = match (step % 10, step % 100) {
         (_, 11..=13) => "th",
         (1, _) => "st",

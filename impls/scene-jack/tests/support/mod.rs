@@ -9,15 +9,33 @@ use scene_jack::cost::{Counted, Pixel, Runner};
 use scene_jack::JackSources;
 use std::path::PathBuf;
 
-/// The shipped scenes and the test scene with carved shapes.
-pub const SCENES: [&str; 5] = ["seed", "rtdemo", "sdf-engine", "toon", "tests/carved"];
+/// The shipped scenes, the test scene with carved shapes and the user's
+/// scene of `examples/scenes`.
+pub const SCENES: [&str; 6] = [
+    "seed",
+    "rtdemo",
+    "sdf-engine",
+    "toon",
+    "tests/carved",
+    STILL_LIFE,
+];
 
+/// The example of a user's own scene description.
+pub const STILL_LIFE: &str = "examples/scenes/still-life";
+
+/// The description of scene `name`: shipped (`seed`, `tests/carved`, in
+/// `vectors/scenes`) or an example (`examples/...`, from the repository).
 fn path(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../vectors/scenes/{name}.json"))
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    if name.starts_with("examples/") {
+        root.join(format!("{name}.json"))
+    } else {
+        root.join(format!("vectors/scenes/{name}.json"))
+    }
 }
 
 pub fn checked(name: &str) -> Checked {
-    scene::load(&path(name)).expect("a shipped scene")
+    scene::load(&path(name)).expect("a scene of the repository")
 }
 
 pub fn program(name: &str) -> Program {
