@@ -30,10 +30,11 @@ pub enum Choice {
 }
 
 impl std::fmt::Display for Choice {
-    /// `newton-1`, `16 steps`.
+    /// `newton-1`, `16 steps`, `1 step`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Choice::Newton1 => f.write_str(Tuning::Newton1.name()),
+            Choice::Steps(1) => f.write_str("1 step"),
             Choice::Steps(n) => write!(f, "{n} steps"),
         }
     }
@@ -294,6 +295,7 @@ mod tests {
             assert_eq!(serde_json::from_str::<Choice>(text).unwrap(), choice);
         }
         assert_eq!(Choice::Steps(16).to_string(), "16 steps");
+        assert_eq!(Choice::Steps(1).to_string(), "1 step");
         assert_eq!(Choice::Newton1.to_string(), "newton-1");
     }
 

@@ -7,7 +7,8 @@
 //! saves, all at once, split in halves where the set fails, each half tried
 //! on what was accepted before it (the largest passing sets accepted, the
 //! largest savings first); then each site left out tried again, greedily,
-//! on the accepted set. [`exhaustive`] tries every configuration, for
+//! on the accepted set; last, each tuned loop bisected again below its
+//! count on the rest. [`exhaustive`] tries every configuration, for
 //! spaces small enough to enumerate.
 
 use super::space::{Config, Site};
@@ -77,21 +78,21 @@ impl<J: FnMut(&Config) -> anyhow::Result<Judged>> Search<'_, J> {
         (self.judge)(c)
     }
 
-    /// `site`'s cheapest passing option on `on`. A loop's options are
-    /// bisected for the fewest steps that pass; an operation's are all
-    /// tried.
-    fn alone(&mut self, site: &Site, on: &Config) -> anyhow::Result<Alone> {
+    /// `site`'s cheapest passing option on `on`, among `options` (some of
+    /// `site.options`). A loop's options are bisected for the fewest steps
+    /// that pass; an operation's are all tried.
+    fn alone(&mut self, site: &Site, options: &[Choice], on: &Config) -> anyhow::Result<Alone> {
         let mut best: Option<(Choice, f64)> = None;
         let mut failed = None;
         if site.is_loop {
-            // The first passing option of the ladder, fewest steps first.
-            let (mut lo, mut hi) = (0, site.options.len());
+            // The first passing count, fewest steps first.
+            let (mut lo, mut hi) = (0, options.len());
             while lo < hi {
                 let mid = (lo + hi) / 2;
-                let c = with(on, &site.name, site.options[mid]);
+                let c = with(on, &site.name, options[mid]);
                 let j = self.judge(&c)?;
                 if j.passes {
-                    best = Some((site.options[mid], j.cost));
+                    best = Some((options[mid], j.cost));
                     hi = mid;
                 } else {
                     failed = Some(c);
@@ -99,7 +100,7 @@ impl<J: FnMut(&Config) -> anyhow::Result<Judged>> Search<'_, J> {
                 }
             }
         } else {
-            for &choice in &site.options {
+            for &choice in options {
                 let c = with(on, &site.name, choice);
                 let j = self.judge(&c)?;
                 if !j.passes {
@@ -112,7 +113,7 @@ impl<J: FnMut(&Config) -> anyhow::Result<Judged>> Search<'_, J> {
         Ok(match (best, failed) {
             (Some((choice, cost)), _) => Alone::Passes(choice, cost),
             (None, Some(c)) => Alone::Fails(c),
-            (None, None) => unreachable!("a searched site has options"),
+            (None, None) => Alone::Fails(on.clone()),
         })
     }
 
@@ -155,7 +156,7 @@ pub fn delta_debug(
     // Each site alone.
     let mut viable: Vec<(String, Choice, f64)> = Vec::new();
     for site in sites {
-        match s.alone(site, &untuned)? {
+        match s.alone(site, &site.options, &untuned)? {
             Alone::Passes(choice, cost) if cost < base_cost => {
                 viable.push((site.name.clone(), choice, cost));
             }
@@ -184,7 +185,7 @@ pub fn delta_debug(
             .iter()
             .find(|x| x.name == name)
             .expect("a searched site");
-        let why = match s.alone(site, &accepted.0)? {
+        let why = match s.alone(site, &site.options, &accepted.0)? {
             Alone::Passes(choice, cost) if cost < accepted.1 => {
                 accepted.0.insert(name, choice);
                 accepted.1 = cost;
@@ -197,6 +198,19 @@ pub fn delta_debug(
             Alone::Fails(config) => Rejection::Fails { config },
         };
         rejected.push(Rejected { site: name, why });
+    }
+    // Each tuned loop, bisected again below its count on the rest.
+    for site in sites.iter().filter(|x| x.is_loop) {
+        let Some(&current) = accepted.0.get(&site.name) else {
+            continue;
+        };
+        let fewer = &site.options[..site.options.iter().position(|&o| o == current).unwrap_or(0)];
+        if let Alone::Passes(choice, cost) = s.alone(site, fewer, &accepted.0)? {
+            if cost < accepted.1 {
+                accepted.0.insert(site.name.clone(), choice);
+                accepted.1 = cost;
+            }
+        }
     }
     Ok(Found {
         best: accepted.0,
