@@ -78,6 +78,7 @@ fn tuning_keeps_the_picture_saves_and_says_why_a_site_is_left_out() {
         .map(|v| v.site.as_str())
         .collect();
     assert_eq!(sites, tuned);
+    assert_eq!(written.description.name, "tuned");
     let svg = std::fs::read_to_string(dir.path().join("tuned-pareto.svg")).unwrap();
     assert!(svg.starts_with("<svg"));
     // The same search again on its state renders nothing new.
@@ -107,13 +108,7 @@ fn bad_input_exits_2_naming_the_file_or_the_field() {
     let scene = small();
     let out = harness_in(
         dir.path(),
-        &[
-            "tune",
-            "--scene",
-            scene.to_str().unwrap(),
-            "--max-error",
-            "-1",
-        ],
+        &["tune", "--scene", scene.to_str().unwrap(), "--max-error=-1"],
     );
     assert_eq!(out.status.code(), Some(2), "{}", text(&out));
     assert!(text(&out).contains("--max-error"), "{}", text(&out));

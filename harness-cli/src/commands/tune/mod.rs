@@ -55,9 +55,9 @@ pub struct TuneArgs {
     /// Instead, allow |shade - ref-f64| up to E at every pixel.
     #[arg(long, value_name = "E")]
     pub max_error: Option<f64>,
-    /// The tuned description to write (default: STEM-tuned.json in the
-    /// current directory); the Pareto plot goes beside it
-    /// (STEM-tuned-pareto.svg).
+    /// The tuned description to write, named after the file (default:
+    /// STEM-tuned.json in the current directory); the Pareto plot goes
+    /// beside it (STEM-tuned-pareto.svg).
     #[arg(long, value_name = "TUNED.json")]
     pub out: Option<PathBuf>,
     /// Record every evaluated configuration in this file, and skip those it
@@ -165,7 +165,9 @@ struct Report {
     configurations: u64,
     judged: usize,
     rendered: usize,
-    from_state: usize,
+    /// Judged configurations whose evaluation was known (from the state
+    /// file, or judged before in the same search).
+    known: usize,
     search_s: f64,
     tuned: Vec<Tuned>,
     flips: u64,
@@ -285,10 +287,14 @@ pub fn run(args: TuneArgs) -> anyhow::Result<ExitCode> {
         .get(&found.best)
         .cloned()
         .context("the best configuration was evaluated")?;
+    // Named after its file, so that it does not pass for the untuned scene.
     let mut tuned_description = evaluator.description(&found.best);
-    if let Some(name) = tuned_description["name"].as_str() {
-        tuned_description["name"] = format!("{name}-tuned").into();
-    }
+    tuned_description["name"] = out
+        .file_stem()
+        .unwrap_or_default()
+        .to_string_lossy()
+        .into_owned()
+        .into();
     let points = pareto_points(&state, &model, &found.best, constraint);
     let svg = harness_report::plot::pareto(&points)?;
     harness_report::atomic::write_files(&[
@@ -316,7 +322,7 @@ pub fn run(args: TuneArgs) -> anyhow::Result<ExitCode> {
         configurations,
         judged: found.judged,
         rendered,
-        from_state: found.judged - rendered,
+        known: found.judged - rendered,
         search_s,
         tuned: found
             .best
@@ -524,11 +530,11 @@ fn text(r: &Report) -> String {
     let _ = writeln!(s, "constraint: {}", r.constraint);
     let _ = writeln!(
         s,
-        "search: {}, {} configurations judged ({} rendered, {} from the state file) in {}",
+        "search: {}, {} configurations judged ({} rendered, {} known already) in {}",
         r.search,
         r.judged,
         r.rendered,
-        r.from_state,
+        r.known,
         duration(r.search_s)
     );
     if r.tuned.is_empty() {

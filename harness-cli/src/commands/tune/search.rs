@@ -274,7 +274,9 @@ mod tests {
     /// A made-up scene: each tuned operation site saves its amount, a loop
     /// saves 64 - steps, and the constraint fails on `bad`, on `a` and `b`
     /// together, and on fewer than 40 steps.
-    fn judge_of(saving: &[(&str, f64)]) -> impl FnMut(&Config) -> anyhow::Result<Judged> + '_ {
+    fn judge_of<'a>(
+        saving: &'a [(&'a str, f64)],
+    ) -> impl FnMut(&Config) -> anyhow::Result<Judged> + 'a {
         move |c: &Config| {
             let mut cost = 1000.0;
             for (site, choice) in c {
