@@ -195,11 +195,11 @@ fn judge(
                     e.worst_error = Some(at(i));
                 }
             }
-            (Outcome::Value(_), _) | (_, Outcome::Value(_)) => {
-                if e.max_error.is_some() {
-                    e.max_error = None;
-                    e.worst_error = Some(at(i));
-                }
+            // A trap where the other side answered: the first one is the
+            // worst pixel.
+            (Outcome::Value(_), _) | (_, Outcome::Value(_)) if e.max_error.is_some() => {
+                e.max_error = None;
+                e.worst_error = Some(at(i));
             }
             _ => {}
         }

@@ -288,8 +288,8 @@ mod tests {
             let steps_ok = c
                 .values()
                 .all(|ch| !matches!(ch, Choice::Steps(n) if *n < 40));
-            let passes =
-                !c.contains_key("bad") && !(c.contains_key("a") && c.contains_key("b")) && steps_ok;
+            let conflict = c.contains_key("a") && c.contains_key("b");
+            let passes = !c.contains_key("bad") && !conflict && steps_ok;
             Ok(Judged { passes, cost })
         }
     }
