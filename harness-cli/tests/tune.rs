@@ -113,6 +113,14 @@ fn bad_input_exits_2_naming_the_file_or_the_field() {
     assert_eq!(out.status.code(), Some(2), "{}", text(&out));
     assert!(text(&out).contains("--max-error"), "{}", text(&out));
 
+    let seed = Path::new(env!("CARGO_MANIFEST_DIR")).join("../vectors/scenes/seed.json");
+    let out = harness_in(
+        dir.path(),
+        &["tune", "--scene", seed.to_str().unwrap(), "--exhaustive"],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
+    assert!(text(&out).contains("--exhaustive: "), "{}", text(&out));
+
     std::fs::write(dir.path().join("state.json"), "{}").unwrap();
     let out = harness_in(
         dir.path(),

@@ -224,6 +224,20 @@ pub fn run(args: TuneArgs) -> anyhow::Result<ExitCode> {
     if let Some(top) = untuned_description.as_object_mut() {
         top.remove("variants");
     }
+    let untuned_checked = scene::parse(&untuned_description.to_string())?;
+    let sites = space::searched(&scene::lower(
+        &untuned_checked,
+        scene::Formulation::Float316,
+    ));
+    let configurations = space::size(&sites);
+    if args.exhaustive && configurations > EXHAUSTIVE_LIMIT {
+        bail!(
+            "--exhaustive: {} has {configurations} configurations over {} sites, more than \
+             {EXHAUSTIVE_LIMIT}; leave --exhaustive out to search by delta debugging",
+            args.scene.display(),
+            sites.len()
+        );
+    }
     let untuned = Config::new();
     let mut state = State::open(
         args.state.as_deref(),
@@ -242,16 +256,6 @@ pub fn run(args: TuneArgs) -> anyhow::Result<ExitCode> {
         .with_context(|| format!("{}: generating its Jack program", args.scene.display()))?;
     stage("measuring per-operation costs on the generated Jack program");
     let model = CostModel::calibrate(base_ref, &base_sources, args.calibration_step)?;
-    let sites = space::searched(base_ref.program());
-    let configurations = space::size(&sites);
-    if args.exhaustive && configurations > EXHAUSTIVE_LIMIT {
-        bail!(
-            "--exhaustive: {} has {configurations} configurations over {} sites, more than \
-             {EXHAUSTIVE_LIMIT}; leave --exhaustive out to search by delta debugging",
-            args.scene.display(),
-            sites.len()
-        );
-    }
     if state.get(&untuned).is_none() {
         state.insert(untuned.clone(), evaluator.base_evaluation())?;
     }
