@@ -595,16 +595,15 @@ fn text(r: &Report) -> String {
     for m in &j.first_mismatches {
         let _ = writeln!(s, "  {m}");
     }
-    let m = &r.model;
+    let (estimate, measured) = (r.estimated.untuned_per_pixel, j.measured.untuned_per_pixel);
     let _ = writeln!(
         s,
-        "cost model: measured on {} pixels of the untuned program ({} VM instructions; the \
-         model says {}, {:+.2}%)",
-        m.sample,
-        grouped(m.sample_measured as f64),
-        grouped(m.sample_modelled),
-        100.0 * (m.sample_modelled - m.sample_measured as f64)
-            / (m.sample_measured as f64).max(1.0)
+        "cost model: per-operation costs measured on {} pixels of the untuned program; it \
+         estimates the untuned image at {} VM instructions per pixel, measured {} ({:+.2}%)",
+        r.model.sample,
+        grouped(estimate),
+        grouped(measured),
+        100.0 * (estimate - measured) / measured.max(1.0)
     );
     if !r.rejected.is_empty() {
         let _ = writeln!(s, "sites left untuned ({}):", r.rejected.len());
