@@ -46,6 +46,8 @@ pub enum Command {
     Merge(commands::merge::MergeArgs),
     /// A binary operation over every equivalence class of its operands, bit for bit.
     Sweep(commands::sweep::SweepArgs),
+    /// Cheaper variants per call site of a scene that keep its picture: delta debugging, checked on Jack.
+    Tune(commands::tune::TuneArgs),
     /// Vector sets: regenerate the committed ones, check a file, TestFloat-style cases.
     #[command(subcommand)]
     Vectors(commands::vectors::VectorsCommand),
@@ -66,6 +68,7 @@ pub fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Merge(args) => commands::merge::run(args),
         Command::Sweep(args) => commands::sweep::run(args, &cast()?),
         Command::Vectors(cmd) => commands::vectors::run(cmd),
+        Command::Tune(args) => commands::tune::run(args),
         Command::Check(args) => commands::check::run(args, cast()),
         Command::Bench(args) => commands::bench::run(args, &cast()?),
         Command::Nightly(args) => commands::nightly::run(args, cast()?),

@@ -240,6 +240,140 @@ pub fn speed_error(points: &[SpeedPoint]) -> anyhow::Result<Option<String>> {
     Ok(Some(svg))
 }
 
+/// One configuration of `harness tune`: its estimated cost and what it
+/// changes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParetoPoint {
+    /// Estimated VM instructions per pixel.
+    pub per_pixel: f64,
+    /// Pixels whose output level differs from the untuned image.
+    pub flips: u64,
+    /// Largest `|shade - ref-f64|`; `None` when a pixel trapped.
+    pub max_error: Option<f64>,
+    /// Whether it keeps the search's constraint.
+    pub passes: bool,
+    /// The configuration the search chose.
+    pub chosen: bool,
+    /// The untuned configuration.
+    pub untuned: bool,
+}
+
+const PASS_COLOUR: RGBColor = RGBColor(44, 160, 44);
+const FAIL_COLOUR: RGBColor = RGBColor(150, 150, 150);
+
+/// The points of `pts` no other point beats on both `x` and cost (the
+/// Pareto front), by increasing `x`.
+fn front(pts: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut sorted = pts.to_vec();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    for p in sorted {
+        if out.last().is_none_or(|l| p.1 < l.1) {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// The Pareto plot of a tuning search: estimated VM instructions per pixel
+/// against differing pixels (left, log of 1 + flips) and against the largest
+/// shade error (right, log), every configuration tried: green where it
+/// keeps the constraint, grey where not, the untuned one black, the chosen
+/// one red; the line joins the Pareto front. A configuration with a trapped
+/// pixel has no error to draw on the right.
+pub fn pareto(points: &[ParetoPoint]) -> anyhow::Result<String> {
+    let flips: Vec<(f64, f64)> = points
+        .iter()
+        .map(|p| (1.0 + p.flips as f64, p.per_pixel))
+        .collect();
+    let errors: Vec<(f64, f64, &ParetoPoint)> = points
+        .iter()
+        .filter_map(|p| Some((p.max_error?, p.per_pixel, p)))
+        .collect();
+    let (ylo, yhi) = points
+        .iter()
+        .map(|p| p.per_pixel)
+        .fold((f64::INFINITY, 0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let (ylo, yhi) = if ylo <= yhi {
+        let pad = ((yhi - ylo) * 0.08).max(yhi * 0.002).max(1.0);
+        (ylo - pad, yhi + pad)
+    } else {
+        (0.0, 1.0)
+    };
+    let xflips = (0.8, flips.iter().map(|p| p.0).fold(1.0, f64::max) * 3.0);
+    let xerr = padded_log_range(errors.iter().map(|e| e.0));
+    let on_axis = |e: f64| e.max(xerr.0);
+    let style = |p: &ParetoPoint| -> (RGBColor, u32) {
+        if p.chosen {
+            (MAX_COLOUR, 7)
+        } else if p.untuned {
+            (BLACK, 6)
+        } else if p.passes {
+            (PASS_COLOUR, 4)
+        } else {
+            (FAIL_COLOUR, 4)
+        }
+    };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (1000, 440)).into_drawing_area();
+        root.fill(&WHITE).map_err(to_anyhow)?;
+        let (left, right) = root.split_horizontally(500);
+        let panels = [
+            (
+                left,
+                "Cost against differing pixels",
+                "1 + pixels whose level differs from the untuned image (log)",
+                xflips,
+                flips
+                    .iter()
+                    .zip(points)
+                    .map(|(&(x, y), p)| (x, y, p))
+                    .collect::<Vec<_>>(),
+            ),
+            (
+                right,
+                "Cost against error",
+                "largest |shade - ref-f64| (log)",
+                xerr,
+                errors.iter().map(|&(x, y, p)| (on_axis(x), y, p)).collect(),
+            ),
+        ];
+        for (area, caption, x_desc, (xlo, xhi), pts) in panels {
+            let mut chart = ChartBuilder::on(&area)
+                .caption(caption, ("sans-serif", 19))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(64)
+                .build_cartesian_2d((xlo..xhi).log_scale(), ylo..yhi)
+                .map_err(to_anyhow)?;
+            chart
+                .configure_mesh()
+                .x_desc(x_desc)
+                .y_desc("estimated VM instructions per pixel")
+                .x_label_formatter(&|v| short_number(*v))
+                .y_label_formatter(&|v| short_number(*v))
+                .draw()
+                .map_err(to_anyhow)?;
+            let line = front(&pts.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>());
+            chart
+                .draw_series(std::iter::once(PathElement::new(line, BLACK.mix(0.4))))
+                .map_err(to_anyhow)?;
+            // Chosen and untuned last, on top.
+            let mut order: Vec<&(f64, f64, &ParetoPoint)> = pts.iter().collect();
+            order.sort_by_key(|p| (p.2.chosen || p.2.untuned, p.2.passes));
+            chart
+                .draw_series(order.into_iter().map(|&(x, y, p)| {
+                    let (colour, size) = style(p);
+                    Circle::new((x, y), size, colour.filled())
+                }))
+                .map_err(to_anyhow)?;
+        }
+        root.present().map_err(to_anyhow)?;
+    }
+    Ok(svg)
+}
+
 /// A log-axis range around positive values, with a little room on each side.
 fn padded_log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
@@ -264,6 +398,33 @@ mod tests {
             pixel_flips: flips,
             ..SpeedPoint::default()
         }
+    }
+
+    #[test]
+    fn the_pareto_plot_draws_every_point_and_its_front() {
+        let p = |per_pixel: f64, flips: u64, max_error: Option<f64>| ParetoPoint {
+            per_pixel,
+            flips,
+            max_error,
+            passes: flips == 0,
+            chosen: per_pixel == 90.0,
+            untuned: per_pixel == 100.0,
+        };
+        let pts = [
+            p(100.0, 0, Some(0.01)),
+            p(90.0, 0, Some(0.01)),
+            p(95.0, 3, Some(0.02)),
+            p(80.0, 40, None),
+        ];
+        let svg = pareto(&pts).unwrap();
+        assert!(svg.starts_with("<svg"));
+        // Four points on the left, three with an error on the right.
+        assert_eq!(svg.matches("<circle").count(), 7);
+        assert!(svg.contains("Cost against differing pixels"));
+        assert_eq!(
+            front(&[(1.0, 100.0), (1.0, 90.0), (4.0, 95.0), (41.0, 80.0)]),
+            [(1.0, 90.0), (41.0, 80.0)]
+        );
     }
 
     #[test]

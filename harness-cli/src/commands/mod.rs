@@ -13,4 +13,5 @@ pub mod render;
 pub mod render_scene;
 pub mod selftest;
 pub mod sweep;
+pub mod tune;
 pub mod vectors;

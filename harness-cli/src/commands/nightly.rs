@@ -34,7 +34,7 @@ pub struct NightlyArgs {
     #[arg(long, default_value_t = 1)]
     pub jack_unary_step: usize,
     /// Run only these steps (comma-separated: levels, unary, testfloat,
-    /// selftest, renders, screens, pairs, explain, scenes, speed); default
+    /// selftest, renders, screens, pairs, explain, scenes, tuned, speed); default
     /// all.
     #[arg(long, value_delimiter = ',', value_name = "STEP,...")]
     pub steps: Option<Vec<String>>,

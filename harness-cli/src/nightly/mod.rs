@@ -22,6 +22,7 @@ mod scene_pictures;
 pub mod scenes;
 pub mod step;
 pub mod steps;
+mod tuned;
 
 use anyhow::Result;
 use harness::cast::{Cast, Entry};

@@ -119,35 +119,42 @@ impl Step for Scenes {
     }
 
     fn run(&self, night: &mut Night<'_>) -> Result<()> {
-        let wants_gpu = ["gpu-f316", "gpu-f32"]
-            .iter()
-            .any(|n| night.find(n).is_some());
-        let gpu = if wants_gpu {
-            match gpu::Gpu::new() {
-                Ok(g) => Some(g),
-                Err(e) => {
-                    night.not_compared(
-                        "scenes on the GPU".into(),
-                        Missing::Unavailable,
-                        format!("no GPU for the generated kernels: {e}"),
-                    );
-                    None
-                }
-            }
-        } else {
-            None
-        };
-        for file in night.options.scenes.clone() {
-            if let Err(e) = one_scene(night, gpu.as_ref(), &file) {
+        let files = night.options.scenes.clone();
+        each_scene(night, &files)
+    }
+}
+
+/// Each of `files` through every opened implementation that supports it
+/// (a scene that cannot be compared is counted as not compared).
+pub(super) fn each_scene(night: &mut Night<'_>, files: &[PathBuf]) -> Result<()> {
+    let wants_gpu = ["gpu-f316", "gpu-f32"]
+        .iter()
+        .any(|n| night.find(n).is_some());
+    let gpu = if wants_gpu {
+        match gpu::Gpu::new() {
+            Ok(g) => Some(g),
+            Err(e) => {
                 night.not_compared(
-                    format!("scene {}", file.display()),
-                    Missing::Failed,
-                    format!("{e:#}"),
+                    "scenes on the GPU".into(),
+                    Missing::Unavailable,
+                    format!("no GPU for the generated kernels: {e}"),
                 );
+                None
             }
         }
-        Ok(())
+    } else {
+        None
+    };
+    for file in files {
+        if let Err(e) = one_scene(night, gpu.as_ref(), file) {
+            night.not_compared(
+                format!("scene {}", file.display()),
+                Missing::Failed,
+                format!("{e:#}"),
+            );
+        }
     }
+    Ok(())
 }
 
 /// One scene through every opened implementation that supports it.

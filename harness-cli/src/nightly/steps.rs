@@ -45,6 +45,7 @@ pub fn all() -> Vec<Box<dyn Step>> {
         Box::new(Pairs),
         Box::new(super::explain::Explain),
         Box::new(super::scenes::Scenes),
+        Box::new(super::tuned::Tuned),
         Box::new(Speed),
     ]
 }

@@ -4,6 +4,7 @@
 //! pixel, an SDF query, and Float316 op traces of the last two.
 
 use crate::api::{output, RefImpl, Scalar, SdfValue, Trace};
+use crate::counter::{Counter, OpCounts};
 use crate::engine::{outcome, Engine, R};
 use crate::float::FloatEngine;
 use crate::float316::F316Engine;
@@ -131,29 +132,52 @@ fn scene_pixel<E: Engine>(r: R<(E::N, u8)>) -> Outcome<ScenePixel> {
 
 fn image_of<E: Engine>(
     engine: impl Fn() -> E + Sync,
-    (p, hoisted): &(Program, Hoisted),
+    p: &(Program, Hoisted),
     k: &Prepared<E::N>,
 ) -> SceneImage
 where
     E::N: Send + Sync,
 {
+    image_with(engine, p, k, drop).0
+}
+
+/// The whole image, rows in parallel, each row on a fresh engine from
+/// `engine`, which `finish` takes when the row is done (what it recorded),
+/// one result per row.
+fn image_with<E: Engine, T: Send>(
+    engine: impl Fn() -> E + Sync,
+    (p, hoisted): &(Program, Hoisted),
+    k: &Prepared<E::N>,
+    finish: impl Fn(E) -> T + Sync,
+) -> (SceneImage, Vec<T>)
+where
+    E::N: Send + Sync,
+{
     let (w, h) = (p.pixels.width, p.pixels.height);
-    let pixels = (0..h)
+    let rows: Vec<(Vec<Outcome<ScenePixel>>, T)> = (0..h)
         .into_par_iter()
-        .flat_map_iter(|y| {
+        .map(|y| {
             let mut e = engine();
             let mut m = Machine::preloaded(p, k, hoisted);
-            (0..w)
+            let row = (0..w)
                 .map(|x| scene_pixel::<E>(pixel_of(&mut e, p, k, &mut m, (x, y))))
-                .collect::<Vec<_>>()
+                .collect();
+            (row, finish(e))
         })
         .collect();
-    SceneImage {
+    let mut pixels = Vec::with_capacity(w as usize * h as usize);
+    let mut finished = Vec::with_capacity(rows.len());
+    for (row, t) in rows {
+        pixels.extend(row);
+        finished.push(t);
+    }
+    let image = SceneImage {
         width: w as usize,
         height: h as usize,
         levels: p.pixels.levels,
         pixels,
-    }
+    };
+    (image, finished)
 }
 
 fn sdf_of<E: Engine>(
@@ -320,6 +344,31 @@ impl Described {
             Encoded::F64(k) => image_of(FloatEngine::new, p, k),
             Encoded::F32(k) => image_of(FloatEngine::new, p, k),
         }
+    }
+
+    /// The whole image with the Float316 operations it made, rows in
+    /// parallel. `ref-f316` only.
+    pub fn render_counted(&self) -> Result<(SceneImage, OpCounts), DescribedError> {
+        let k = self.f316()?;
+        let engine = || F316Engine::recording(self.arith, Counter::default());
+        let (image, rows) = image_with(engine, &self.fast, k, |e| e.into_recorder().counts);
+        let mut counts = OpCounts::default();
+        rows.iter().for_each(|c| counts.add(c));
+        Ok((image, counts))
+    }
+
+    /// Pixel (x, y) with the Float316 operations it made. `ref-f316` only.
+    pub fn pixel_counted(
+        &self,
+        x: u32,
+        y: u32,
+    ) -> Result<(Outcome<ScenePixel>, OpCounts), DescribedError> {
+        let k = self.f316()?;
+        let (p, hoisted) = &*self.fast;
+        let mut m = Machine::preloaded(p, k, hoisted);
+        let mut e = F316Engine::recording(self.arith, Counter::default());
+        let pixel = scene_pixel::<F316Engine<Counter>>(pixel_of(&mut e, p, k, &mut m, (x, y)));
+        Ok((pixel, e.into_recorder().counts))
     }
 
     /// Pixel (x, y), x from the left, y from the top.

@@ -132,6 +132,22 @@ impl<'t> F316Engine<&'t mut Tracer> {
     }
 }
 
+impl<Rec: Recorder> F316Engine<Rec> {
+    /// An engine that reports every operation to `recorder`.
+    pub(crate) fn recording(arith: Arith, recorder: Rec) -> Self {
+        F316Engine {
+            arith,
+            recorder,
+            tuning: None,
+        }
+    }
+
+    /// The recorder, with what it recorded.
+    pub(crate) fn into_recorder(self) -> Rec {
+        self.recorder
+    }
+}
+
 impl<Rec: Recorder, A: ArithSource> F316Engine<Rec, A> {
     /// Run `body` as the operation `op` on `args`, recording it when tracing.
     #[inline(always)]

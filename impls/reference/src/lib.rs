@@ -13,6 +13,7 @@
 
 mod api;
 mod consts;
+mod counter;
 mod described;
 mod engine;
 mod float;
@@ -31,6 +32,7 @@ pub use api::{
     op, trace_op, PixelValue, RefImpl, Reference, RenderedImage, RequestError, Scalar, SdfValue,
     Trace, UnknownImpl,
 };
+pub use counter::OpCounts;
 pub use described::{Described, DescribedError, SceneImage, ScenePixel};
 pub use engine::{Decision, Engine, Trap, R};
 pub use formulation::{Formulated, Formulation};

@@ -1,5 +1,6 @@
 //! What a generated program costs: VM instructions per pixel, measured by
-//! running `Image.pixel` on the emulator ([`Runner`]), and its size in VM
+//! running `Image.pixel` on the emulator ([`Runner`]; per function with
+//! [`Runner::profiled`]), and its size in VM
 //! commands with an estimate of Hack ROM words ([`Size`]).
 //!
 //! Two ROM estimates, per VM command. *Textbook*: the translator of
@@ -30,6 +31,7 @@
 use crate::JackSources;
 use common::F316;
 use hack_vm::{Config, Exit, Machine, Profile, Program};
+use std::collections::HashMap;
 
 /// Hack ROM words.
 pub const ROM_WORDS: usize = 32768;
@@ -92,7 +94,30 @@ fn float_at(m: &Machine, addr: i16) -> F316 {
 impl Runner {
     /// Compile `j` under `profile`, load it and run `Main.init`.
     pub fn new(j: &JackSources, profile: Profile) -> Result<Runner, RunError> {
-        let mut m = machine(j, profile)?;
+        Runner::with_config(
+            j,
+            Config {
+                profile,
+                ..Config::default()
+            },
+        )
+    }
+
+    /// Like [`Runner::new`], counting instructions per function for
+    /// [`Runner::pixel_profile`].
+    pub fn profiled(j: &JackSources, profile: Profile) -> Result<Runner, RunError> {
+        Runner::with_config(
+            j,
+            Config {
+                profile,
+                profile_functions: true,
+                ..Config::default()
+            },
+        )
+    }
+
+    fn with_config(j: &JackSources, config: Config) -> Result<Runner, RunError> {
+        let mut m = machine(j, config)?;
         let budget = 200_000_000;
         match m.call("Main.init", &[], Some(budget)) {
             Ok(Exit::Returned(_)) => {}
@@ -142,6 +167,23 @@ impl Runner {
         }
     }
 
+    /// The VM instructions `Image.pixel` takes at (x, y) in each function
+    /// (exclusive of its callees), by name, on a runner made by
+    /// [`Runner::profiled`] (empty on any other).
+    pub fn pixel_profile(&self, x: u32, y: u32) -> Vec<(String, u64)> {
+        let mut m = self.ready.clone();
+        let before: HashMap<String, u64> = m.function_profile().into_iter().collect();
+        let _ = self.call(&mut m, "Image.pixel", &[x as i16, y as i16]);
+        m.function_profile()
+            .into_iter()
+            .map(|(f, n)| {
+                let n = n - before.get(&f).copied().unwrap_or(0);
+                (f, n)
+            })
+            .filter(|(_, n)| *n > 0)
+            .collect()
+    }
+
     /// The SDF at `p` through `Scene.sdf`: (distance, colour).
     pub fn sdf(&self, p: [F316; 3]) -> Counted<(F316, F316)> {
         let mut m = self.ready.clone();
@@ -160,22 +202,22 @@ impl Runner {
     }
 }
 
-/// A fresh machine for `j` under `profile`.
-fn machine(j: &JackSources, profile: Profile) -> Result<Machine, RunError> {
-    let program = Program::from_sources(&compile(j, profile)?)?;
-    Ok(Machine::new(
-        program,
-        Config {
-            profile,
-            ..Config::default()
-        },
-    ))
+/// A fresh machine for `j` under `config`.
+fn machine(j: &JackSources, config: Config) -> Result<Machine, RunError> {
+    let program = Program::from_sources(&compile(j, config.profile)?)?;
+    Ok(Machine::new(program, config))
 }
 
 /// Run `Main.main` (set-up and the whole image) for at most `budget`
 /// instructions: the screen and the instructions it took.
 pub fn run_main(j: &JackSources, profile: Profile, budget: u64) -> Result<Screen, RunError> {
-    let mut m = machine(j, profile)?;
+    let mut m = machine(
+        j,
+        Config {
+            profile,
+            ..Config::default()
+        },
+    )?;
     match m.run(Some(budget)) {
         Exit::Halted | Exit::Returned(_) => {}
         exit => {

@@ -14,11 +14,11 @@
 //! structure, so a site keeps its name when another site is tuned.
 
 use crate::ir::{Program, Stmt, Tuning, Unary, VecOp};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, HashMap};
 
 /// A variant a description chooses for one site (`variants[i].variant`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum Choice {
     /// `"newton-1"`: an operation site with one Newton step.
     #[serde(rename = "newton-1")]
@@ -27,6 +27,17 @@ pub enum Choice {
     /// description's count).
     #[serde(rename = "steps")]
     Steps(u32),
+}
+
+impl std::fmt::Display for Choice {
+    /// `newton-1`, `16 steps`, `1 step`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Choice::Newton1 => f.write_str(Tuning::Newton1.name()),
+            Choice::Steps(1) => f.write_str("1 step"),
+            Choice::Steps(n) => write!(f, "{n} steps"),
+        }
+    }
 }
 
 /// What a site is.
@@ -272,6 +283,20 @@ mod tests {
                 })
                 .collect::<Vec<_>>()
         );
+    }
+
+    #[test]
+    fn a_choice_is_written_as_a_description_reads_it() {
+        for (choice, text) in [
+            (Choice::Newton1, r#""newton-1""#),
+            (Choice::Steps(16), r#"{"steps":16}"#),
+        ] {
+            assert_eq!(serde_json::to_string(&choice).unwrap(), text);
+            assert_eq!(serde_json::from_str::<Choice>(text).unwrap(), choice);
+        }
+        assert_eq!(Choice::Steps(16).to_string(), "16 steps");
+        assert_eq!(Choice::Steps(1).to_string(), "1 step");
+        assert_eq!(Choice::Newton1.to_string(), "newton-1");
     }
 
     #[test]

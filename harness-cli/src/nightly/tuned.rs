@@ -1,0 +1,35 @@
+//! The tuned-scenes step: the descriptions `harness tune` wrote for the
+//! seed and rtdemo scenes with 0 differing pixels (`vectors/scenes/tests/
+//! *-tuned-best.json`, docs/tuning.md) through the scene step's
+//! comparisons: ref-f316, gpu-f316 and the generated Jack program bit for
+//! bit, and each one's cost per pixel in the report's scene table, beside
+//! its untuned scene's row from the scenes step.
+
+use super::step::Step;
+use super::{scenes, Night};
+use anyhow::Result;
+use std::path::PathBuf;
+
+/// The tuned descriptions, under `vectors/scenes/`.
+pub const TUNED: [&str; 2] = ["tests/seed-tuned-best.json", "tests/rtdemo-tuned-best.json"];
+
+/// The tuned-scenes step.
+pub struct Tuned;
+
+impl Step for Tuned {
+    fn key(&self) -> &'static str {
+        "tuned"
+    }
+
+    fn name(&self) -> String {
+        "tuned scenes".into()
+    }
+
+    fn run(&self, night: &mut Night<'_>) -> Result<()> {
+        let files: Vec<PathBuf> = TUNED
+            .iter()
+            .map(|f| scenes::shipped_dir().join(f))
+            .collect();
+        scenes::each_scene(night, &files)
+    }
+}
