@@ -252,7 +252,7 @@ pub fn cost_map(m: &Measured) -> image::GrayImage {
 
 /// Which pixels a step measures: `every pixel`, `every 2nd pixel of
 /// every 2nd row`.
-fn every_nth(step: u32) -> String {
+pub(crate) fn every_nth(step: u32) -> String {
     let suffix = match (step % 10, step % 100) {
         (_, 11..=13) => "th",
         (1, _) => "st",
