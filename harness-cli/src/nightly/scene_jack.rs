@@ -310,18 +310,22 @@ fn screen_row(
                 )
             });
         }
-        (Ok(_), Err(stopped)) => {
-            c.cases = 1;
-            diverged(&mut c, || {
-                example(
-                    "Main.main".into(),
-                    "draws the whole image".into(),
-                    stopped.clone(),
-                )
-            });
-        }
+        (Ok(_), Err(stopped)) => main_stopped(&mut c, stopped),
     }
     c
+}
+
+/// One divergent case in `c`: `Main.main` stopped (`stopped` says how)
+/// where the other side draws the whole image.
+fn main_stopped(c: &mut Comparison, stopped: &str) {
+    c.cases = 1;
+    diverged(c, || {
+        example(
+            "Main.main".into(),
+            "draws the whole image".into(),
+            stopped.to_string(),
+        )
+    });
 }
 
 /// The seed scene's screen against the committed render of the original
@@ -337,16 +341,7 @@ fn committed_row(scope: &str, screen: &Result<MainScreen, String>) -> Result<Com
     );
     match screen {
         Ok(got) => compare_screens(&mut c, committed.data(), &got.white),
-        Err(stopped) => {
-            c.cases = 1;
-            diverged(&mut c, || {
-                example(
-                    "Main.main".into(),
-                    "draws the whole image".into(),
-                    stopped.clone(),
-                )
-            });
-        }
+        Err(stopped) => main_stopped(&mut c, stopped),
     }
     Ok(c)
 }
