@@ -918,6 +918,9 @@ fn scenes(h: &mut String, r: &Report) {
         if let Some(j) = &s.jack {
             scene_jack(h, j);
         }
+        if let Some(base) = &s.tuned_from {
+            tuned_saving(h, s, base, &r.scenes);
+        }
         if !s.pictures.is_empty() {
             h.push_str("<div class=figs>");
             for p in &s.pictures {
@@ -933,6 +936,40 @@ fn scenes(h: &mut String, r: &Report) {
         }
     }
     h.push_str("</section>\n");
+}
+
+/// A tuned scene's saving against the untuned scene `base` of the same
+/// night: generated-Jack VM instructions per pixel and over the image.
+fn tuned_saving(h: &mut String, tuned: &SceneRow, base: &str, scenes: &[SceneRow]) {
+    let untuned = scenes
+        .iter()
+        .find(|s| s.name == base && s.tuned_from.is_none())
+        .and_then(|s| s.jack.as_ref());
+    match (untuned, &tuned.jack) {
+        (Some(u), Some(t)) => {
+            let saved = u.mean - t.mean;
+            let _ = write!(
+                h,
+                "<p>Tuned from <code>{}</code>: {} VM instructions per pixel against {} untuned, \
+                 {} saved per pixel ({:.3}%), {} over the image; on the official desktop emulator {} against {}.</p>",
+                esc(base),
+                short_number(t.mean),
+                short_number(u.mean),
+                short_number(saved),
+                100.0 * saved / u.mean.max(1.0),
+                short_number(u.whole_image_instructions as f64 - t.whole_image_instructions as f64),
+                duration(t.desktop_s),
+                duration(u.desktop_s),
+            );
+        }
+        _ => {
+            let _ = write!(
+                h,
+                "<p>Tuned from <code>{}</code>, whose generated program was not measured in this run: no saving to show.</p>",
+                esc(base)
+            );
+        }
+    }
 }
 
 /// How each implementation's answers for a scene ended, and whether the
@@ -1191,6 +1228,38 @@ mod tests {
         let mut h = String::new();
         scene_outcomes(&mut h, &[o("ref-f316", 3), o("jack-generated", 2)]);
         assert!(h.contains("disagree on how many pixels answers"), "{h}");
+    }
+
+    /// A tuned scene's row says what it saves against its untuned scene's
+    /// row of the same night, and says so when that row is missing.
+    #[test]
+    fn a_tuned_scene_shows_its_saving() {
+        let jack = |mean, whole| SceneJackCost {
+            mean,
+            whole_image_instructions: whole,
+            desktop_s: whole as f64 / 1.4e6,
+            ..SceneJackCost::default()
+        };
+        let untuned = SceneRow {
+            name: "seed".into(),
+            jack: Some(jack(200.0, 2_000)),
+            ..SceneRow::default()
+        };
+        let tuned = SceneRow {
+            name: "seed-tuned".into(),
+            jack: Some(jack(150.0, 1_500)),
+            tuned_from: Some("seed".into()),
+            ..SceneRow::default()
+        };
+        let mut h = String::new();
+        tuned_saving(&mut h, &tuned, "seed", &[untuned, tuned.clone()]);
+        assert!(
+            h.contains("50 saved per pixel (25.000%), 500 over the image"),
+            "{h}"
+        );
+        let mut h = String::new();
+        tuned_saving(&mut h, &tuned, "seed", std::slice::from_ref(&tuned));
+        assert!(h.contains("no saving to show"), "{h}");
     }
 
     #[test]

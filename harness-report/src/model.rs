@@ -180,6 +180,10 @@ pub struct SceneRow {
     /// system tells.
     #[serde(default)]
     pub cpu_s: Option<f64>,
+    /// For a description `harness tune` wrote: the name of the untuned
+    /// scene it was tuned from, whose row its saving is measured against.
+    #[serde(default)]
+    pub tuned_from: Option<String>,
 }
 
 /// How one implementation's answers for a described scene ended at one

@@ -8,10 +8,13 @@
 use super::step::Step;
 use super::{scenes, Night};
 use anyhow::Result;
-use std::path::PathBuf;
 
-/// The tuned descriptions, under `vectors/scenes/`.
-pub const TUNED: [&str; 2] = ["tests/seed-tuned-best.json", "tests/rtdemo-tuned-best.json"];
+/// The tuned descriptions, under `vectors/scenes/`, each with the name of
+/// the untuned scene it was tuned from.
+pub const TUNED: [(&str, &str); 2] = [
+    ("tests/seed-tuned-best.json", "seed"),
+    ("tests/rtdemo-tuned-best.json", "rtdemo"),
+];
 
 /// The tuned-scenes step.
 pub struct Tuned;
@@ -26,10 +29,13 @@ impl Step for Tuned {
     }
 
     fn run(&self, night: &mut Night<'_>) -> Result<()> {
-        let files: Vec<PathBuf> = TUNED
-            .iter()
-            .map(|f| scenes::shipped_dir().join(f))
-            .collect();
-        scenes::each_scene(night, &files)
+        for (file, base) in TUNED {
+            let before = night.builder.report_mut().scenes.len();
+            scenes::each_scene(night, &[scenes::shipped_dir().join(file)])?;
+            for row in &mut night.builder.report_mut().scenes[before..] {
+                row.tuned_from = Some(base.to_string());
+            }
+        }
+        Ok(())
     }
 }
