@@ -82,16 +82,15 @@ pub struct Evaluator {
 }
 
 impl Evaluator {
-    /// Render the untuned description (`variants` removed) on ref-f316 and
-    /// ref-f64.
-    pub fn new(mut description: serde_json::Value) -> anyhow::Result<Evaluator> {
-        if let Some(top) = description.as_object_mut() {
-            top.remove("variants");
-        }
-        let checked = scene::parse(&description.to_string())?;
-        let base_reference = Described::new(RefImpl::F316, &checked, Settings::default())?;
+    /// Render the untuned `description` (without `variants`), checked as
+    /// `checked`, on ref-f316 and ref-f64.
+    pub fn new(
+        description: serde_json::Value,
+        checked: &scene::Checked,
+    ) -> anyhow::Result<Evaluator> {
+        let base_reference = Described::new(RefImpl::F316, checked, Settings::default())?;
         let (base, base_counts) = base_reference.render_counted()?;
-        let oracle = Described::new(RefImpl::F64, &checked, Settings::default())?.render();
+        let oracle = Described::new(RefImpl::F64, checked, Settings::default())?.render();
         Ok(Evaluator {
             description,
             base,
@@ -103,9 +102,8 @@ impl Evaluator {
 
     /// The description with `c`'s variants, checked.
     pub fn checked(&self, c: &Config) -> anyhow::Result<scene::Checked> {
-        let mut d = self.description.clone();
-        d["variants"] = space::variants_field(c);
-        scene::parse(&d.to_string()).with_context(|| format!("the configuration {}", space::key(c)))
+        scene::parse(&self.description(c).to_string())
+            .with_context(|| format!("the configuration {}", space::key(c)))
     }
 
     /// The description with `c`'s variants, as JSON.

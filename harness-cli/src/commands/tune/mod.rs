@@ -117,9 +117,9 @@ pub fn run(args: TuneArgs) -> anyhow::Result<ExitCode> {
     }
     // Checked first, so that a bad file is refused naming its field.
     scene::load(&args.scene)?;
-    let description: serde_json::Value = serde_json::from_str(&scene::read(&args.scene)?)
-        .with_context(|| args.scene.display().to_string())?;
-    let mut untuned_description = description.clone();
+    let mut untuned_description: serde_json::Value =
+        serde_json::from_str(&scene::read(&args.scene)?)
+            .with_context(|| args.scene.display().to_string())?;
     if let Some(top) = untuned_description.as_object_mut() {
         top.remove("variants");
     }
@@ -149,7 +149,7 @@ pub fn run(args: TuneArgs) -> anyhow::Result<ExitCode> {
         }
     };
     stage("rendering the untuned scene on ref-f316 and ref-f64");
-    let evaluator = Evaluator::new(description)?;
+    let evaluator = Evaluator::new(untuned_description.clone(), &untuned_checked)?;
     let (base_ref, _, base_counts) = evaluator.base();
     let base_sources = scene_jack::emit(base_ref.program())
         .with_context(|| format!("{}: generating its Jack program", args.scene.display()))?;
@@ -161,7 +161,9 @@ pub fn run(args: TuneArgs) -> anyhow::Result<ExitCode> {
     let base_cost = model.whole_image(base_counts);
 
     let start = Instant::now();
-    let (found, rendered) = search(&args, &sites, &evaluator, &model, constraint, &mut state)?;
+    let (found, rendered) = search(
+        &args, &sites, &evaluator, &model, constraint, base_cost, &mut state,
+    )?;
     let search_s = start.elapsed().as_secs_f64();
 
     let rejected = explain_rejections(&found, &evaluator, &model, constraint, &state, shown)?;
@@ -270,6 +272,7 @@ fn search(
     evaluator: &Evaluator,
     model: &CostModel,
     constraint: Constraint,
+    base_cost: f64,
     state: &mut State,
 ) -> anyhow::Result<(Found, usize)> {
     let shown = progress::wanted();
@@ -300,7 +303,6 @@ fn search(
             cost: model.whole_image(&e.counts),
         })
     };
-    let base_cost = model.whole_image(evaluator.base().2);
     let found = if args.exhaustive {
         search::exhaustive(sites, base_cost, &mut judge)?
     } else {
