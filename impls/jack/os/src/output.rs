@@ -30,8 +30,12 @@ impl Ctx<'_> {
     /// [top, top+11], so it also erases the next cell's first column and the
     /// first row of the cell below (and wraps to column 0 at c = 63).
     pub fn clear_char(&mut self) {
-        let (x, y) = (self.os.col * 8, self.cell_top());
-        self.draw_rect(x, y, x + 8, y + 11, false);
+        self.draw_cell(self.cell_index(), None);
+    }
+
+    /// The linear pixel index (`512y + x`) of the cursor's cell's top left.
+    fn cell_index(&self) -> i32 {
+        512 * self.cell_top() + self.os.col * 8
     }
 
     /// The cursor: clearChar, then a black 5x8 box.
@@ -70,11 +74,7 @@ impl Ctx<'_> {
     /// cell; any other code draws nothing. The cursor then advances.
     pub fn print_char(&mut self, k: i32) {
         if let Some(g) = glyph(k) {
-            self.clear_char();
-            let (x, y) = (self.os.col * 8, self.cell_top());
-            for (dy, &bits) in (0..).zip(g.iter()) {
-                self.set_row_bits(512 * (y + dy) + x, bits);
-            }
+            self.draw_cell(self.cell_index(), Some(g));
         }
         self.os.col += 1;
         if self.os.col == COLUMNS {

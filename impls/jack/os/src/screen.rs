@@ -60,15 +60,29 @@ impl Ctx<'_> {
         }
     }
 
-    /// Set the pixels of linear indices `from..from + 8` whose bit is set
-    /// in `bits` (lowest first) that are on the screen: a glyph's row.
-    pub(crate) fn set_row_bits(&mut self, from: i32, bits: u8) {
-        let shifted = u32::from(bits) << from.rem_euclid(16);
-        let first = from.div_euclid(16);
+    /// Clear the 9x12 pixels of a character cell whose top left pixel has
+    /// linear index `from` (see [`SCREEN_PIXELS`]; its column a multiple of
+    /// 8), and set those of `glyph`'s 11 rows: what `draw_rect` of the cell
+    /// in white and a [`Ctx::plot`] of each glyph pixel would do, a row at
+    /// a time. A row's ninth pixel is the next cell's first, the next row's
+    /// first at column 63; rows past the screen are dropped.
+    pub(crate) fn draw_cell(&mut self, from: i32, glyph: Option<&crate::font::Glyph>) {
+        const CELL_ROW: u32 = 0x1FF;
         let words = self.screen_words();
-        for (w, part) in [(first, shifted as u16), (first + 1, (shifted >> 16) as u16)] {
-            if part != 0 && (0..SCREEN_WORDS).contains(&w) {
-                words[w as usize] |= part as i16;
+        for dy in 0..12 {
+            let at = from + 512 * dy;
+            let shift = at.rem_euclid(16);
+            let clear = CELL_ROW << shift;
+            let bits = glyph
+                .and_then(|g| g.get(dy as usize))
+                .map_or(0, |&b| u32::from(b) << shift);
+            let first = at.div_euclid(16);
+            for (w, half) in [(first, 0), (first + 1, 16)] {
+                if (0..SCREEN_WORDS).contains(&w) {
+                    let word = &mut words[w as usize];
+                    *word =
+                        (*word & !((clear >> half) as u16 as i16)) | (bits >> half) as u16 as i16;
+                }
             }
         }
     }
