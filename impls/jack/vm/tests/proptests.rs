@@ -636,6 +636,53 @@ fn builtins_that_move_registers_or_stop_agree() {
     }
 }
 
+/// `String.length`, `charAt` and `appendChar`, which compiled code runs
+/// itself, on strings laid out by hand at the ends of the words a built-in
+/// may touch (each profile's layout: the web's char array at `RAM[s+2]`,
+/// here also one whose next char is the length word itself), with lengths
+/// and indexes at and past their bounds (ERR15, ERR17, ERR16 on the web
+/// once the length wraps).
+#[test]
+fn string_built_ins_at_their_edges_agree() {
+    let push = |v: i32| {
+        if v < 0 {
+            format!("push constant {}\nneg", -v)
+        } else {
+            format!("push constant {v}")
+        }
+    };
+    // The desktop's Memory.poke stops outside the heap and the screen:
+    // there the word stays 0.
+    let poke = |web: bool, a: i32, v: i32| {
+        if web || (2048..=24576).contains(&a) {
+            format!("{}\n{}\ncall Memory.poke 2\npop temp 0\n", push(a), push(v))
+        } else {
+            String::new()
+        }
+    };
+    for (web, s) in [true, false]
+        .into_iter()
+        .flat_map(|web| [4, 2046, 2047, 3000, 24574, 24575, 24576].map(|s| (web, s)))
+    {
+        for (len, cap) in [(0, 0), (2, 3), (2, 2), (7, 9), (-1, 4), (32767, -1)] {
+            for array in [3000, s + 1 - len, 24576 - len, 24577 - len] {
+                // Each in a run of its own, since an error ends the run.
+                let layout = poke(web, s, cap) + &poke(web, s + 1, len) + &poke(web, s + 2, array);
+                let reads = [-1, 0, len.max(1) - 1, len]
+                    .map(|i| format!("{}\n{}\ncall String.charAt 2", push(s), push(i)));
+                let append = format!(
+                    "{0}\ncall String.length 1\npop temp 2\n{0}\npush constant 77\n\
+                     call String.appendChar 2\npop temp 3\n{0}\ncall String.length 1",
+                    push(s)
+                );
+                for body in reads.iter().chain([&append]) {
+                    agree_on(&(layout.clone() + body), 0, &[0, 0], &[web], &[0]);
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn a_broken_translation_is_caught() {
     // Most seeds find a wrong `sub` within 256 cases, not all: the runner
@@ -679,10 +726,29 @@ fn command() -> impl Strategy<Value = String> {
         2 => prop::sample::select(vec![
             "call Memory.peek 1", "call Memory.poke 2", "call Math.min 2", "call Math.max 2",
             "call Math.sqrt 1", "call Memory.alloc 1", "call Array.new 1", "call String.new 1",
-            "call String.length 1", "call String.appendChar 2", "call Output.printChar 1",
+            "call String.length 1", "call String.appendChar 2", "call String.charAt 2",
+            "call Output.printChar 1",
             "call Output.printInt 1", "call Screen.drawPixel 2", "call Keyboard.keyPressed 0",
             "call Sys.error 1",
         ]).prop_map(String::from),
+        // A string built and read (compiled code runs these built-ins
+        // itself): appends past its capacity (ERR17), a char inside or
+        // past its length (ERR15).
+        1 => (0u16..4, 0u16..5, 0u16..5).prop_map(|(cap, n, i)| {
+            let appends: String = (0..n)
+                .map(|k| format!("push temp 5\npush constant {}\ncall String.appendChar 2\npop temp 6\n", 65 + k))
+                .collect();
+            format!(
+                "push constant {cap}\ncall String.new 1\npop temp 5\n{appends}push temp 5\n\
+                 push constant {i}\ncall String.charAt 2\npush temp 5\ncall String.length 1\nadd"
+            )
+        }),
+        // A string whose words are the stack's (SP read through RAM[0]):
+        // its length and chars are words compiled code holds in registers.
+        1 => (1u16..6, prop::bool::ANY).prop_map(|(k, append)| format!(
+            "push constant 0\npop pointer 1\npush that 0\npush constant {k}\nsub\n{}",
+            if append { "push constant 66\ncall String.appendChar 2" } else { "call String.length 1" }
+        )),
         // A poke of a register (SP, LCL, ARG, THIS, THAT) or a word near them.
         1 => (0u16..7, value).prop_map(|(a, v)| format!(
             "push constant {a}\npush constant {v}\ncall Memory.poke 2"

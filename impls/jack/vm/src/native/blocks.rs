@@ -48,8 +48,9 @@ pub(crate) fn kind(op: Op) -> Kind {
 }
 
 /// Whether compiled code runs built-in `b` itself, in its block: the
-/// arithmetic ones, and `Memory.peek`/`poke` of a word that needs no
-/// rule (else it leaves for the interpreter there).
+/// arithmetic ones, and `Memory.peek`/`poke` and `String.length`,
+/// `charAt` and `appendChar` of words that need no rule (else it leaves
+/// for the interpreter there).
 pub(crate) fn inline_builtin(b: Builtin) -> bool {
     matches!(
         b,
@@ -58,6 +59,9 @@ pub(crate) fn inline_builtin(b: Builtin) -> bool {
             | Builtin::MathMax
             | Builtin::MemoryPeek
             | Builtin::MemoryPoke
+            | Builtin::StringLength
+            | Builtin::StringCharAt
+            | Builtin::StringAppendChar
     )
 }
 

@@ -43,6 +43,8 @@ use cranelift_frontend::{FunctionBuilder, Variable};
 use jack_os::{Profile, KBD, RAM_SIZE};
 use std::mem::offset_of;
 
+mod strings;
+
 const T16: ir::Type = types::I16;
 const T32: ir::Type = types::I32;
 const T64: ir::Type = types::I64;
@@ -1462,7 +1464,8 @@ impl Translator<'_, '_> {
 
     /// A built-in that compiled code runs itself (`blocks::inline_builtin`);
     /// a `Memory.peek` or `poke` of a word outside plain RAM (desktop:
-    /// outside the heap and the screen) leaves for the interpreter.
+    /// outside the heap and the screen) leaves for the interpreter, as
+    /// does a string built-in that would raise an error (see `strings`).
     fn inline_builtin(&mut self, builtin: jack_os::Builtin, s: &mut Stack, before: &Before) {
         use jack_os::Builtin::*;
         let r = match builtin {
@@ -1482,16 +1485,7 @@ impl Translator<'_, '_> {
             MemoryPeek | MemoryPoke => {
                 let v = (builtin == MemoryPoke).then(|| s.pop(self));
                 let a = s.pop(self);
-                let ok = match self.env.profile {
-                    Profile::Web => self.is_plain(a),
-                    Profile::Desktop => {
-                        let d = self.b.ins().iadd_imm_s(a, -i64::from(HEAP_START));
-                        let last = KBD as i64 - i64::from(HEAP_START);
-                        self.b
-                            .ins()
-                            .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, last)
-                    }
-                };
+                let ok = self.os_word_ok(a);
                 self.guard(ok, before);
                 // The word may be one of the stack words held in registers.
                 s.flush(self);
@@ -1505,9 +1499,28 @@ impl Translator<'_, '_> {
                 s.forget();
                 r
             }
+            StringLength | StringCharAt | StringAppendChar => {
+                self.inline_string(builtin, s, before)
+            }
             _ => unreachable!("only the built-ins blocks::inline_builtin names"),
         };
         s.push(r);
+    }
+
+    /// Whether 16-bit address `a` is a word a built-in reads and writes
+    /// without a rule: web, a plain word (not a register, inside RAM);
+    /// desktop, the heap or the screen (its `Memory` check, word 0 aside).
+    fn os_word_ok(&mut self, a: Value) -> Value {
+        match self.env.profile {
+            Profile::Web => self.is_plain(a),
+            Profile::Desktop => {
+                let d = self.b.ins().iadd_imm_s(a, -i64::from(HEAP_START));
+                let last = KBD as i64 - i64::from(HEAP_START);
+                self.b
+                    .ins()
+                    .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, last)
+            }
+        }
     }
 
     /// `call Class.builtin n` (not a blocking one) through a host call
