@@ -71,7 +71,8 @@ if [ "$which" = all ] || [ "$which" = engine ]; then
     HACK_VM_ENGINE=native PROPTEST_RNG_SEED=34 PROPTEST_CASES=256 \
         PROPTEST_DISABLE_FAILURE_PERSISTENCE=1 \
         run engine -p hack-vm \
-        --file 'impls/jack/vm/src/native/*.rs' --file impls/jack/vm/src/tier.rs \
+        --file 'impls/jack/vm/src/native/*.rs' --file 'impls/jack/vm/src/native/*/*.rs' \
+        --file impls/jack/vm/src/tier.rs \
         --file impls/jack/vm/src/timing.rs \
         --timeout 240 --build-timeout 900 || status=$?
 fi
