@@ -320,7 +320,7 @@ fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
         // method called from one body, as `set(get() + 1)`), the chain
         // Main.c -> Main.d -> Main.g with Main.z (no arguments) on the
         // way, and Main.v, whose nested Main.w can write into either
-        // frame.
+        // frame. Main.q recurses, running Main.c's chain at every level.
         "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n\
          function Main.m 1\npush argument 0\npop pointer 0\npush this 0\npush argument 1\nadd\nreturn\n\
          function Main.r 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
@@ -334,7 +334,10 @@ fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
          push this 1\npush local 0\ncall Main.m 2\nadd\nreturn\n\
          function Main.z 0\npush constant 5\nreturn\n\
          function Main.v 0\npush argument 0\npush argument 1\ncall Main.w 2\npop temp 0\n\
-         push argument 1\nreturn\n"
+         push argument 1\nreturn\n\
+         function Main.q 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
+         push argument 0\ncall Main.c 1\npop temp 0\npush argument 0\npush constant 1\nsub\n\
+         call Main.q 1\nreturn\n"
     )
 }
 
@@ -667,6 +670,41 @@ fn stops_inside_nested_inline_runs_agree() {
                 if let Err(e) = engines_agree(&case, Engine::Native, None) {
                     panic!("web {web}, watched {watched:?}, first budget {budget}: {e}");
                 }
+            }
+        }
+    }
+}
+
+/// A recursion (Main.q) that runs the nested chain Main.c -> Main.d ->
+/// Main.g at each of its 300 levels, past the frame stack's first
+/// capacity and the bound on compiled nesting (and, on the desktop, past
+/// the stack's end), with Main.g watched or not: compiled calls stop where
+/// the frames of every nested run would not fit.
+#[test]
+fn a_deep_recursion_through_nested_inline_runs_agrees() {
+    let src = random_program(
+        vec!["push constant 300\ncall Main.q 1\npop temp 0".to_string()],
+        vec![],
+        0,
+    );
+    let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+    let g = program
+        .functions()
+        .iter()
+        .position(|f| f.name == "Main.g")
+        .expect("Main.g");
+    for watched in [None, Some(1u8 << (g % 7))] {
+        for web in [false, true] {
+            let case = EngineCase {
+                src: src.clone(),
+                args: vec![0, 0],
+                web,
+                budgets: vec![0, 5000],
+                hold: None,
+                watched,
+            };
+            if let Err(e) = engines_agree(&case, Engine::Native, None) {
+                panic!("web {web}, watched {watched:?}: {e}");
             }
         }
     }

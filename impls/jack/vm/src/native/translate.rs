@@ -200,6 +200,9 @@ struct Inline {
     top: i32,
     /// Instructions translated for the run, nested runs included.
     size: usize,
+    /// The most frames the run makes at once: 1, and those of its deepest
+    /// nested run.
+    frames: u32,
     /// No instruction of the run can write a word of its frame (see
     /// [`keeps_frames`]), so that its return finds the frame as the call
     /// wrote it.
@@ -230,7 +233,7 @@ fn keeps_frames(ops: &[Op], profile: Profile) -> bool {
 
 /// Callees of more instructions (before their `return`) are called, not
 /// run inline.
-const MAX_INLINE_OPS: usize = 24;
+const MAX_INLINE_OPS: usize = 32;
 
 /// Inline runs nest at most this deep (a call chain of one-line functions).
 const MAX_INLINE_DEPTH: u32 = 8;
@@ -268,7 +271,7 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
         return None;
     }
     let (mut depth, mut top) = (0i32, 0i32);
-    let (mut steps, mut size) = (0u64, 0usize);
+    let (mut steps, mut size, mut frames) = (0u64, 0usize, 1u32);
     let mut keeps_frame = keeps_frames(&ops[..len], env.profile);
     let mut from = 0;
     // The stretches between nested calls, each call's run, the return.
@@ -308,6 +311,7 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
         steps += run.steps;
         size += run.size;
         keeps_frame &= run.keeps_frame;
+        frames = frames.max(1 + run.frames);
         from = k + 1;
     }
     let (low, high) = blocks::depth_range(&ops[from..=len]);
@@ -320,6 +324,7 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
         steps,
         top: locals + top.max(depth + high),
         size,
+        frames,
         keeps_frame,
     })
 }
@@ -1746,10 +1751,18 @@ impl Translator<'_, '_> {
             Some(outer) => self.b.ins().iadd_imm_s(outer.frames_len, 1),
             None => self.frames_len(),
         };
-        let limit = self.fixed_field(offset_of!(Ctx, frames_limit));
+        let inline = inline_callee(&self.env, callee, n);
         // Room in the frame stack and native nesting bounded (no room if
-        // calls must not run compiled), the callee not watched, and the new
-        // frame in plain RAM.
+        // calls must not run compiled) for the call's frame, and those of
+        // the runs nested in it (tested by the outermost call), the callee
+        // not watched, and the new frame in plain RAM.
+        let mut ok = Vec::new();
+        if nested.is_none() {
+            let limit = self.fixed_field(offset_of!(Ctx, frames_limit));
+            let frames = inline.map_or(1, |run| run.frames);
+            let last = self.b.ins().iadd_imm_s(len, i64::from(frames) - 1);
+            ok.push(self.b.ins().icmp(IntCC::UnsignedLessThan, last, limit));
+        }
         let watch = self.fixed_field(offset_of!(Ctx, watch));
         let watched = self.b.ins().uload8(
             T32,
@@ -1757,10 +1770,7 @@ impl Translator<'_, '_> {
             watch,
             i32::try_from(callee).expect("function ids fit"),
         );
-        let mut ok = vec![
-            self.b.ins().icmp(IntCC::UnsignedLessThan, len, limit),
-            self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0),
-        ];
+        ok.push(self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0));
         let base = s.sp(self);
         if self.depths.is_none() && nested.is_none() {
             // (With static depths the entry test covered the frame; the
@@ -1819,7 +1829,7 @@ impl Translator<'_, '_> {
             None => blk.steps,
         };
         let steps = self.b.ins().iadd_imm_s(before.steps0, charged as i64);
-        if let Some(inline) = inline_callee(&self.env, callee, n) {
+        if let Some(inline) = inline {
             self.run_inline(call, inline, base, p, steps, n_vars, blk);
             if nested.is_some() {
                 s.depth += 1 - i32::from(n);
