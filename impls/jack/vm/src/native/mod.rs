@@ -12,7 +12,10 @@
 //! function calls its callee's directly), except a call to a watched
 //! function and the return from a watched call, which the interpreter runs
 //! with the watcher's callbacks, and every call and return while the
-//! function profile is on.
+//! function profile is on. Small callees, and chains of small callees
+//! calling each other, run inline in their caller's code: their frames go
+//! to RAM as the calls write them, and onto the frame stack only where
+//! compiled code leaves inside them.
 
 mod blocks;
 mod builtin;
