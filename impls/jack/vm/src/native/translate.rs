@@ -242,6 +242,19 @@ const MAX_INLINE_DEPTH: u32 = 8;
 /// instructions.
 const MAX_INLINE_TOTAL: usize = 96;
 
+/// The callees of the calls nested in inline run `run`, at every level.
+fn nested_callees(env: &Env<'_>, run: Inline, out: &mut Vec<FnId>) {
+    for &op in &env.code[run.start as usize..run.end as usize] {
+        if let Op::Call { callee, nargs, .. } = op {
+            let callee = FnId::from(callee);
+            out.push(callee);
+            if let Some(inner) = inline_callee(env, callee, nargs) {
+                nested_callees(env, inner, out);
+            }
+        }
+    }
+}
+
 /// Whether a call of `callee` with `nargs` arguments runs it inline (see
 /// [`Inline`]).
 fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
@@ -1763,14 +1776,13 @@ impl Translator<'_, '_> {
             let last = self.b.ins().iadd_imm_s(len, i64::from(frames) - 1);
             ok.push(self.b.ins().icmp(IntCC::UnsignedLessThan, last, limit));
         }
-        let watch = self.fixed_field(offset_of!(Ctx, watch));
-        let watched = self.b.ins().uload8(
-            T32,
-            self.mem.fixed,
-            watch,
-            i32::try_from(callee).expect("function ids fit"),
-        );
-        ok.push(self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0));
+        if nested.is_none() {
+            let watched = self.watched(&[callee]);
+            ok.push(self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0));
+            if let Some(run) = inline {
+                self.nested_unwatched(run, before);
+            }
+        }
         let base = s.sp(self);
         if self.depths.is_none() && nested.is_none() {
             // (With static depths the entry test covered the frame; the
@@ -1915,6 +1927,49 @@ impl Translator<'_, '_> {
         // The same values: keep the ones the function entered with.
         self.b.def_var(self.v.lcl, lcl);
         self.b.def_var(self.v.arg, arg);
+    }
+
+    /// Nonzero where one of `callees` is watched (their watch bytes or'ed).
+    fn watched(&mut self, callees: &[FnId]) -> Value {
+        let watch = self.fixed_field(offset_of!(Ctx, watch));
+        let bytes: Vec<Value> = callees
+            .iter()
+            .map(|&f| {
+                let at = i32::try_from(f).expect("function ids fit");
+                self.b.ins().uload8(T32, self.mem.fixed, watch, at)
+            })
+            .collect();
+        bytes
+            .into_iter()
+            .reduce(|a, b| self.b.ins().bor(a, b))
+            .expect("at least one callee")
+    }
+
+    /// Leave before the outermost call of inline run `run` where a call
+    /// nested in it is of a watched function (tested only where the watch
+    /// set names some function): the interpreter makes the call, and the
+    /// callee's compiled code then runs up to the watched call.
+    fn nested_unwatched(&mut self, run: Inline, before: &Before) {
+        let mut callees = Vec::new();
+        nested_callees(&self.env, run, &mut callees);
+        if callees.is_empty() {
+            return;
+        }
+        let any = self.b.ins().uload8(
+            T32,
+            self.mem.fixed,
+            self.ctx,
+            field(offset_of!(Ctx, any_watched)),
+        );
+        let (check, cont) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(any, check, NONE, cont, NONE);
+        self.b.switch_to_block(check);
+        self.b.set_cold_block(check);
+        let watched = self.watched(&callees);
+        let ok = self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0);
+        self.guard(ok, before);
+        self.b.ins().jump(cont, NONE);
+        self.b.switch_to_block(cont);
     }
 
     /// The highest SP that a call of `callee` with `nargs` arguments
