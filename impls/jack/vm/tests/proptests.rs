@@ -626,9 +626,11 @@ fn budget_stops_deep_in_the_program_agree() {
 /// Main.f's SP: Main.v's RET word (its return goes to the interpreter),
 /// its saved ARG (its caller goes on in the interpreter), a word of
 /// Main.v's stack, or Main.w's RET word (compiled code leaves inside the
-/// nested run). With that last, budget stops fall on every step, with no
-/// function watched and with Main.g watched (compiled code leaves at its
-/// call, nested two deep).
+/// nested run); last, Main.n of THIS 0, whose Main.s leaves compiled code
+/// (on the desktop) after Main.g's nested return. With Main.w's
+/// RET word, budget stops fall on every step, with no function watched
+/// and with Main.g watched (compiled code leaves at its call, nested two
+/// deep).
 #[test]
 fn stops_inside_nested_inline_runs_agree() {
     let body = |k: u16| {
@@ -636,7 +638,8 @@ fn stops_inside_nested_inline_runs_agree() {
             "push constant 3000\npush constant 7\ncall Main.n 2\npop temp 0\n\
              push constant 9\ncall Main.c 1\npop temp 1\n\
              push constant 0\npop pointer 1\npush that 0\npush constant {k}\nadd\n\
-             push constant 77\ncall Main.v 2\npop temp 2"
+             push constant 77\ncall Main.v 2\npop temp 2\n\
+             push constant 0\npush constant 7\ncall Main.n 2\npop temp 3"
         )
     };
     for k in [2, 4, 8] {

@@ -179,6 +179,12 @@ struct Translator<'a, 'b> {
     /// that leaving compiled code inside it first makes the frames those
     /// calls would have pushed on the frame stack.
     inlined: Vec<CallSite>,
+    /// Desktop: FRAME and RET as a nested inline run's return left them
+    /// for R13 and R14, not yet written: the next return overwrites them,
+    /// and they go to RAM before a leave or an access of either word
+    /// (compiled code reaches neither through `this`, `that` or
+    /// `Memory.peek`, which lie in the heap and above).
+    return_registers: Option<(Value, Value)>,
 }
 
 /// A callee that a compiled call runs inline, in the caller's code: the
@@ -530,6 +536,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         frame_shown: false,
         range: None,
         inlined: Vec::new(),
+        return_registers: None,
     };
     t.range = t.static_range();
     // A compiled call passes the registers; the dispatcher, the context.
@@ -819,6 +826,7 @@ impl Translator<'_, '_> {
     /// the callee being run inline, after pushing its frame, and those of
     /// the runs it is nested in, on the frame stack).
     fn leave_with(&mut self, code: Value, pc: Value) {
+        self.write_return_registers();
         let mut me = self.env.id;
         for call in self.inlined.clone() {
             self.push_frame_entry(me, &call);
@@ -1127,6 +1135,13 @@ impl Translator<'_, '_> {
         let (first, mut from, mut steps0) = (from, from, steps0);
         for pc in first..to {
             let op = self.env.code[pc as usize];
+            if matches!(
+                op,
+                Op::PushAbs(13 | 14) | Op::PopAbs(13 | 14) | Op::PopRam(13 | 14)
+            ) {
+                self.write_return_registers();
+                self.return_registers = None;
+            }
             let may_touch_stack = self.may_touch_stack(op, pc);
             if may_touch_stack {
                 s.flush(self);
@@ -2153,7 +2168,12 @@ impl Translator<'_, '_> {
             self.guard(ok, &before);
             ret_word
         };
-        self.desktop_return_registers(frame, ret_word);
+        if self.env.profile == Profile::Desktop && self.inlined.len() > 1 {
+            self.return_registers = Some((frame, ret_word));
+        } else {
+            self.return_registers = None;
+            self.desktop_return_registers(frame, ret_word);
+        }
         let x = s.pop(self);
         let arg = self.b.use_var(self.v.arg);
         self.store_word(arg, x);
@@ -2193,6 +2213,14 @@ impl Translator<'_, '_> {
         }
         if self.inlined.is_empty() {
             self.jump_to(call.ret_pc);
+        }
+    }
+
+    /// Write the R13 and R14 that a nested inline run's return left
+    /// pending (`Translator::return_registers`).
+    fn write_return_registers(&mut self) {
+        if let Some((frame, ret_word)) = self.return_registers {
+            self.desktop_return_registers(frame, ret_word);
         }
     }
 
