@@ -165,6 +165,8 @@ fn expression() -> impl Strategy<Value = Vec<String>> {
                     "call Main.g 2",
                     "call Main.m 2",
                     "call Main.s 2",
+                    "call Main.n 2",
+                    "call Main.v 2",
                 ])
             )
                 .prop_map(|(a, b, op)| [a, b, vec![op.to_string()]].concat()),
@@ -175,6 +177,7 @@ fn expression() -> impl Strategy<Value = Vec<String>> {
                     "not",
                     "call Main.r 1",
                     "call Main.m 1",
+                    "call Main.c 1",
                     "call Math.abs 1",
                     "call Math.sqrt 1",
                     "call Memory.peek 1"
@@ -312,13 +315,29 @@ fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
         // Main.r recurses (calls and returns inside compiled code). Main.s
         // and Main.w are setters (through THIS, and through THAT, which
         // can point into their own frame). Main.g, Main.m, Main.s and
-        // Main.w with two arguments run inline in compiled callers.
+        // Main.w with two arguments run inline in compiled callers, and
+        // so do the runs that nest them: Main.n (a getter, a setter and a
+        // method called from one body, as `set(get() + 1)`), the chain
+        // Main.c -> Main.d -> Main.g with Main.z (no arguments) on the
+        // way, and Main.v, whose nested Main.w can write into either
+        // frame. Main.q recurses, running Main.c's chain at every level.
         "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n\
          function Main.m 1\npush argument 0\npop pointer 0\npush this 0\npush argument 1\nadd\nreturn\n\
          function Main.r 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
          push argument 0\npush constant 1\nsub\ncall Main.r 1\npush constant 3\nadd\nreturn\n\
          function Main.s 0\npush argument 0\npop pointer 0\npush argument 1\npop this 1\npush constant 0\nreturn\n\
-         function Main.w 0\npush argument 0\npop pointer 1\npush argument 1\npop that 0\npush constant 0\nreturn\n"
+         function Main.w 0\npush argument 0\npop pointer 1\npush argument 1\npop that 0\npush constant 0\nreturn\n\
+         function Main.c 0\npush argument 0\ncall Main.z 0\nadd\ncall Main.d 1\nreturn\n\
+         function Main.d 0\npush argument 0\npush argument 0\ncall Main.g 2\nreturn\n\
+         function Main.n 1\npush argument 0\npush argument 1\ncall Main.g 2\npop local 0\n\
+         push argument 0\npush local 0\ncall Main.s 2\npop temp 1\npush argument 0\npop pointer 0\n\
+         push this 1\npush local 0\ncall Main.m 2\nadd\nreturn\n\
+         function Main.z 0\npush constant 5\nreturn\n\
+         function Main.v 0\npush argument 0\npush argument 1\ncall Main.w 2\npop temp 0\n\
+         push argument 1\nreturn\n\
+         function Main.q 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
+         push argument 0\ncall Main.c 1\npop temp 0\npush argument 0\npush constant 1\nsub\n\
+         call Main.q 1\nreturn\n"
     )
 }
 
@@ -484,6 +503,16 @@ fn engines_agree(
         prop_assert_eq!(&end_a, &end_b, "{}", case.src);
         prop_assert!(a.ram() == b.ram(), "RAM differs\n{}", case.src);
         prop_assert_eq!(&log_a.0, &log_b.0, "{}", case.src);
+        // Where the run stands: a stop inside an inline run has the frames
+        // of every run around it, as the interpreter has them.
+        prop_assert_eq!(a.call_stack(), b.call_stack(), "{}", case.src);
+        prop_assert_eq!(a.current_function(), b.current_function(), "{}", case.src);
+        prop_assert_eq!(
+            a.next_command_index(),
+            b.next_command_index(),
+            "{}",
+            case.src
+        );
         // Auto switches where the threshold falls inside a run, or at the
         // start of the next run where it falls on the run's end.
         if let Some(t) = threshold {
@@ -589,6 +618,99 @@ fn budget_stops_deep_in_the_program_agree() {
     );
     let budgets: Vec<u64> = (1..90).collect();
     agree_on(&body, 300, &[0, 0], &[false, true], &budgets);
+}
+
+/// Inline runs nested in inline runs, under both profiles: Main.n's
+/// getter, setter and method, the chain Main.c -> Main.d -> Main.g with
+/// Main.z on the way, and Main.v's Main.w writing a word `k` above
+/// Main.f's SP: Main.v's RET word (its return goes to the interpreter),
+/// its saved ARG (its caller goes on in the interpreter), a word of
+/// Main.v's stack, or Main.w's RET word (compiled code leaves inside the
+/// nested run); last, Main.n of THIS 0, whose Main.s leaves compiled code
+/// (on the desktop) after Main.g's nested return. With Main.w's
+/// RET word, budget stops fall on every step, with no function watched
+/// and with Main.g watched (compiled code leaves at its call, nested two
+/// deep).
+#[test]
+fn stops_inside_nested_inline_runs_agree() {
+    let body = |k: u16| {
+        format!(
+            "push constant 3000\npush constant 7\ncall Main.n 2\npop temp 0\n\
+             push constant 9\ncall Main.c 1\npop temp 1\n\
+             push constant 0\npop pointer 1\npush that 0\npush constant {k}\nadd\n\
+             push constant 77\ncall Main.v 2\npop temp 2\n\
+             push constant 0\npush constant 7\ncall Main.n 2\npop temp 3"
+        )
+    };
+    for k in [2, 4, 8] {
+        agree_on(&body(k), 0, &[0, 0], &[false, true], &[0]);
+    }
+    let src = random_program(vec![body(9)], vec![], 0);
+    let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+    let id = |name: &str| {
+        program
+            .functions()
+            .iter()
+            .position(|f| f.name == name)
+            .expect("a function of the program")
+    };
+    // (The watch set names functions by id modulo 7: none on the way.)
+    let g = id("Main.g");
+    assert!(["Main.c", "Main.d", "Main.z"]
+        .iter()
+        .all(|f| id(f) % 7 != g % 7));
+    for watched in [None, Some(1u8 << (g % 7))] {
+        for web in [false, true] {
+            for budget in 0..90 {
+                let case = EngineCase {
+                    src: src.clone(),
+                    args: vec![0, 0],
+                    web,
+                    budgets: vec![budget],
+                    hold: None,
+                    watched,
+                };
+                if let Err(e) = engines_agree(&case, Engine::Native, None) {
+                    panic!("web {web}, watched {watched:?}, first budget {budget}: {e}");
+                }
+            }
+        }
+    }
+}
+
+/// A recursion (Main.q) that runs the nested chain Main.c -> Main.d ->
+/// Main.g at each of its 300 levels, past the frame stack's first
+/// capacity and the bound on compiled nesting (and, on the desktop, past
+/// the stack's end), with Main.g watched or not: compiled calls stop where
+/// the frames of every nested run would not fit.
+#[test]
+fn a_deep_recursion_through_nested_inline_runs_agrees() {
+    let src = random_program(
+        vec!["push constant 300\ncall Main.q 1\npop temp 0".to_string()],
+        vec![],
+        0,
+    );
+    let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+    let g = program
+        .functions()
+        .iter()
+        .position(|f| f.name == "Main.g")
+        .expect("Main.g");
+    for watched in [None, Some(1u8 << (g % 7))] {
+        for web in [false, true] {
+            let case = EngineCase {
+                src: src.clone(),
+                args: vec![0, 0],
+                web,
+                budgets: vec![0, 5000],
+                hold: None,
+                watched,
+            };
+            if let Err(e) = engines_agree(&case, Engine::Native, None) {
+                panic!("web {web}, watched {watched:?}: {e}");
+            }
+        }
+    }
 }
 
 /// Built-ins called from compiled code where the interpreter's rules
@@ -720,7 +842,7 @@ fn command() -> impl Strategy<Value = String> {
         2 => (0u16..2).prop_map(|p| format!("pop pointer {p}")),
         1 => value.clone().prop_map(|v| format!("pop constant {}", v % 6)),
         4 => prop::sample::select(vec!["add", "sub", "neg", "eq", "gt", "lt", "and", "or", "not"]).prop_map(String::from),
-        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1", "call Main.s 2", "call Main.w 2"]).prop_map(String::from),
+        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1", "call Main.s 2", "call Main.w 2", "call Main.n 2", "call Main.n 1", "call Main.c 1", "call Main.v 2"]).prop_map(String::from),
         // Built-ins, which compiled code calls through the host: reads and
         // writes of any word, the heap, strings, the screen, an error.
         2 => prop::sample::select(vec![
@@ -758,6 +880,11 @@ fn command() -> impl Strategy<Value = String> {
         // or its own stack.
         1 => (0u16..10, 0u16..300).prop_map(|(k, v)| format!(
             "push constant 0\npop pointer 1\npush that 0\npush constant {k}\nadd\npush constant {v}\ncall Main.w 2"
+        )),
+        // The same through Main.v, whose run nests Main.w's: onto either
+        // frame, or onto Main.v's stack.
+        1 => (0u16..16, 0u16..300).prop_map(|(k, v)| format!(
+            "push constant 0\npop pointer 1\npush that 0\npush constant {k}\nadd\npush constant {v}\ncall Main.v 2"
         )),
         1 => Just("push constant 24576\npop pointer 1\npush that 0".to_string()),
         // THIS or THAT at SP (read through RAM[0]): their accesses meet

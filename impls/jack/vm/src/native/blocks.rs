@@ -113,18 +113,42 @@ fn stack_effect(op: Op) -> (i32, i32) {
 /// The lowest and highest stack pointer over `ops`, relative to SP before
 /// them.
 pub(crate) fn depth_range(ops: &[Op]) -> (i32, i32) {
+    walk_depths(ops, false)
+}
+
+/// [`depth_range`] where each call of a VM function pops its arguments
+/// and pushes its result, as code that goes on after the call sees the
+/// stack (the words a block or an inline run holds in registers).
+pub(crate) fn depth_range_through_calls(ops: &[Op]) -> (i32, i32) {
+    walk_depths(ops, true)
+}
+
+fn walk_depths(ops: &[Op], through_calls: bool) -> (i32, i32) {
     let (mut depth, mut min_depth, mut max_depth) = (0i32, 0i32, 0i32);
     for &op in ops {
         if let Op::CallBuiltin { .. } = op {
             max_depth = max_depth.max(depth + BUILTIN_REACH);
         }
-        let (pops, pushes) = stack_effect(op);
+        let (pops, pushes) = match op {
+            Op::Call { nargs, .. } if through_calls => (i32::from(nargs), 1),
+            op => stack_effect(op),
+        };
         depth -= pops;
         min_depth = min_depth.min(depth);
         depth += pushes;
         max_depth = max_depth.max(depth);
     }
     (min_depth, max_depth)
+}
+
+/// How far `ops` move the stack pointer in all (calls not counted).
+pub(crate) fn net_depth(ops: &[Op]) -> i32 {
+    ops.iter()
+        .map(|&op| {
+            let (pops, pushes) = stack_effect(op);
+            pushes - pops
+        })
+        .sum()
 }
 
 /// One basic block: instructions `start..end` (global indices) run

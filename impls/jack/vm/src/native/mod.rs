@@ -12,7 +12,10 @@
 //! function calls its callee's directly), except a call to a watched
 //! function and the return from a watched call, which the interpreter runs
 //! with the watcher's callbacks, and every call and return while the
-//! function profile is on.
+//! function profile is on. Small callees, and chains of small callees
+//! calling each other, run inline in their caller's code: their frames go
+//! to RAM as the calls write them, and onto the frame stack only where
+//! compiled code leaves inside them.
 
 mod blocks;
 mod builtin;
@@ -132,6 +135,9 @@ pub(crate) struct Ctx {
     /// interpreter pushed for a watched call is marked `Frame::watched`,
     /// and compiled code does not return through it).
     pub watch: *const u8,
+    /// Nonzero where the watch set names some function: the outermost call
+    /// of an inline run then tests the functions its nested runs call.
+    pub any_watched: u8,
     pub steps: u64,
     pub stop_at: u64,
     pub sp: u16,
@@ -387,6 +393,7 @@ impl Machine {
             }
             _ => &native.unwatched,
         };
+        let any_watched = set.is_some_and(|set| set.contains(&true));
         loop {
             if self.steps >= stop_at {
                 return Flow::Limit;
@@ -396,7 +403,7 @@ impl Machine {
             // (Compiled code leaves the desktop's `that` from word 0 to
             // the interpreter: it never runs with THAT_ZERO set.)
             if block != NO_BLOCK && owner == self.cur && self.flags & THAT_ZERO == 0 {
-                match self.enter_native(native, block, stop_at, watched) {
+                match self.enter_native(native, block, stop_at, watched, any_watched) {
                     Err(halt) => return self.end_at(halt),
                     Ok(CONTINUE) => continue,
                     Ok(_) => {}
@@ -413,7 +420,7 @@ impl Machine {
 
     /// Run compiled code from block `block` of the current function, with
     /// `watched` (a flag per function) the functions whose calls it leaves
-    /// to the interpreter.
+    /// to the interpreter (`any_watched`: whether it names any).
     /// Its code (`Err`: a built-in it called ended the run).
     fn enter_native(
         &mut self,
@@ -421,6 +428,7 @@ impl Machine {
         block: u32,
         stop_at: u64,
         watched: &[bool],
+        any_watched: bool,
     ) -> Result<i32, Halt> {
         let ram_obj: *mut Ram = &mut self.ram;
         // SAFETY: `ram_obj` was just made from `self.ram`, which nothing
@@ -450,6 +458,7 @@ impl Machine {
             frames_limit: 0,
             frames_base: self.frames.len() as u64,
             watch: watched.as_ptr().cast(),
+            any_watched: u8::from(any_watched),
             os: &mut self.os,
             ram_obj,
             stopped: None,

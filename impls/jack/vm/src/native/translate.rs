@@ -176,35 +176,104 @@ struct Translator<'a, 'b> {
     /// and the lowest held by a block that uses `argument` (from
     /// `static_ok`).
     range: Option<(i32, i32, i32)>,
-    /// While the body of a callee run inline is translated: the call, so
-    /// that leaving compiled code inside it first makes the frame the call
-    /// would have pushed on the frame stack.
-    inlined: Option<Inlined>,
+    /// While the body of a callee run inline is translated: the call, and
+    /// the calls of the inline runs it is nested in (outermost first), so
+    /// that leaving compiled code inside it first makes the frames those
+    /// calls would have pushed on the frame stack.
+    inlined: Vec<CallSite>,
+    /// Desktop: FRAME and RET as a nested inline run's return left them
+    /// for R13 and R14, not yet written: the next return overwrites them,
+    /// and they go to RAM before a leave or an access of either word
+    /// (compiled code reaches neither through `this`, `that` or
+    /// `Memory.peek`, which lie in the heap and above).
+    return_registers: Option<(Value, Value)>,
 }
 
 /// A callee that a compiled call runs inline, in the caller's code: the
 /// instructions from where a call lands (`start`) to its first `return`
-/// (`end` is past it) run straight, none left to the interpreter, and
-/// every `local` and `argument` access lies inside the frame the call
-/// makes. One-line methods (getters, setters) and small leaf functions.
+/// (`end` is past it) run straight, none left to the interpreter, except
+/// for calls of callees that run inline in turn (to [`MAX_INLINE_DEPTH`]
+/// levels, [`MAX_INLINE_TOTAL`] instructions in all), and every `local`
+/// and `argument` access lies inside the frame the call makes. One-line
+/// methods (getters, setters), small leaf functions, and chains of them
+/// (`set(get() + 1)`).
 #[derive(Clone, Copy, Debug)]
 struct Inline {
     start: u32,
     end: u32,
-    /// Steps of the whole run, its `return` included.
+    /// Steps of the whole run, its `return` and its nested runs included.
     steps: u64,
-    /// The highest SP over the run, relative to the callee's LCL.
+    /// The highest SP over the run, nested frames included, relative to
+    /// the callee's LCL.
     top: i32,
+    /// Instructions translated for the run, nested runs included.
+    size: usize,
+    /// The most frames the run makes at once: 1, and those of its deepest
+    /// nested run.
+    frames: u32,
+    /// No instruction of the run can write a word of its frame (see
+    /// [`keeps_frames`]), so that its return finds the frame as the call
+    /// wrote it.
+    keeps_frame: bool,
 }
 
-/// Callees of more instructions are called, not run inline.
-const MAX_INLINE_OPS: usize = 24;
+/// Whether no instruction of `ops` (the body of an inline run) can write
+/// a word of a frame on the stack: the saved words lie between the
+/// `argument` and the `local` words the body's accesses are shown to
+/// stay in, `temp` and `static` lie below the stack, and so does every
+/// word a desktop `this`, `that` or `Memory.poke` reaches in compiled
+/// code (the heap and above). A `pop constant` into the stack, and on the
+/// web a write through a pointer or `Memory.poke`, may.
+fn keeps_frames(ops: &[Op], profile: Profile) -> bool {
+    ops.iter().all(|op| match *op {
+        Op::PopRam(a) => a < STACK_BASE,
+        Op::PopThis(_)
+        | Op::PopThisChk(_)
+        | Op::PopThat(_)
+        | Op::PopThatChk(_)
+        | Op::CallBuiltin {
+            builtin: jack_os::Builtin::MemoryPoke,
+            ..
+        } => profile == Profile::Desktop,
+        _ => true,
+    })
+}
+
+/// Callees of more instructions (before their `return`) are called, not
+/// run inline.
+const MAX_INLINE_OPS: usize = 32;
+
+/// Inline runs nest at most this deep (a call chain of one-line functions).
+const MAX_INLINE_DEPTH: u32 = 8;
+
+/// An inline run, its nested runs included, translates at most this many
+/// instructions.
+const MAX_INLINE_TOTAL: usize = 96;
+
+/// The callees of the calls nested in inline run `run`, at every level.
+fn nested_callees(env: &Env<'_>, run: Inline, out: &mut Vec<FnId>) {
+    for &op in &env.code[run.start as usize..run.end as usize] {
+        if let Op::Call { callee, nargs, .. } = op {
+            let callee = FnId::from(callee);
+            out.push(callee);
+            if let Some(inner) = inline_callee(env, callee, nargs) {
+                nested_callees(env, inner, out);
+            }
+        }
+    }
+}
 
 /// Whether a call of `callee` with `nargs` arguments runs it inline (see
 /// [`Inline`]).
 fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
+    inline_run(env, callee, nargs, 1)
+}
+
+/// [`inline_callee`] for a run nested `level` deep (1: called from the
+/// function being translated).
+fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inline> {
     let f = &env.program.functions[callee as usize];
-    if !f.headed {
+    if !f.headed || level > MAX_INLINE_DEPTH || nargs > MAX_COMPILED_ARGS {
         return None;
     }
     let start = f.start - u32::from(env.timing.function_step);
@@ -213,35 +282,78 @@ fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
         .iter()
         .take(MAX_INLINE_OPS)
         .position(|op| *op == Op::Return)?;
-    let body = &ops[..len];
-    let fits = |op: &Op| match *op {
-        Op::PushLocal(i) | Op::PopLocal(i) => i < f.n_vars,
-        Op::PushArg(i) | Op::PopArg(i) => i < nargs,
-        op => blocks::kind(op) == Kind::Straight,
-    };
-    if !body.iter().all(fits) {
-        return None;
-    }
     // Where the call zeroes the locals (web), the run starts above them.
     let locals = if env.timing.function_step {
         0
     } else {
         i32::from(f.n_vars)
     };
-    let run = &ops[..=len];
-    let (min_depth, max_depth) = blocks::depth_range(run);
-    (min_depth >= 0).then(|| Inline {
+    if f.n_vars > MAX_INLINE_LOCALS {
+        return None;
+    }
+    let (mut depth, mut top) = (0i32, 0i32);
+    let (mut steps, mut size, mut frames) = (0u64, 0usize, 1u32);
+    let mut keeps_frame = keeps_frames(&ops[..len], env.profile);
+    let mut from = 0;
+    // The stretches between nested calls, each call's run, the return.
+    for (k, op) in ops[..=len].iter().enumerate() {
+        let fits = match *op {
+            Op::PushLocal(i) | Op::PopLocal(i) => i < f.n_vars,
+            Op::PushArg(i) | Op::PopArg(i) => i < nargs,
+            Op::Call { .. } | Op::Return => true,
+            op => blocks::kind(op) == Kind::Straight,
+        };
+        if !fits {
+            return None;
+        }
+        steps += op.steps();
+        size += 1;
+        let Op::Call {
+            callee: inner,
+            nargs: n,
+            ..
+        } = *op
+        else {
+            continue;
+        };
+        let (low, high) = blocks::depth_range(&ops[from..k]);
+        if depth + low < 0 {
+            return None;
+        }
+        top = top.max(depth + high);
+        depth += blocks::net_depth(&ops[from..k]);
+        let run = inline_run(env, FnId::from(inner), n, level + 1)?;
+        if depth < i32::from(n) {
+            return None;
+        }
+        // The nested frame: 5 saved words above SP, then its run.
+        top = top.max(depth + 5 + run.top);
+        depth += 1 - i32::from(n);
+        steps += run.steps;
+        size += run.size;
+        keeps_frame &= run.keeps_frame;
+        frames = frames.max(1 + run.frames);
+        from = k + 1;
+    }
+    let (low, high) = blocks::depth_range(&ops[from..=len]);
+    if depth + low < 0 || size > MAX_INLINE_TOTAL {
+        return None;
+    }
+    Some(Inline {
         start,
         end: start + len as u32 + 1,
-        steps: run.iter().map(|op| op.steps()).sum(),
-        top: locals + max_depth,
+        steps,
+        top: locals + top.max(depth + high),
+        size,
+        frames,
+        keeps_frame,
     })
 }
 
-/// The call whose callee runs inline (see `Translator::inlined`), and
-/// the caller's registers it saved in the frame.
+/// A compiled call: what its frame stack entry holds, and the caller's
+/// registers it saved in the frame.
 #[derive(Clone, Copy)]
-struct Inlined {
+struct CallSite {
     callee: FnId,
     /// The call's argument count.
     n: u16,
@@ -253,9 +365,11 @@ struct Inlined {
     frames_len: Value,
     nargs: Value,
     flags: Value,
-    /// The caller's LCL and ARG.
+    /// The caller's LCL, ARG, THIS and THAT.
     lcl: Value,
     arg: Value,
+    this: Value,
+    that: Value,
 }
 
 /// Desktop, in `Translator::flags_known` beside the flags: the block's
@@ -294,6 +408,12 @@ fn ptr_tests(code: &[Op]) -> Vec<PtrTest> {
                 run[usize::from(p)] = None;
                 continue;
             }
+            // (In an inline run's body: the nested run's return reloads
+            // both pointers from its frame.)
+            Op::Call { .. } => {
+                run = [None; 2];
+                continue;
+            }
             _ => continue,
         };
         if usize::from(i) + 6 >= RAM_SIZE {
@@ -324,7 +444,7 @@ fn held_span(code: &[Op]) -> (Option<(i32, i32)>, &[Op]) {
         [Op::Function { n_vars, .. }, rest @ ..] => (i32::from(*n_vars), rest),
         _ => (0, code),
     };
-    let (min_depth, max_depth) = blocks::depth_range(rest);
+    let (min_depth, max_depth) = blocks::depth_range_through_calls(rest);
     let span = (min_depth < max_depth).then_some((locals + min_depth, locals + max_depth));
     (span, rest)
 }
@@ -417,7 +537,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         budgets,
         frame_shown: false,
         range: None,
-        inlined: None,
+        inlined: Vec::new(),
+        return_registers: None,
     };
     t.range = t.static_range();
     // A compiled call passes the registers; the dispatcher, the context.
@@ -704,18 +825,13 @@ impl Translator<'_, '_> {
     }
 
     /// Leave compiled code with `code` and `pc`, in this function (or in
-    /// the callee being run inline, after pushing its frame on the frame
-    /// stack).
+    /// the callee being run inline, after pushing its frame, and those of
+    /// the runs it is nested in, on the frame stack).
     fn leave_with(&mut self, code: Value, pc: Value) {
+        self.write_return_registers();
         let mut me = self.env.id;
-        if let Some(call) = self.inlined {
-            self.push_frame_entry(
-                call.frames_len,
-                call.ret_pc,
-                call.ret,
-                call.nargs,
-                call.flags,
-            );
+        for call in self.inlined.clone() {
+            self.push_frame_entry(me, &call);
             me = call.callee;
         }
         let me = self.c32(i64::from(me));
@@ -1006,10 +1122,28 @@ impl Translator<'_, '_> {
 
     /// Translate instructions `from..to` of a block entered with step count
     /// `steps0` and stack `s` (`blk` is the block of the function being
-    /// translated, which a final jump, call or return charges).
-    fn ops(&mut self, s: &mut Stack, from: u32, to: u32, steps0: Value, blk: &Block) {
-        for pc in from..to {
+    /// translated, which a final jump, call or return charges). In the body
+    /// of an inline run, a nested run's call is followed by a stretch of
+    /// its own (its first instruction and step count): the last is
+    /// returned.
+    fn ops(
+        &mut self,
+        s: &mut Stack,
+        from: u32,
+        to: u32,
+        steps0: Value,
+        blk: &Block,
+    ) -> (u32, Value) {
+        let (first, mut from, mut steps0) = (from, from, steps0);
+        for pc in first..to {
             let op = self.env.code[pc as usize];
+            if matches!(
+                op,
+                Op::PushAbs(13 | 14) | Op::PopAbs(13 | 14) | Op::PopRam(13 | 14)
+            ) {
+                self.write_return_registers();
+                self.return_registers = None;
+            }
             let may_touch_stack = self.may_touch_stack(op, pc);
             if may_touch_stack {
                 s.flush(self);
@@ -1031,7 +1165,12 @@ impl Translator<'_, '_> {
                 s.flush(self);
                 s.forget();
             }
+            if matches!(op, Op::Call { .. }) && !self.inlined.is_empty() {
+                from = pc + 1;
+                steps0 = self.b.use_var(self.v.steps);
+            }
         }
+        (from, steps0)
     }
 
     /// Whether `op` at `pc` reads or writes RAM where the block's
@@ -1619,7 +1758,10 @@ impl Translator<'_, '_> {
 
     /// `call callee nargs`: push the frame in RAM and in the frame stack and
     /// run the callee's compiled code directly; when it returns here,
-    /// continue with the next block.
+    /// continue with the next block. A callee that runs inline pushes no
+    /// frame stack entry unless compiled code leaves inside it; inside an
+    /// inline run (a nested call, which [`inline_run`] showed runs inline
+    /// too), the run's code goes on after its return.
     fn call(
         &mut self,
         callee: FnId,
@@ -1643,25 +1785,37 @@ impl Translator<'_, '_> {
             self.exit_before(before);
             return;
         }
-        let len = self.frames_len();
-        let limit = self.fixed_field(offset_of!(Ctx, frames_limit));
+        // Nested in an inline run: the frame stack holds none of the
+        // frames of the runs around this call yet.
+        let nested = self.inlined.last().copied();
+        let len = match nested {
+            Some(outer) => self.b.ins().iadd_imm_s(outer.frames_len, 1),
+            None => self.frames_len(),
+        };
+        let inline = inline_callee(&self.env, callee, n);
         // Room in the frame stack and native nesting bounded (no room if
-        // calls must not run compiled), the callee not watched, and the new
-        // frame in plain RAM.
-        let watch = self.fixed_field(offset_of!(Ctx, watch));
-        let watched = self.b.ins().uload8(
-            T32,
-            self.mem.fixed,
-            watch,
-            i32::try_from(callee).expect("function ids fit"),
-        );
-        let mut ok = vec![
-            self.b.ins().icmp(IntCC::UnsignedLessThan, len, limit),
-            self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0),
-        ];
+        // calls must not run compiled) for the call's frame, and those of
+        // the runs nested in it (tested by the outermost call), the callee
+        // not watched, and the new frame in plain RAM.
+        let mut ok = Vec::new();
+        if nested.is_none() {
+            let limit = self.fixed_field(offset_of!(Ctx, frames_limit));
+            let frames = inline.map_or(1, |run| run.frames);
+            let last = self.b.ins().iadd_imm_s(len, i64::from(frames) - 1);
+            ok.push(self.b.ins().icmp(IntCC::UnsignedLessThan, last, limit));
+        }
+        if nested.is_none() {
+            let watched = self.watched(&[callee]);
+            ok.push(self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0));
+            if let Some(run) = inline {
+                self.nested_unwatched(run, before);
+            }
+        }
         let base = s.sp(self);
-        if self.depths.is_none() {
-            // (With static depths the entry test covered the frame.)
+        if self.depths.is_none() && nested.is_none() {
+            // (With static depths the entry test covered the frame; the
+            // test of the outermost inline run's call covers those nested
+            // in it.)
             let base64 = self.b.ins().uextend(T64, base);
             let top = self.frame_top(callee, n);
             let top = self.b.ins().iadd_imm_s(base64, 5 + i64::from(top));
@@ -1695,24 +1849,35 @@ impl Translator<'_, '_> {
         for k in 0..i32::from(n_vars) {
             self.b.ins().store(self.mem.ram, zero, p, 10 + 2 * k);
         }
-        if let Some(inline) = inline_callee(&self.env, callee, n) {
-            let call = Inlined {
-                callee,
-                n,
-                ret_pc: before.pc + 1,
-                ret,
-                frames_len: len,
-                nargs: self.b.use_var(self.v.nargs),
-                flags: self.b.use_var(self.v.flags),
-                lcl: self.b.use_var(self.v.lcl),
-                arg: self.b.use_var(self.v.arg),
-            };
-            let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
+        let call = CallSite {
+            callee,
+            n,
+            ret_pc: before.pc + 1,
+            ret,
+            frames_len: len,
+            nargs: self.b.use_var(self.v.nargs),
+            flags: self.b.use_var(self.v.flags),
+            lcl: self.b.use_var(self.v.lcl),
+            arg: self.b.use_var(self.v.arg),
+            this: self.b.use_var(self.v.this),
+            that: self.b.use_var(self.v.that),
+        };
+        // The steps up to here, the call's included (it ends the block
+        // unless it is nested in an inline run).
+        let charged = match nested {
+            Some(_) => before.k + 1,
+            None => blk.steps,
+        };
+        let steps = self.b.ins().iadd_imm_s(before.steps0, charged as i64);
+        if let Some(inline) = inline {
             self.run_inline(call, inline, base, p, steps, n_vars, blk);
+            if nested.is_some() {
+                s.depth += 1 - i32::from(n);
+            }
             return;
         }
-        let (nargs, flags) = (self.b.use_var(self.v.nargs), self.b.use_var(self.v.flags));
-        self.push_frame_entry(len, before.pc + 1, ret, nargs, flags);
+        assert!(nested.is_none(), "inline_run runs every nested call inline");
+        self.push_frame_entry(self.env.id, &call);
 
         // The callee's registers go as arguments (`native::Entry`).
         let this = self.b.use_var(self.v.this);
@@ -1723,7 +1888,6 @@ impl Translator<'_, '_> {
         let ptrs = self.b.ins().bor(this, that);
         let nargs_flags = self.c32(i64::from(n) | i64::from(entry_flags) << 16);
         let base32 = self.b.ins().uextend(T32, base);
-        let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
         let func = (self.env.callee)(self.b.func, callee);
         let called = self.c32(CALLED);
         let call = self
@@ -1761,14 +1925,16 @@ impl Translator<'_, '_> {
             self.b.def_var(var, x);
             restored.push(x);
         }
-        self.continue_after_call(restored[0], restored[1], lcl, arg, before.pc + 1);
+        self.same_frame_or_leave(restored[0], restored[1], lcl, arg, before.pc + 1);
+        self.jump_to(before.pc + 1);
     }
 
     /// After a call returned in compiled code with LCL and ARG `restored`
     /// from its frame: if they are the caller's `lcl` and `arg`, which keep
-    /// the entry test's word, continue at `next`; if the callee changed
-    /// them, the interpreter runs on from there.
-    fn continue_after_call(
+    /// the entry test's word, go on (at `next`, where the caller's code
+    /// continues); if the callee changed them, the interpreter runs on
+    /// from `next`.
+    fn same_frame_or_leave(
         &mut self,
         restored_lcl: Value,
         restored_arg: Value,
@@ -1789,7 +1955,49 @@ impl Translator<'_, '_> {
         // The same values: keep the ones the function entered with.
         self.b.def_var(self.v.lcl, lcl);
         self.b.def_var(self.v.arg, arg);
-        self.jump_to(next);
+    }
+
+    /// Nonzero where one of `callees` is watched (their watch bytes or'ed).
+    fn watched(&mut self, callees: &[FnId]) -> Value {
+        let watch = self.fixed_field(offset_of!(Ctx, watch));
+        let bytes: Vec<Value> = callees
+            .iter()
+            .map(|&f| {
+                let at = i32::try_from(f).expect("function ids fit");
+                self.b.ins().uload8(T32, self.mem.fixed, watch, at)
+            })
+            .collect();
+        bytes
+            .into_iter()
+            .reduce(|a, b| self.b.ins().bor(a, b))
+            .expect("at least one callee")
+    }
+
+    /// Leave before the outermost call of inline run `run` where a call
+    /// nested in it is of a watched function (tested only where the watch
+    /// set names some function): the interpreter makes the call, and the
+    /// callee's compiled code then runs up to the watched call.
+    fn nested_unwatched(&mut self, run: Inline, before: &Before) {
+        let mut callees = Vec::new();
+        nested_callees(&self.env, run, &mut callees);
+        if callees.is_empty() {
+            return;
+        }
+        let any = self.b.ins().uload8(
+            T32,
+            self.mem.fixed,
+            self.ctx,
+            field(offset_of!(Ctx, any_watched)),
+        );
+        let (check, cont) = (self.b.create_block(), self.b.create_block());
+        self.b.ins().brif(any, check, NONE, cont, NONE);
+        self.b.switch_to_block(check);
+        self.b.set_cold_block(check);
+        let watched = self.watched(&callees);
+        let ok = self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0);
+        self.guard(ok, before);
+        self.b.ins().jump(cont, NONE);
+        self.b.switch_to_block(cont);
     }
 
     /// The highest SP that a call of `callee` with `nargs` arguments
@@ -1804,16 +2012,25 @@ impl Translator<'_, '_> {
         }
     }
 
-    /// Push the frame stack entry of a call (`Frame`, two words: caller and
-    /// ret_pc; ret, nargs, flags, and watched = false) at index `len`.
-    fn push_frame_entry(&mut self, len: Value, ret_pc: u32, ret: u16, nargs: Value, flags: Value) {
+    /// Push the frame stack entry of a call from `caller` (`Frame`, two
+    /// words: caller and ret_pc; ret, nargs, flags, and watched = false) at
+    /// index `call.frames_len`.
+    fn push_frame_entry(&mut self, caller: FnId, call: &CallSite) {
+        let CallSite {
+            frames_len: len,
+            ret_pc,
+            ret,
+            nargs,
+            flags,
+            ..
+        } = *call;
         let frames = self.fixed_field(offset_of!(Ctx, frames));
         let off = self
             .b
             .ins()
             .imul_imm_s(len, std::mem::size_of::<Frame>() as i64);
         let fp = self.b.ins().iadd(frames, off);
-        let head = i64::from(self.env.id) | i64::from(ret_pc) << 32;
+        let head = i64::from(caller) | i64::from(ret_pc) << 32;
         let head = self.b.ins().iconst(T64, head);
         self.b.ins().store(self.mem.frames, head, fp, 0);
         let nargs = self.b.ins().uextend(T64, nargs);
@@ -1838,10 +2055,12 @@ impl Translator<'_, '_> {
     /// call being `zeroed`: the callee's registers in the variables, its
     /// instructions translated as a block of its own (leaving compiled code
     /// anywhere in it pushes its frame stack entry first), then its return.
+    /// The outermost run tests the budget for its whole run, nested runs
+    /// included.
     #[allow(clippy::too_many_arguments)]
     fn run_inline(
         &mut self,
-        call: Inlined,
+        call: CallSite,
         inline: Inline,
         base: Value,
         p: Value,
@@ -1877,7 +2096,8 @@ impl Translator<'_, '_> {
         self.reach = reach(code);
         self.block_start = inline.start;
         self.flags_known = 0;
-        self.inlined = Some(call);
+        let outermost = self.inlined.is_empty();
+        self.inlined.push(call);
         let sbase = self.b.ins().iadd_imm_s(p, 2 * (5 + i64::from(zeroed)));
         let (span, _) = held_span(code);
         self.stack_span = span.map(|(lo, hi)| {
@@ -1894,16 +2114,18 @@ impl Translator<'_, '_> {
             base: sbase,
             pending: Vec::new(),
         };
-        let ok = self.fits(steps, inline.steps);
-        self.guard(ok, &entry);
+        if outermost {
+            let ok = self.fits(steps, inline.steps);
+            self.guard(ok, &entry);
+        }
         let mut s = Stack {
             sp0,
             base: sbase,
             depth: 0,
             slots: Vec::new(),
         };
-        self.ops(&mut s, inline.start, inline.end - 1, steps, blk);
-        self.return_inline(&mut s, call, inline, steps);
+        let (from, steps0) = self.ops(&mut s, inline.start, inline.end - 1, steps, blk);
+        self.return_inline(&mut s, inline.end - 1, from, steps0, inline.keeps_frame);
         (
             self.reach,
             self.ptr_tests,
@@ -1911,36 +2133,65 @@ impl Translator<'_, '_> {
             self.stack_span,
             self.flags_known,
         ) = saved;
+        // The registers come back from the frame, which the run may have
+        // written: no `pop pointer` test of the caller's holds for them.
+        self.flags_known &= !(in_range(true) | in_range(false));
     }
 
-    /// The `return` of a callee run inline: as `ret` does, with what the
-    /// call knows (the frame is the call's, the caller's code continues).
-    fn return_inline(&mut self, s: &mut Stack, call: Inlined, inline: Inline, steps0: Value) {
+    /// The `return` (at `pc`) of the innermost callee run inline, which
+    /// ends the stretch of its code from `from` entered with step count
+    /// `steps0`:
+    /// as `ret` does, with what the call knows (the frame is the call's,
+    /// the caller's code continues: at the call's next block, or after
+    /// the call where the caller is itself run inline).
+    /// Where the run keeps its frame (`keeps_frame`), the RET word and the
+    /// saved registers are the ones the call wrote: the return takes them
+    /// from the call, untested.
+    fn return_inline(
+        &mut self,
+        s: &mut Stack,
+        pc: u32,
+        from: u32,
+        steps0: Value,
+        keeps_frame: bool,
+    ) {
+        let call = *self.inlined.last().expect("an inline run");
         s.flush(self);
         let before = Before {
-            pc: inline.end - 1,
-            k: u64::from(inline.end - 1 - inline.start),
+            pc,
+            k: u64::from(pc - from),
             depth: s.depth,
             steps0,
             sp0: s.sp0,
             base: s.base,
             pending: Vec::new(),
         };
-        // The RET word intact (else the interpreter returns where it says).
         let frame = self.b.use_var(self.v.lcl);
         let fr = self.word(frame);
-        let ret_word = self.b.ins().load(T16, self.mem.ram, fr, -10);
-        let ok = self
-            .b
-            .ins()
-            .icmp_imm_s(IntCC::Equal, ret_word, i64::from(call.ret as i16));
-        self.guard(ok, &before);
-        self.desktop_return_registers(frame, ret_word);
+        let ret_word = if keeps_frame {
+            self.c16(i64::from(call.ret))
+        } else {
+            // The RET word intact (else the interpreter returns where it
+            // says).
+            let ret_word = self.b.ins().load(T16, self.mem.ram, fr, -10);
+            let ok = self
+                .b
+                .ins()
+                .icmp_imm_s(IntCC::Equal, ret_word, i64::from(call.ret as i16));
+            self.guard(ok, &before);
+            ret_word
+        };
+        if self.env.profile == Profile::Desktop && self.inlined.len() > 1 {
+            self.return_registers = Some((frame, ret_word));
+        } else {
+            self.return_registers = None;
+            self.desktop_return_registers(frame, ret_word);
+        }
         let x = s.pop(self);
         let arg = self.b.use_var(self.v.arg);
         self.store_word(arg, x);
-        self.inlined = None;
-        let steps = self.b.ins().iadd_imm_s(steps0, inline.steps as i64);
+        self.inlined.pop();
+        let steps = self.b.ins().iadd_imm_s(steps0, i64::from(pc + 1 - from));
         let sp = self.b.ins().iadd_imm_s(arg, 1);
         for (var, x) in [
             (self.v.steps, steps),
@@ -1950,18 +2201,40 @@ impl Translator<'_, '_> {
         ] {
             self.b.def_var(var, x);
         }
-        let mut restored = Vec::new();
-        for (var, at) in [
-            (self.v.lcl, -8),
-            (self.v.arg, -6),
-            (self.v.this, -4),
-            (self.v.that, -2),
-        ] {
-            let r = self.b.ins().load(T16, self.mem.ram, fr, at);
-            self.b.def_var(var, r);
-            restored.push(r);
+        if keeps_frame {
+            for (var, x) in [
+                (self.v.lcl, call.lcl),
+                (self.v.arg, call.arg),
+                (self.v.this, call.this),
+                (self.v.that, call.that),
+            ] {
+                self.b.def_var(var, x);
+            }
+        } else {
+            let mut restored = Vec::new();
+            for (var, at) in [
+                (self.v.lcl, -8),
+                (self.v.arg, -6),
+                (self.v.this, -4),
+                (self.v.that, -2),
+            ] {
+                let r = self.b.ins().load(T16, self.mem.ram, fr, at);
+                self.b.def_var(var, r);
+                restored.push(r);
+            }
+            self.same_frame_or_leave(restored[0], restored[1], call.lcl, call.arg, call.ret_pc);
         }
-        self.continue_after_call(restored[0], restored[1], call.lcl, call.arg, call.ret_pc);
+        if self.inlined.is_empty() {
+            self.jump_to(call.ret_pc);
+        }
+    }
+
+    /// Write the R13 and R14 that a nested inline run's return left
+    /// pending (`Translator::return_registers`).
+    fn write_return_registers(&mut self) {
+        if let Some((frame, ret_word)) = self.return_registers {
+            self.desktop_return_registers(frame, ret_word);
+        }
     }
 
     /// Desktop: a return leaves FRAME in R13 and RET in R14, as the
