@@ -806,5 +806,15 @@ mod tests {
         }
         let seed = generate(&program("seed", Formulation::Float316));
         assert!(!seed.contains("_newton1"));
+        let ops = generate(&program("tests/seed-tuned-ops", Formulation::Float316));
+        for used in [
+            "fn mul_truncated(",
+            "fn floor316_direct(",
+            "= mul_truncated(r",
+            "= floor316_direct(r",
+        ] {
+            assert!(ops.contains(used), "{used}");
+        }
+        assert!(!seed.contains("_truncated(") && !seed.contains("_direct("));
     }
 }

@@ -12,7 +12,14 @@
 //! ...) over the operations the program calls itself. On the scene's with
 //! every operation site at its variant: each variant's subroutine
 //! (`sqrtNewton1`, `mulTruncated`, `floorDirect`) over the calls the
-//! reference counts of it. `Main.init` is measured on the untuned program; the
+//! reference counts of it. The code outside the operations is fitted, by
+//! least squares over the sampled pixels of both programs, as a cost per
+//! operation the program calls itself plus a cost per operation of any
+//! kind: the second is the `Float316.set` and `absOf` an operation ends
+//! with, which the profile counts apart from it, so that an operation
+//! made inside another (an `add` of `sqrt`'s second Newton step) saves its
+//! own `set` too when a variant leaves it out. `Main.init` is measured on
+//! the untuned program; the
 //! set-up's operations in it are charged as counted, so that a tuned set-up
 //! site costs what it saves. A variant that no sampled pixel calls is
 //! charged as its operation.
@@ -40,6 +47,9 @@ pub struct CostModel {
     pub per_variant: [PerOp; Tuning::ALL.len()],
     /// The program's own code per operation it calls.
     pub per_outer_call: f64,
+    /// The code outside the operations per operation of any kind (the
+    /// `set` each ends with).
+    pub per_call: f64,
     /// `Main.init` without the set-up's operations, once per image.
     pub init_instructions: f64,
     /// Pixels of the image.
@@ -86,6 +96,9 @@ struct Spent {
     by_op: [[u64; Op::ALL.len()]; Tuning::ALL.len() + 1],
     counts: OpCounts,
     total: u64,
+    /// Each pixel's instructions outside the operations' subroutines, its
+    /// operations called by the program, and all its operations.
+    outside: Vec<(f64, f64, f64)>,
 }
 
 impl Spent {
@@ -105,13 +118,20 @@ impl Spent {
             .collect::<anyhow::Result<_>>()?;
         for (profile, c) in &measured {
             self.counts.add(c);
+            let mut outside = 0;
             for (function, n) in profile {
                 self.total += n;
-                if let Some((op, variant)) = operation(function) {
-                    let row = variant.map_or(0, |t| 1 + t as usize);
-                    self.by_op[row][op as usize] += n;
+                match operation(function) {
+                    Some((op, variant)) => {
+                        let row = variant.map_or(0, |t| 1 + t as usize);
+                        self.by_op[row][op as usize] += n;
+                    }
+                    None => outside += n,
                 }
             }
+            let all: u64 = c.all.iter().sum();
+            self.outside
+                .push((outside as f64, c.outer_total() as f64, all as f64));
         }
         Ok(())
     }
@@ -132,6 +152,29 @@ impl Spent {
         }
         Ok(per_op)
     }
+}
+
+/// The costs `(a, b)` that fit `outside ≈ a * outer + b * all` over the
+/// pixels `(outside, outer, all)` by least squares, both at least 0; `b`
+/// is 0 (and `a` the ratio of the sums) where the pixels cannot tell the
+/// two apart.
+fn fit_outside(pixels: &[(f64, f64, f64)]) -> (f64, f64) {
+    let sum = |f: &dyn Fn(&(f64, f64, f64)) -> f64| pixels.iter().map(f).sum::<f64>();
+    let (oo, oa, aa) = (
+        sum(&|p| p.1 * p.1),
+        sum(&|p| p.1 * p.2),
+        sum(&|p| p.2 * p.2),
+    );
+    let (yo, ya) = (sum(&|p| p.0 * p.1), sum(&|p| p.0 * p.2));
+    let det = oo * aa - oa * oa;
+    if det > 1e-9 * oo * aa {
+        let a = (yo * aa - ya * oa) / det;
+        let b = (ya * oo - yo * oa) / det;
+        if a >= 0.0 && b >= 0.0 {
+            return (a, b);
+        }
+    }
+    (sum(&|p| p.0) / sum(&|p| p.1).max(1.0), 0.0)
 }
 
 impl CostModel {
@@ -166,12 +209,13 @@ impl CostModel {
                 per_variant[t as usize][op as usize] = measured[op as usize];
             }
         }
-        let in_ops: u64 = spent.by_op.iter().flatten().sum();
-        let outer = counts.outer_total();
+        let (per_outer_call, per_call) =
+            fit_outside(&[spent.outside.as_slice(), &tuned_spent.outside].concat());
         let mut model = CostModel {
             per_op,
             per_variant,
-            per_outer_call: (spent.total - in_ops) as f64 / outer.max(1) as f64,
+            per_outer_call,
+            per_call,
             init_instructions: 0.0,
             pixels: u64::from(width) * u64::from(height),
             sample: pixels.len(),
@@ -200,7 +244,8 @@ impl CostModel {
                 spec + variants
             })
             .sum();
-        ops + counts.outer_total() as f64 * self.per_outer_call
+        let all: u64 = counts.all.iter().sum();
+        ops + counts.outer_total() as f64 * self.per_outer_call + all as f64 * self.per_call
     }
 
     /// VM instructions per pixel of an image whose operations are `counts`.
@@ -239,6 +284,23 @@ mod tests {
         assert_eq!(operation("Float316.add"), Some((Op::Add, None)));
         assert_eq!(operation("Float316.copy"), None);
         assert_eq!(operation("Ops.double"), None);
+    }
+
+    #[test]
+    fn the_code_outside_the_operations_is_fitted_per_outer_and_per_any_call() {
+        // 30 per operation the program calls, 10 per operation of any kind.
+        let pixels: Vec<(f64, f64, f64)> = [(10.0, 40.0), (20.0, 25.0), (5.0, 50.0)]
+            .iter()
+            .map(|&(outer, all)| (30.0 * outer + 10.0 * all, outer, all))
+            .collect();
+        let (a, b) = fit_outside(&pixels);
+        assert!(
+            (a - 30.0).abs() < 1e-6 && (b - 10.0).abs() < 1e-6,
+            "{a} {b}"
+        );
+        // Proportional pixels cannot tell the two apart: all per outer.
+        let (a, b) = fit_outside(&[(70.0, 1.0, 2.0), (140.0, 2.0, 4.0)]);
+        assert_eq!((a, b), (70.0, 0.0));
     }
 
     #[test]
