@@ -2,7 +2,7 @@
 //! the plain render, and its counts are the sum of its pixels' counts.
 
 use common::Op;
-use reference::{Described, OpCounts, RefImpl, Settings};
+use reference::{Described, RefImpl, Settings};
 use std::path::Path;
 
 /// The small test scene of `harness tune` (64x32) in `implementation`.
