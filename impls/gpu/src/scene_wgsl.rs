@@ -280,15 +280,19 @@ impl Emitter<'_> {
     }
 
     /// `call` (a library call `f(...)`) as the tuned site's variant of `f`
-    /// (`sqrt316_newton1(...)`); unchanged outside a tuned site, and in
-    /// float programs, whose operations have no such variants.
+    /// (`sqrt316_newton1(...)`, `mul_truncated(...)`,
+    /// `floor316_direct(...)`); unchanged outside a tuned site, and in float
+    /// programs, whose operations have no such variants.
     fn tuned(&self, call: String) -> String {
-        let suffix = match (self.tuning, self.t.0) {
-            (Some(Tuning::Newton1), Formulation::Float316) => "_newton1",
+        let variant = match (self.tuning, self.t.0) {
+            (Some(variant), Formulation::Float316) => variant,
             _ => return call,
         };
         match call.split_once('(') {
-            Some((head, rest)) => format!("{head}{suffix}({rest}"),
+            Some((head, rest)) => {
+                let suffix = variant.suffix().to_lowercase();
+                format!("{head}_{suffix}({rest}")
+            }
             None => call,
         }
     }
@@ -306,7 +310,8 @@ impl Emitter<'_> {
                 self.line(&format!("r{dst} = {e};"))
             }
             Stmt::Binary { dst, op, a, b } => {
-                self.line(&format!("r{dst} = {};", t.binary(*op, &r(a), &r(b))))
+                let e = self.tuned(t.binary(*op, &r(a), &r(b)));
+                self.line(&format!("r{dst} = {e};"))
             }
             Stmt::Vector { dst, op, a, b } => {
                 let bv = if *op == VecOp::Scale {
@@ -801,5 +806,15 @@ mod tests {
         }
         let seed = generate(&program("seed", Formulation::Float316));
         assert!(!seed.contains("_newton1"));
+        let ops = generate(&program("tests/seed-tuned-ops", Formulation::Float316));
+        for used in [
+            "fn mul_truncated(",
+            "fn floor316_direct(",
+            "= mul_truncated(r",
+            "= floor316_direct(r",
+        ] {
+            assert!(ops.contains(used), "{used}");
+        }
+        assert!(!seed.contains("_truncated(") && !seed.contains("_direct("));
     }
 }

@@ -1,11 +1,13 @@
 //! How many Float316 operations a run makes, for an estimate of what it
 //! costs on another machine: every call of each operation, and the calls
 //! the program makes itself rather than an operation does (`sub` calls
-//! `add`; `sqrt` calls `div`, `add` and `halve`).
+//! `add`; `sqrt` calls `div`, `add` and `halve`), and the calls run as a
+//! tuned call site's variant (`sqrtNewton1`, `mulTruncated`).
 
 use crate::engine::R;
 use crate::tracer::Recorder;
 use common::{Op, OpValue, F316};
+use scene::ir::Tuning;
 use serde::{Deserialize, Serialize};
 
 /// Operation counts, each array indexed as [`Op::ALL`].
@@ -15,12 +17,29 @@ pub struct OpCounts {
     pub all: [u64; Op::ALL.len()],
     /// The calls made outside any operation: by the program itself.
     pub outer: [u64; Op::ALL.len()],
+    /// The calls of each operation run as each variant (indexed as
+    /// [`Tuning::ALL`], then [`Op::ALL`]); counted in `all` too.
+    pub variant: [[u64; Op::ALL.len()]; Tuning::ALL.len()],
 }
 
 impl OpCounts {
     /// Every call of `op`.
     pub fn of(&self, op: Op) -> u64 {
         self.all[op as usize]
+    }
+
+    /// The calls of `op` run as `variant`.
+    pub fn of_variant(&self, op: Op, variant: Tuning) -> u64 {
+        self.variant[variant as usize][op as usize]
+    }
+
+    /// The calls of `op` run as the spec computes it.
+    pub fn of_spec(&self, op: Op) -> u64 {
+        self.of(op)
+            - Tuning::ALL
+                .iter()
+                .map(|&t| self.of_variant(op, t))
+                .sum::<u64>()
     }
 
     /// The calls the program makes itself, all operations together.
@@ -35,6 +54,11 @@ impl OpCounts {
         }
         for (a, b) in self.outer.iter_mut().zip(other.outer) {
             *a += b;
+        }
+        for (mine, theirs) in self.variant.iter_mut().zip(other.variant) {
+            for (a, b) in mine.iter_mut().zip(theirs) {
+                *a += b;
+            }
         }
     }
 }
@@ -68,6 +92,11 @@ impl Recorder for Counter {
     }
 
     #[inline(always)]
+    fn variant(&mut self, op: Op, variant: Tuning) {
+        self.counts.variant[variant as usize][op as usize] += 1;
+    }
+
+    #[inline(always)]
     fn push(&mut self, _: String) {}
 
     #[inline(always)]
@@ -97,8 +126,15 @@ mod tests {
         assert_eq!(c.counts.of(Op::Sub), 1);
         assert_eq!(c.counts.outer_total(), 2);
         assert_eq!(c.counts.outer[Op::Add as usize], 1);
+        c.open(Op::Sqrt, &[]);
+        c.variant(Op::Sqrt, Tuning::Newton1);
+        assert_eq!(c.counts.of(Op::Sqrt), 1);
+        assert_eq!(c.counts.of_variant(Op::Sqrt, Tuning::Newton1), 1);
+        assert_eq!(c.counts.of_spec(Op::Sqrt), 0);
+        assert_eq!(c.counts.of_spec(Op::Add), 2);
         let mut sum = c.counts;
         sum.add(&c.counts);
         assert_eq!(sum.of(Op::Add), 4);
+        assert_eq!(sum.of_variant(Op::Sqrt, Tuning::Newton1), 2);
     }
 }

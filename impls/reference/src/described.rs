@@ -346,15 +346,24 @@ impl Described {
         }
     }
 
-    /// The whole image with the Float316 operations it made, rows in
-    /// parallel. `ref-f316` only.
+    /// The whole image with the Float316 operations it made (the set-up's
+    /// once and every pixel's), rows in parallel. `ref-f316` only.
     pub fn render_counted(&self) -> Result<(SceneImage, OpCounts), DescribedError> {
         let k = self.f316()?;
         let engine = || F316Engine::recording(self.arith, Counter::default());
         let (image, rows) = image_with(engine, &self.fast, k, |e| e.into_recorder().counts);
-        let mut counts = OpCounts::default();
+        let mut counts = self.setup_counted()?;
         rows.iter().for_each(|c| counts.add(c));
         Ok((image, counts))
+    }
+
+    /// The Float316 operations of the set-up (the camera, once per image).
+    /// `ref-f316` only.
+    pub fn setup_counted(&self) -> Result<OpCounts, DescribedError> {
+        self.f316()?;
+        let mut e = F316Engine::recording(self.arith, Counter::default());
+        Prepared::new(&self.program, &mut e)?;
+        Ok(e.into_recorder().counts)
     }
 
     /// Pixel (x, y) with the Float316 operations it made. `ref-f316` only.

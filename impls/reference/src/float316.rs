@@ -161,6 +161,9 @@ impl<Rec: Recorder, A: ArithSource> F316Engine<Rec, A> {
             return body(self);
         }
         let index = self.recorder.open(op, args);
+        if let Some(t) = self.tuning.filter(|t| t.changes(op)) {
+            self.recorder.variant(op, t);
+        }
         let result = body(self);
         self.recorder.close(index, result.map(Traceable::op_value));
         result
@@ -170,8 +173,8 @@ impl<Rec: Recorder, A: ArithSource> F316Engine<Rec, A> {
     /// arithmetic's.
     #[inline(always)]
     fn newton_steps(&self) -> u8 {
-        match self.tuning {
-            Some(t) => t.newton_steps(),
+        match self.tuning.and_then(Tuning::newton_steps) {
+            Some(steps) => steps,
             None => self.arith.arith().newton_steps,
         }
     }
@@ -322,6 +325,37 @@ fn mul_any(arith: &Arith, a: F316, b: F316) -> F316 {
         (m, e) = normalise_positive(m, e);
     }
     F316 { s: sign, e, m }
+}
+
+/// `mul(a, b)` of the `truncated-product` variant: the spec's `mul` with
+/// the mantissa product `(a.m / 128) * (b.m / 128)` alone, the two mixed
+/// products left out (at most 2/64 of the product below the spec's).
+fn mul_truncated(a: F316, b: F316) -> F316 {
+    let sign = j::and(j::add(a.s, b.s), 1);
+    if is_zero(a) || is_zero(b) {
+        return F316::new(sign, 0, 0);
+    }
+    let mut e = j::sub(j::add(a.e, b.e), 126);
+    let high = |m: i16| j::div(m, 128).unwrap_or(0);
+    let mut m = j::mul(high(a.m), high(b.m));
+    if m > 0 {
+        (m, e) = normalise_positive(m, e);
+    }
+    F316 { s: sign, e, m }
+}
+
+/// `floor`'s step down of a negative non-integer `r` (its fraction bits
+/// cleared; `unit` the mantissa's unit at the integer's last bit) under the
+/// `floor-direct` variant: `unit` added to the mantissa, renormalised
+/// once, as `add(r, -1.0)` computes it (the spec: -1.0's mantissa halved
+/// `r.e - 127` times is `unit`) without the call.
+fn step_down(r: F316, unit: i16) -> F316 {
+    let m = j::add(r.m, unit);
+    if m > M_MAX {
+        F316::new(r.s, j::add(r.e, 1), j::halve(m))
+    } else {
+        F316::new(r.s, r.e, m)
+    }
 }
 
 /// mul's mantissa product for any words, as Jack computes it.
@@ -550,7 +584,13 @@ impl<Rec: Recorder, A: ArithSource> Engine for F316Engine<Rec, A> {
 
     #[inline(always)]
     fn mul(&mut self, a: F316, b: F316) -> R<F316> {
-        self.traced(Op::Mul, &[a, b], |s| Ok(mul(&s.arith.arith(), a, b)))
+        self.traced(Op::Mul, &[a, b], |s| {
+            Ok(if s.tuning == Some(Tuning::TruncatedProduct) {
+                mul_truncated(a, b)
+            } else {
+                mul(&s.arith.arith(), a, b)
+            })
+        })
     }
 
     #[inline(always)]
@@ -589,10 +629,15 @@ impl<Rec: Recorder, A: ArithSource> Engine for F316Engine<Rec, A> {
             if i > 13 {
                 return Err(Trap::OutOfDomain);
             }
-            let kept = j::and(a.m, !j::sub(pow2(13 - i), 1));
+            let unit = pow2(13 - i);
+            let kept = j::and(a.m, !j::sub(unit, 1));
             let r = F316::new(a.s, a.e, kept);
             if a.s == 1 && kept != a.m {
-                s.add(r, MINUS_ONE)
+                if s.tuning == Some(Tuning::FloorDirect) {
+                    Ok(step_down(r, unit))
+                } else {
+                    s.add(r, MINUS_ONE)
+                }
             } else {
                 Ok(r)
             }
@@ -921,5 +966,48 @@ mod tests {
                 assert_eq!(normalise_positive(m, 0), (lm, le), "m = {m}");
             }
         }
+    }
+
+    /// An engine running every operation as `variant`'s call site does.
+    fn tuned(variant: Tuning) -> F316Engine {
+        let mut e = F316Engine::new(Arith::SPEC);
+        e.set_tuning(Some(variant));
+        e
+    }
+
+    /// `floor-direct` gives the spec's floor at every word of every sign and
+    /// exponent of its domain (and the same trap outside it), where a
+    /// negative non-integer's `add(r, -1.0)` is done on the mantissa.
+    #[test]
+    fn floor_direct_equals_floor_on_every_input() {
+        use rayon::prelude::*;
+        (i16::MIN..=i16::MAX).into_par_iter().for_each(|m| {
+            let (mut spec, mut direct) = (F316Engine::new(Arith::SPEC), tuned(Tuning::FloorDirect));
+            for e in (0..=142).chain([-1, 200, i16::MIN, i16::MAX]) {
+                for s in 0..=1 {
+                    let a = F316::new(s, e, m);
+                    assert_eq!(spec.floor(a), direct.floor(a), "floor({a:?})");
+                }
+            }
+        });
+    }
+
+    /// `truncated-product` keeps only the high halves' product: below the
+    /// spec's product by the mixed products over 128, never above it.
+    #[test]
+    fn truncated_product_is_the_high_halves_product() {
+        let mut e = tuned(Tuning::TruncatedProduct);
+        let (a, b) = (F316::new(0, 127, 12345), F316::new(1, 130, 9999));
+        let t = e.mul(a, b).unwrap();
+        let m = (12345 / 128) * (9999 / 128);
+        let (m, shift) = if m < M_MIN { (m * 2, 1) } else { (m, 0) };
+        assert_eq!(t, F316::new(1, 127 + 130 - 126 - shift, m));
+        let spec = F316Engine::new(Arith::SPEC).mul(a, b).unwrap();
+        assert!(t.to_f64().abs() < spec.to_f64().abs(), "{t:?} {spec:?}");
+        assert!(t.to_f64() / spec.to_f64() > 1.0 - 2.0 / 64.0);
+        // Zero operands and signs as the spec's.
+        assert_eq!(e.mul(F316::ZERO.negated(), a).unwrap(), F316::new(1, 0, 0));
+        // Only `mul` changes.
+        assert_eq!(e.add(a, b), F316Engine::new(Arith::SPEC).add(a, b));
     }
 }

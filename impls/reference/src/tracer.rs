@@ -17,6 +17,10 @@ pub trait Recorder {
     fn open(&mut self, op: Op, args: &[F316]) -> usize;
     /// Fill in the result of the record `index`.
     fn close(&mut self, index: usize, result: R<OpValue>);
+    /// The call of `op` just opened runs as the variant `variant` of a
+    /// tuned call site.
+    #[inline(always)]
+    fn variant(&mut self, _op: Op, _variant: scene::ir::Tuning) {}
     /// Enter a named frame.
     fn push(&mut self, frame: String);
     /// Leave the innermost frame.

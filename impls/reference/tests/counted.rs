@@ -2,7 +2,7 @@
 //! the plain render, and its counts are the sum of its pixels' counts.
 
 use common::Op;
-use reference::{Described, OpCounts, RefImpl, Settings};
+use reference::{Described, RefImpl, Settings};
 use std::path::Path;
 
 /// The small test scene of `harness tune` (64x32) in `implementation`.
@@ -18,7 +18,9 @@ fn the_counted_render_is_the_render_and_sums_its_pixels() {
     let d = small(RefImpl::F316);
     let (image, counts) = d.render_counted().unwrap();
     assert_eq!(image, d.render());
-    let mut sum = OpCounts::default();
+    // The set-up's operations once, then every pixel's.
+    let mut sum = d.setup_counted().unwrap();
+    assert!(sum.of(Op::InvSqrt) > 0, "the camera normalizes");
     for y in 0..image.height as u32 {
         for x in 0..image.width as u32 {
             let (pixel, c) = d.pixel_counted(x, y).unwrap();
@@ -41,4 +43,5 @@ fn only_ref_f316_counts() {
     let f64 = small(RefImpl::F64);
     assert!(f64.render_counted().is_err());
     assert!(f64.pixel_counted(0, 0).is_err());
+    assert!(f64.setup_counted().is_err());
 }

@@ -122,10 +122,7 @@ impl Emitter<'_> {
     /// The suffix of the subroutine that computes the tuned site's variant
     /// (`Newton1`: `sqrtNewton1`), empty outside a tuned site.
     fn variant(&self) -> &'static str {
-        match self.tuning {
-            None => "",
-            Some(Tuning::Newton1) => "Newton1",
-        }
+        self.tuning.map_or("", Tuning::suffix)
     }
 
     /// Three consecutive registers, as Jack arguments.
@@ -238,7 +235,7 @@ impl Emitter<'_> {
                 let (d, a) = (self.dst(*dst), self.r(*a));
                 let l = match op {
                     Unary::Sqrt => format!("do {a}.sqrt{}({d});", self.variant()),
-                    Unary::Floor => format!("do {a}.floor({d});"),
+                    Unary::Floor => format!("do {a}.floor{}({d});", self.variant()),
                     Unary::Mod2 => format!("do {a}.mod2({d});"),
                     Unary::Double => format!("do Ops.double({a}, {d});"),
                     Unary::Quarter => format!("do Ops.quarter({a}, {d});"),
@@ -254,7 +251,7 @@ impl Emitter<'_> {
                 let l = match op {
                     Binary::Add => format!("do {a}.add({b}, {d});"),
                     Binary::Sub => format!("do {a}.sub({b}, {d});"),
-                    Binary::Mul => format!("do {a}.mul({b}, {d});"),
+                    Binary::Mul => format!("do {a}.mul{}({b}, {d});", self.variant()),
                     Binary::Div => format!("do {a}.div({b}, {d});"),
                     Binary::Max => {
                         format!(

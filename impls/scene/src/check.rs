@@ -129,8 +129,9 @@ pub fn check(d: Description) -> Result<Checked, SceneError> {
 }
 
 /// Each `variants[i].site` names a site of the Float316 program, once,
-/// and its variant fits the site: `newton-1` an operation, `steps` a loop
-/// (1 to the loop's count).
+/// and its variant fits the site: an operation its own variant
+/// (`newton-1`, `truncated-product`, `floor-direct`), a loop `steps` (1 to
+/// the loop's count).
 fn variants(c: &Checked) -> Result<(), SceneError> {
     use crate::sites::{Choice, Kind};
     let chosen = &c.description.variants;
@@ -157,20 +158,26 @@ fn variants(c: &Checked) -> Result<(), SceneError> {
         }
         let field = format!("variants[{i}].variant");
         match (v.variant, kind) {
-            (Choice::Newton1, Kind::Op) => {}
             (Choice::Steps(n), Kind::Loop(count)) => in_range(&field, n, 1, count)?,
-            (Choice::Newton1, Kind::Loop(_)) => {
+            (Choice::Steps(_), Kind::Op(takes)) => {
                 return Err(err(
                     field,
-                    format!("`{}` is a loop: it takes `steps`", v.site),
+                    format!("`{}` is an operation: it takes `{takes}`", v.site),
                 ))
             }
-            (Choice::Steps(_), Kind::Op) => {
+            (choice, Kind::Loop(_)) => {
                 return Err(err(
                     field,
-                    format!("`{}` is an operation: it takes `newton-1`", v.site),
+                    format!("`{}` is a loop: it takes `steps`, not `{choice}`", v.site),
                 ))
             }
+            (choice, Kind::Op(takes)) if choice.tuning() != Some(takes) => {
+                return Err(err(
+                    field,
+                    format!("`{}` takes `{takes}`, not `{choice}`", v.site),
+                ))
+            }
+            (_, Kind::Op(_)) => {}
         }
     }
     Ok(())

@@ -90,23 +90,62 @@ pub enum Tuning {
     /// `sqrt`, `length` and `normalize`.
     #[serde(rename = "newton-1")]
     Newton1,
+    /// `mul` with the product of the mantissas' high halves only (the spec
+    /// adds the two mixed products, divided by 128): for `mul`.
+    #[serde(rename = "truncated-product")]
+    TruncatedProduct,
+    /// `floor` with a negative non-integer's step down done on the
+    /// mantissa, where the spec calls `add(r, -1.0)`: the spec's value at
+    /// every input, without the nested `add`. For `floor`.
+    #[serde(rename = "floor-direct")]
+    FloorDirect,
 }
 
 impl Tuning {
     /// Every variant a site can take.
-    pub const ALL: [Tuning; 1] = [Tuning::Newton1];
+    pub const ALL: [Tuning; 3] = [
+        Tuning::Newton1,
+        Tuning::TruncatedProduct,
+        Tuning::FloorDirect,
+    ];
 
     /// Its name in a description (`newton-1`).
     pub const fn name(self) -> &'static str {
         match self {
             Tuning::Newton1 => "newton-1",
+            Tuning::TruncatedProduct => "truncated-product",
+            Tuning::FloorDirect => "floor-direct",
         }
     }
 
-    /// Newton steps in `sqrt` and `invSqrt` under this variant.
-    pub const fn newton_steps(self) -> u8 {
+    /// What the back ends append to the name of the subroutine that
+    /// computes the variant (`sqrtNewton1`, `mulTruncated`, `floorDirect`;
+    /// lower case in WGSL: `sqrt316_newton1`).
+    pub const fn suffix(self) -> &'static str {
         match self {
-            Tuning::Newton1 => 1,
+            Tuning::Newton1 => "Newton1",
+            Tuning::TruncatedProduct => "Truncated",
+            Tuning::FloorDirect => "Direct",
+        }
+    }
+
+    /// Whether this variant changes how the Float316 operation `op` is
+    /// computed (`newton-1`: `sqrt` and `invSqrt`).
+    pub fn changes(self, op: common::Op) -> bool {
+        use common::Op;
+        match self {
+            Tuning::Newton1 => matches!(op, Op::Sqrt | Op::InvSqrt),
+            Tuning::TruncatedProduct => op == Op::Mul,
+            Tuning::FloorDirect => op == Op::Floor,
+        }
+    }
+
+    /// Newton steps in `sqrt` and `invSqrt` under this variant, if it
+    /// changes them.
+    pub const fn newton_steps(self) -> Option<u8> {
+        match self {
+            Tuning::Newton1 => Some(1),
+            Tuning::TruncatedProduct | Tuning::FloorDirect => None,
         }
     }
 }
@@ -248,8 +287,9 @@ pub enum Stmt {
         name: String,
         body: Vec<Stmt>,
     },
-    /// Run `body` (one `sqrt`, `length` or `normalize` statement, see
-    /// [`crate::sites`]) with the operation variant `variant`.
+    /// Run `body` (one `sqrt`, `length`, `normalize`, `mul` or `floor`
+    /// statement, see [`crate::sites`]) with the operation variant
+    /// `variant`.
     Tuned {
         variant: Tuning,
         body: Vec<Stmt>,

@@ -3,8 +3,8 @@
 //! applies a description's chosen variants.
 //!
 //! Two kinds of site: an operation with a [`Tuning`] (`sqrt`, `length`,
-//! `normalize`: wrapped in [`Stmt::Tuned`]) and a named loop (the march
-//! steps: its count lowered). A site's name is the function (`setup`,
+//! `normalize`, `mul`, `floor`: wrapped in [`Stmt::Tuned`]) and a named
+//! loop (the march steps: its count lowered). A site's name is the function (`setup`,
 //! `sdf`, `pixel`), the enclosing frames and named loops (a loop without
 //! its iteration number), and the operation or the loop's name, joined by
 //! `/`: `pixel/shadow/normalize`, `sdf/scene/ball/length`,
@@ -13,7 +13,7 @@
 //! (`pixel/light/normalize#2`). Names depend only on the description's
 //! structure, so a site keeps its name when another site is tuned.
 
-use crate::ir::{Program, Stmt, Tuning, Unary, VecOp};
+use crate::ir::{Binary, Program, Stmt, Tuning, Unary, VecOp};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, HashMap};
 
@@ -23,19 +23,48 @@ pub enum Choice {
     /// `"newton-1"`: an operation site with one Newton step.
     #[serde(rename = "newton-1")]
     Newton1,
+    /// `"truncated-product"`: a `mul` site with the high halves' product.
+    #[serde(rename = "truncated-product")]
+    TruncatedProduct,
+    /// `"floor-direct"`: a `floor` site without the nested `add`.
+    #[serde(rename = "floor-direct")]
+    FloorDirect,
     /// `{"steps": n}`: a loop site run at most `n` times (at most its
     /// description's count).
     #[serde(rename = "steps")]
     Steps(u32),
 }
 
+impl Choice {
+    /// The operation variant this choice is; `None` for a step count.
+    pub const fn tuning(self) -> Option<Tuning> {
+        match self {
+            Choice::Newton1 => Some(Tuning::Newton1),
+            Choice::TruncatedProduct => Some(Tuning::TruncatedProduct),
+            Choice::FloorDirect => Some(Tuning::FloorDirect),
+            Choice::Steps(_) => None,
+        }
+    }
+}
+
+impl From<Tuning> for Choice {
+    fn from(t: Tuning) -> Self {
+        match t {
+            Tuning::Newton1 => Choice::Newton1,
+            Tuning::TruncatedProduct => Choice::TruncatedProduct,
+            Tuning::FloorDirect => Choice::FloorDirect,
+        }
+    }
+}
+
 impl std::fmt::Display for Choice {
     /// `newton-1`, `16 steps`, `1 step`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Choice::Newton1 => f.write_str(Tuning::Newton1.name()),
-            Choice::Steps(1) => f.write_str("1 step"),
-            Choice::Steps(n) => write!(f, "{n} steps"),
+        match (self, self.tuning()) {
+            (_, Some(t)) => f.write_str(t.name()),
+            (Choice::Steps(1), _) => f.write_str("1 step"),
+            (Choice::Steps(n), _) => write!(f, "{n} steps"),
+            (_, None) => unreachable!("every other choice is a tuning"),
         }
     }
 }
@@ -43,24 +72,33 @@ impl std::fmt::Display for Choice {
 /// What a site is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
-    /// An operation that has a [`Tuning`] (`sqrt`, `length`, `normalize`).
-    Op,
+    /// An operation that takes this [`Tuning`] (`newton-1` for `sqrt`,
+    /// `length` and `normalize`, `truncated-product` for `mul`,
+    /// `floor-direct` for `floor`).
+    Op(Tuning),
     /// A named loop of at most this many iterations.
     Loop(u32),
 }
 
-/// The operation of a statement that has a variant: `sqrt`, `length` or
-/// `normalize`; `None` for any other statement.
-pub fn op_of(s: &Stmt) -> Option<&'static str> {
+/// The operation of a statement that has a variant (`sqrt`, `length`,
+/// `normalize`, `mul`, `floor`) and the variant it takes; `None` for any
+/// other statement.
+pub fn op_of(s: &Stmt) -> Option<(&'static str, Tuning)> {
     match s {
         Stmt::Unary {
             op: Unary::Sqrt, ..
-        } => Some("sqrt"),
-        Stmt::Length { .. } => Some("length"),
+        } => Some(("sqrt", Tuning::Newton1)),
+        Stmt::Length { .. } => Some(("length", Tuning::Newton1)),
         Stmt::Vector {
             op: VecOp::Normalize,
             ..
-        } => Some("normalize"),
+        } => Some(("normalize", Tuning::Newton1)),
+        Stmt::Binary {
+            op: Binary::Mul, ..
+        } => Some(("mul", Tuning::TruncatedProduct)),
+        Stmt::Unary {
+            op: Unary::Floor, ..
+        } => Some(("floor", Tuning::FloorDirect)),
         _ => None,
     }
 }
@@ -133,11 +171,11 @@ impl<F: FnMut(&str, Kind) -> Option<Choice>> Walk<'_, F> {
     }
 
     fn stmt(&mut self, s: Stmt) -> Stmt {
-        if let Some(op) = op_of(&s) {
+        if let Some((op, takes)) = op_of(&s) {
             let name = self.name(op);
-            return match (self.pick)(&name, Kind::Op) {
-                Some(Choice::Newton1) => Stmt::Tuned {
-                    variant: Tuning::Newton1,
+            return match (self.pick)(&name, Kind::Op(takes)).and_then(Choice::tuning) {
+                Some(variant) if variant == takes => Stmt::Tuned {
+                    variant,
                     body: vec![s],
                 },
                 _ => s,
@@ -286,9 +324,64 @@ mod tests {
     }
 
     #[test]
+    fn products_and_floors_are_sites_that_take_their_own_variants() {
+        let seed = crate::parse(crate::SEED).unwrap();
+        let all = sites(&crate::lower(&seed, Formulation::Float316));
+        let kind = |name: &str| all.iter().find(|(n, _)| n == name).map(|(_, k)| *k);
+        assert_eq!(
+            kind("sdf/scene/floor/floor"),
+            Some(Kind::Op(Tuning::FloorDirect))
+        );
+        assert_eq!(
+            kind("sdf/scene/floor/floor#2"),
+            Some(Kind::Op(Tuning::FloorDirect))
+        );
+        assert!(
+            all.iter().any(|(n, k)| n.starts_with("pixel/light/mul")
+                && *k == Kind::Op(Tuning::TruncatedProduct)),
+            "{all:?}"
+        );
+        let tuned = seed_with(
+            r#"[{"site": "sdf/scene/floor/floor", "variant": "floor-direct"},
+                {"site": "pixel/light/mul", "variant": "truncated-product"}]"#,
+        )
+        .unwrap();
+        let t = crate::lower(&tuned, Formulation::Float316);
+        let variants: Vec<Tuning> = t
+            .statements()
+            .into_iter()
+            .filter_map(|s| match s {
+                Stmt::Tuned { variant, .. } => Some(*variant),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            variants,
+            [Tuning::FloorDirect, Tuning::TruncatedProduct],
+            "in the order of the program"
+        );
+        let e = seed_with(r#"[{"site": "pixel/light/mul", "variant": "newton-1"}]"#)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "variants[0].variant: `pixel/light/mul` takes `truncated-product`, not `newton-1`"
+        );
+        let e = seed_with(r#"[{"site": "pixel/normalize", "variant": "floor-direct"}]"#)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "variants[0].variant: `pixel/normalize` takes `newton-1`, not `floor-direct`"
+        );
+    }
+
+    #[test]
     fn a_choice_is_written_as_a_description_reads_it() {
         for (choice, text) in [
             (Choice::Newton1, r#""newton-1""#),
+            (Choice::TruncatedProduct, r#""truncated-product""#),
+            (Choice::FloorDirect, r#""floor-direct""#),
             (Choice::Steps(16), r#"{"steps":16}"#),
         ] {
             assert_eq!(serde_json::to_string(&choice).unwrap(), text);
@@ -336,7 +429,8 @@ mod tests {
             .to_string();
         assert!(
             e.starts_with(
-                "variants[0].variant: unknown variant `newton-7`, expected `newton-1` or `steps`"
+                "variants[0].variant: unknown variant `newton-7`, expected one of `newton-1`, \
+                 `truncated-product`, `floor-direct`, `steps`"
             ),
             "{e}"
         );

@@ -1,7 +1,8 @@
 //! `harness tune --scene FILE [--max-flips N | --max-error E] [--out
 //! TUNED.json] [--state STATE.json] [--exhaustive] [--jack-step N]
 //! [--json]`: which call sites of a scene can compute a cheaper variant
-//! (one Newton step, fewer march steps) without changing the picture.
+//! (one Newton step, a truncated product, a floor without its nested
+//! `add`, fewer march steps) without changing the picture.
 //!
 //! Each configuration is rendered whole by ref-f316 (`evaluate`), its cost
 //! estimated from the Float316 operations it counts at costs measured on
@@ -153,8 +154,24 @@ pub fn run(args: TuneArgs) -> anyhow::Result<ExitCode> {
     let (base_ref, _, base_counts) = evaluator.base();
     let base_sources = scene_jack::emit(base_ref.program())
         .with_context(|| format!("{}: generating its Jack program", args.scene.display()))?;
-    stage("measuring per-operation costs on the generated Jack program");
-    let model = CostModel::calibrate(base_ref, &base_sources, args.calibration_step)?;
+    stage("measuring per-operation costs on the generated Jack programs");
+    let every_variant: Config = sites
+        .iter()
+        .filter(|s| !s.is_loop)
+        .map(|s| (s.name.clone(), s.options[0]))
+        .collect();
+    let variants_ref = evaluator.reference(&every_variant)?;
+    let variants_sources = scene_jack::emit(variants_ref.program()).with_context(|| {
+        format!(
+            "{}: generating its Jack program with every operation site tuned",
+            args.scene.display()
+        )
+    })?;
+    let model = CostModel::calibrate(
+        (base_ref, &base_sources),
+        (&variants_ref, &variants_sources),
+        args.calibration_step,
+    )?;
     if state.get(&untuned).is_none() {
         state.insert(untuned.clone(), evaluator.base_evaluation())?;
     }
@@ -306,7 +323,8 @@ fn search(
     let found = if args.exhaustive {
         search::exhaustive(sites, base_cost, &mut judge)?
     } else {
-        search::delta_debug(sites, base_cost, &mut judge)?
+        let budget = constraint != Constraint::Flips(0);
+        search::delta_debug(sites, base_cost, budget, &mut judge)?
     };
     bar.finish_and_clear();
     Ok((found, rendered))

@@ -220,16 +220,32 @@ pub(super) fn text(r: &Report) -> String {
     for m in &j.first_mismatches {
         let _ = writeln!(s, "  {m}");
     }
-    let (estimate, measured) = (r.estimated.untuned_per_pixel, j.measured.untuned_per_pixel);
-    let _ = writeln!(
+    let against = |estimate: f64, measured: f64| {
+        format!(
+            "{}, measured {} ({:+.2}%)",
+            grouped(estimate),
+            grouped(measured),
+            100.0 * (estimate - measured) / measured.max(1.0)
+        )
+    };
+    let (e, m) = (&r.estimated, &j.measured);
+    let _ = write!(
         s,
-        "cost model: per-operation costs measured on {} pixels of the untuned program; it \
-         estimates the untuned image at {} VM instructions per pixel, measured {} ({:+.2}%)",
+        "cost model: costs measured on {} pixels of the untuned program and of the one with \
+         every operation site tuned; VM instructions per pixel estimated for the untuned image {}",
         r.model.sample,
-        grouped(estimate),
-        grouped(measured),
-        100.0 * (estimate - measured) / measured.max(1.0)
+        against(e.untuned_per_pixel, m.untuned_per_pixel)
     );
+    if !r.tuned.is_empty() {
+        let _ = write!(
+            s,
+            ", for the tuned one {}; saving estimated {:.2}%, measured {:.2}%",
+            against(e.tuned_per_pixel, m.tuned_per_pixel),
+            e.saved_percent,
+            m.saved_percent
+        );
+    }
+    s.push('\n');
     if !r.rejected.is_empty() {
         let _ = writeln!(s, "sites left untuned ({}):", r.rejected.len());
     }

@@ -7,9 +7,11 @@
 //! saves, all at once, split in halves where the set fails, each half tried
 //! on what was accepted before it (the largest passing sets accepted, the
 //! largest savings first); then each site left out tried again, greedily,
-//! on the accepted set; last, each tuned loop bisected again below its
-//! count on the rest. [`exhaustive`] tries every configuration, for
-//! spaces small enough to enumerate.
+//! on the accepted set; under a budget (flips or an error), each site that
+//! failed alone tried once more on the accepted set, where another site's
+//! change may cancel or absorb its own; last, each tuned loop bisected again
+//! below its count on the rest. [`exhaustive`] tries every configuration,
+//! for spaces small enough to enumerate.
 
 use super::space::{Config, Site};
 use scene::sites::Choice;
@@ -144,10 +146,13 @@ impl<J: FnMut(&Config) -> anyhow::Result<Judged>> Search<'_, J> {
     }
 }
 
-/// Delta debugging from `base_cost`, the untuned configuration's cost.
+/// Delta debugging from `base_cost`, the untuned configuration's cost;
+/// `retry_failed`: try the sites that fail alone again on the accepted set
+/// (one configuration per operation site, a bisection per loop).
 pub fn delta_debug(
     sites: &[Site],
     base_cost: f64,
+    retry_failed: bool,
     judge: &mut impl FnMut(&Config) -> anyhow::Result<Judged>,
 ) -> anyhow::Result<Found> {
     let mut s = Search { judge, judged: 0 };
@@ -198,6 +203,32 @@ pub fn delta_debug(
             Alone::Fails(config) => Rejection::Fails { config },
         };
         rejected.push(Rejected { site: name, why });
+    }
+    // Under a budget, each site that failed alone, on what was accepted;
+    // it keeps its first rejection (alone, the clearer reason) if it fails.
+    if retry_failed && !accepted.0.is_empty() {
+        let failed_alone: Vec<usize> = (0..rejected.len())
+            .filter(
+                |&i| matches!(&rejected[i].why, Rejection::Fails { config } if config.len() == 1),
+            )
+            .collect();
+        let mut taken = Vec::new();
+        for i in failed_alone {
+            let site = sites
+                .iter()
+                .find(|x| x.name == rejected[i].site)
+                .expect("a searched site");
+            if let Alone::Passes(choice, cost) = s.alone(site, &site.options, &accepted.0)? {
+                if cost < accepted.1 {
+                    accepted.0.insert(site.name.clone(), choice);
+                    accepted.1 = cost;
+                    taken.push(i);
+                }
+            }
+        }
+        for i in taken.into_iter().rev() {
+            rejected.remove(i);
+        }
     }
     // Each tuned loop, bisected again below its count on the rest.
     for site in sites.iter().filter(|x| x.is_loop) {
@@ -281,8 +312,8 @@ mod tests {
             let mut cost = 1000.0;
             for (site, choice) in c {
                 cost -= match choice {
-                    Choice::Newton1 => saving.iter().find(|s| s.0 == site).unwrap().1,
                     Choice::Steps(n) => f64::from(64 - n),
+                    _ => saving.iter().find(|s| s.0 == site).unwrap().1,
                 };
             }
             let steps_ok = c
@@ -314,7 +345,7 @@ mod tests {
 
     #[test]
     fn delta_debugging_finds_the_optimum_and_says_why_each_site_is_left_out() {
-        let found = delta_debug(&sites(), 1000.0, &mut judge_of(&SAVINGS)).unwrap();
+        let found = delta_debug(&sites(), 1000.0, false, &mut judge_of(&SAVINGS)).unwrap();
         let names: Vec<&str> = found.best.keys().map(String::as_str).collect();
         assert_eq!(names, ["a", "c", "march"]);
         assert_eq!(found.best["march"], Choice::Steps(40));
@@ -330,5 +361,34 @@ mod tests {
         assert_eq!((all.best, all.cost), (found.best, found.cost));
         assert_eq!(all.judged, 2 * 2 * 2 * 2 * 2 * 64 - 1);
         assert!(found.judged < all.judged / 10, "{}", found.judged);
+    }
+
+    /// A site that fails alone and passes on another (`late` needs `a`) is
+    /// found only when the failed sites are tried again, at one more
+    /// configuration each.
+    #[test]
+    fn a_site_that_fails_alone_is_tried_again_on_the_accepted_set_under_a_budget() {
+        let savings = [("a", 30.0), ("late", 10.0), ("bad", 50.0)];
+        let sites = vec![op("a"), op("late"), op("bad")];
+        let mut judge = |c: &Config| -> anyhow::Result<Judged> {
+            let cost = 1000.0
+                - c.keys()
+                    .map(|k| savings.iter().find(|s| s.0 == k).unwrap().1)
+                    .sum::<f64>();
+            let passes = !c.contains_key("bad") && (!c.contains_key("late") || c.contains_key("a"));
+            Ok(Judged { passes, cost })
+        };
+        let strict = delta_debug(&sites, 1000.0, false, &mut judge).unwrap();
+        assert_eq!(strict.best.keys().collect::<Vec<_>>(), ["a"]);
+        let retried = delta_debug(&sites, 1000.0, true, &mut judge).unwrap();
+        assert_eq!(retried.best.keys().collect::<Vec<_>>(), ["a", "late"]);
+        assert_eq!(retried.cost, 960.0);
+        assert_eq!(
+            retried.judged,
+            strict.judged + 2,
+            "`late` and `bad` once more"
+        );
+        let left: Vec<&str> = retried.rejected.iter().map(|r| r.site.as_str()).collect();
+        assert_eq!(left, ["bad"]);
     }
 }

@@ -20,17 +20,15 @@ pub struct Site {
     pub is_loop: bool,
 }
 
-/// The sites of `program` (a Float316 program) that run for every pixel,
-/// with their options. The set-up's sites run once per image and are left
-/// out: they cost nothing per pixel.
+/// The sites of `program` (a Float316 program) with their options: those
+/// of every pixel and those of the set-up (the camera, once per image,
+/// whose operations change every pixel's ray).
 pub fn searched(program: &scene::Program) -> Vec<Site> {
-    let setup = format!("{}/", program.function(program.setup).name);
     sites::sites(program)
         .into_iter()
-        .filter(|(name, _)| !name.starts_with(&setup))
         .filter_map(|(name, kind)| {
             let (options, is_loop) = match kind {
-                Kind::Op => (vec![Choice::Newton1], false),
+                Kind::Op(variant) => (vec![Choice::from(variant)], false),
                 Kind::Loop(count) => ((1..count).map(Choice::Steps).collect(), true),
             };
             (!options.is_empty()).then_some(Site {
@@ -74,11 +72,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_seeds_sites_leave_the_set_up_out_and_count_the_space() {
+    fn the_seeds_sites_take_in_the_set_up_and_count_the_space() {
         let seed = scene::parse(scene::SEED).unwrap();
         let p = scene::lower(&seed, scene::Formulation::Float316);
         let s = searched(&p);
-        assert!(s.iter().all(|s| !s.name.starts_with("setup/")));
+        assert!(s
+            .iter()
+            .any(|s| s.name == "setup/camera/normalize" && s.options == [Choice::Newton1]));
+        assert!(s
+            .iter()
+            .any(|s| s.name == "sdf/scene/floor/floor" && s.options == [Choice::FloorDirect]));
+        assert!(s
+            .iter()
+            .any(|s| s.name == "pixel/light/mul" && s.options == [Choice::TruncatedProduct]));
         let march = s.iter().find(|s| s.name == "pixel/march step").unwrap();
         assert!(march.is_loop);
         assert_eq!(march.options.len(), 63);

@@ -15,7 +15,7 @@ use std::io::Write;
 use std::path::Path;
 
 /// The state file's format version.
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 
 /// The first line.
 #[derive(Serialize, Deserialize)]

@@ -26,6 +26,50 @@ fn vnormalize_newton1(v: V) -> V {
     return scale(v, inv_sqrt_steps(vdot(v, v), 1));
 }
 
+// The truncated-product variant of `mul`: the high halves' product alone.
+fn mul_truncated(a: F, b: F) -> F {
+    let s = (a.s + b.s) & 1;
+    if (is_zero(a) || is_zero(b)) {
+        return F(s, 0, 0);
+    }
+    var e = w(a.e + b.e - 126);
+    var m = w((a.m / 128) * (b.m / 128));
+    // 0 < m < 8192 reaches 8192 within 13 doublings.
+    if (m > 0) {
+        for (var k = 0; k < 13 && m < 8192; k++) {
+            m = m * 2;
+            e = w(e - 1);
+        }
+    }
+    return F(s, e, m);
+}
+
+// The floor-direct variant of `floor`: the spec's value, a negative
+// non-integer stepping down on its mantissa where `floor316` calls `add`.
+fn floor316_direct(a: F) -> F {
+    if (a.e < 127) {
+        if (a.s == 0) {
+            return ZERO;
+        }
+        return NEG_ONE;
+    }
+    let i = a.e - 127;
+    if (i > 13) {
+        fail(K_OUT_OF_DOMAIN);
+        return a;
+    }
+    let unit = 1 << u32(13 - i);
+    let mp = a.m & ~(unit - 1);
+    if (a.s == 1 && mp != a.m) {
+        let m = w(mp + unit);
+        if (m > 16383) {
+            return F(1, w(a.e + 1), m / 2);
+        }
+        return F(1, a.e, m);
+    }
+    return F(a.s, a.e, mp);
+}
+
 // `c ? t : f` for triples (WGSL's select takes scalars and vectors only).
 fn select316(f: F, t: F, c: bool) -> F {
     if (c) {

@@ -145,6 +145,15 @@ fn seed_with_tuned_sites_generated() {
     check("tests/seed-tuned.json");
 }
 
+/// The seed with both floors at `floor-direct` and four products truncated
+/// (two in the torus's distance): the kernel computes them as ref-f316
+/// does, on every pixel and SDF point (scene-jack's tests show the
+/// products change answers and each variant is cheaper on the Jack VM).
+#[test]
+fn seed_with_tuned_operations_generated() {
+    check("tests/seed-tuned-ops.json");
+}
+
 /// A scene written for this test, with combinations and shapes no other
 /// scene or test uses (intersection, subtraction, cylinder, round box,
 /// scale), renders on every implementation with no code written for it.
