@@ -25,6 +25,18 @@ impl Translator<'_, '_> {
         self.load_word(a)
     }
 
+    /// The length word of `string`, after the test that it is a word a
+    /// built-in reads without a rule; the held stack words go to RAM first,
+    /// since the string may lie on them.
+    fn length(&mut self, string: Value, s: &mut Stack, before: &Before) -> Value {
+        let a = self.offset(string, 1);
+        let ok = self.os_word_ok(a);
+        self.guard(ok, before);
+        s.flush(self);
+        s.forget();
+        self.load_word(a)
+    }
+
     /// Run `String.length`, `charAt` or `appendChar` on the operand stack
     /// `s` and return its value, leaving at `before` where a test fails.
     pub(super) fn inline_string(
@@ -37,22 +49,12 @@ impl Translator<'_, '_> {
         match builtin {
             Builtin::StringLength => {
                 let string = s.pop(self);
-                let a = self.offset(string, 1);
-                let ok = self.os_word_ok(a);
-                self.guard(ok, before);
-                s.flush(self);
-                s.forget();
-                self.load_word(a)
+                self.length(string, s, before)
             }
             Builtin::StringCharAt => {
                 let i = s.pop(self);
                 let string = s.pop(self);
-                let a = self.offset(string, 1);
-                let ok = self.os_word_ok(a);
-                self.guard(ok, before);
-                s.flush(self);
-                s.forget();
-                let len = self.load_word(a);
+                let len = self.length(string, s, before);
                 // ERR15 unless 0 <= i < length.
                 let from_0 = self
                     .b
