@@ -53,33 +53,11 @@ fn the_tuned_program_equals_the_tuned_reference_at_sdf_and_pixels() {
     let d = f316(&tuned);
     let plain = f316(&checked("seed"));
     let j = scene_jack::emit(d.program()).unwrap();
-    let r = Runner::new(&j, jack::Profile::Desktop).expect("compiles and sets up");
-    let points = grid(6);
-    let bad: Vec<String> = points
-        .iter()
-        .filter_map(|&p| sdf_mismatch(&r, &d, p))
-        .collect();
-    assert!(
-        bad.is_empty(),
-        "{} SDF answers differ: {:?}",
-        bad.len(),
-        &bad[..bad.len().min(5)]
-    );
-    let changed = points.iter().filter(|&&p| d.sdf(p) != plain.sdf(p)).count();
-    assert!(
-        changed > 0,
-        "the torus's sqrt with newton-1 changes some SDF answer"
-    );
-    let bad: Vec<String> = [40u32, 100, 128, 150, 200]
-        .iter()
-        .flat_map(|&y| (0..512).step_by(7).map(move |x| (x, y)))
-        .filter_map(|(x, y)| pixel_mismatch(&r, &d, x, y))
-        .collect();
-    assert!(
-        bad.is_empty(),
-        "{} pixels differ: {:?}",
-        bad.len(),
-        &bad[..bad.len().min(5)]
+    agrees_with_its_reference(
+        &j,
+        &d,
+        &plain,
+        "the torus's sqrt with newton-1 changes some SDF answer",
     );
 }
 
@@ -103,33 +81,11 @@ fn the_operation_variants_program_equals_its_reference_at_sdf_and_pixels() {
     for sub in ["method void mulTruncated", "method void floorDirect"] {
         assert!(text.contains(sub), "{sub}");
     }
-    let r = Runner::new(&j, jack::Profile::Desktop).expect("compiles and sets up");
-    let points = grid(6);
-    let bad: Vec<String> = points
-        .iter()
-        .filter_map(|&p| sdf_mismatch(&r, &d, p))
-        .collect();
-    assert!(
-        bad.is_empty(),
-        "{} SDF answers differ: {:?}",
-        bad.len(),
-        &bad[..bad.len().min(5)]
-    );
-    let changed = points.iter().filter(|&&p| d.sdf(p) != plain.sdf(p)).count();
-    assert!(
-        changed > 0,
-        "the torus's truncated products change some SDF answer"
-    );
-    let bad: Vec<String> = [40u32, 100, 128, 150, 200]
-        .iter()
-        .flat_map(|&y| (0..512).step_by(7).map(move |x| (x, y)))
-        .filter_map(|(x, y)| pixel_mismatch(&r, &d, x, y))
-        .collect();
-    assert!(
-        bad.is_empty(),
-        "{} pixels differ: {:?}",
-        bad.len(),
-        &bad[..bad.len().min(5)]
+    agrees_with_its_reference(
+        &j,
+        &d,
+        &plain,
+        "the torus's truncated products change some SDF answer",
     );
 }
 
@@ -200,4 +156,40 @@ fn each_operation_variant_is_cheaper_per_call_than_the_spec() {
     );
     let total = |m: &std::collections::HashMap<String, u64>| m.values().sum::<u64>();
     assert!(total(&direct) < total(&untuned));
+}
+
+/// The generated program `j` answers as `d`, ref-f316 of the tuned
+/// description, on a grid of SDF points and a sample of pixels, and some
+/// SDF answer differs from the untuned `plain`'s (`changes` says which).
+fn agrees_with_its_reference(
+    j: &scene_jack::JackSources,
+    d: &Described,
+    plain: &Described,
+    changes: &str,
+) {
+    let r = Runner::new(j, jack::Profile::Desktop).expect("compiles and sets up");
+    let points = grid(6);
+    let bad: Vec<String> = points
+        .iter()
+        .filter_map(|&p| sdf_mismatch(&r, d, p))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "{} SDF answers differ: {:?}",
+        bad.len(),
+        &bad[..bad.len().min(5)]
+    );
+    let changed = points.iter().filter(|&&p| d.sdf(p) != plain.sdf(p)).count();
+    assert!(changed > 0, "{changes}");
+    let bad: Vec<String> = [40u32, 100, 128, 150, 200]
+        .iter()
+        .flat_map(|&y| (0..512).step_by(7).map(move |x| (x, y)))
+        .filter_map(|(x, y)| pixel_mismatch(&r, d, x, y))
+        .collect();
+    assert!(
+        bad.is_empty(),
+        "{} pixels differ: {:?}",
+        bad.len(),
+        &bad[..bad.len().min(5)]
+    );
 }
