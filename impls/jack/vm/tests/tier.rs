@@ -104,3 +104,21 @@ fn engines_parse_and_auto_is_the_default() {
     };
     assert_eq!(Engine::default(), expected);
 }
+
+/// Compiling says how long it took, and only the first call compiles: a
+/// later one reports the same time for the code it shares.
+#[test]
+fn compiling_reports_its_time_once() {
+    let program = program();
+    let first = program
+        .compile_native(hack_vm::Profile::Desktop)
+        .expect("this host compiles");
+    assert!(
+        first > std::time::Duration::ZERO,
+        "compiling took {first:?}"
+    );
+    let again = program
+        .compile_native(hack_vm::Profile::Desktop)
+        .expect("this host compiles");
+    assert_eq!(again, first);
+}
