@@ -47,27 +47,22 @@ fn mul_truncated(a: F, b: F) -> F {
 // The floor-direct variant of `floor`: the spec's value, a negative
 // non-integer stepping down on its mantissa where `floor316` calls `add`.
 fn floor316_direct(a: F) -> F {
-    if (a.e < 127) {
-        if (a.s == 0) {
-            return ZERO;
-        }
-        return NEG_ONE;
-    }
+    // Where `floor316` calls no `add` (a small, out-of-domain, positive or
+    // integral input), its own answer.
     let i = a.e - 127;
-    if (i > 13) {
-        fail(K_OUT_OF_DOMAIN);
-        return a;
+    if (a.e < 127 || i > 13 || a.s == 0) {
+        return floor316(a);
     }
     let unit = 1 << u32(13 - i);
     let mp = a.m & ~(unit - 1);
-    if (a.s == 1 && mp != a.m) {
-        let m = w(mp + unit);
-        if (m > 16383) {
-            return F(1, w(a.e + 1), m / 2);
-        }
-        return F(1, a.e, m);
+    if (mp == a.m) {
+        return a;
     }
-    return F(a.s, a.e, mp);
+    let m = w(mp + unit);
+    if (m > 16383) {
+        return F(1, w(a.e + 1), m / 2);
+    }
+    return F(1, a.e, m);
 }
 
 // `c ? t : f` for triples (WGSL's select takes scalars and vectors only).
