@@ -160,24 +160,14 @@ pub(crate) fn and_then<T, U>(
     })
 }
 
-/// The outcome of a call from its [`Exit`], or an error for an end that is
+/// The outcome of a call from its [`Exit`] (`Sys.error` with
+/// [`OUT_OF_DOMAIN_CODE`] is out of domain), or an error for an end that is
 /// no Float316 outcome.
 pub(crate) fn outcome_of(
     exit: Exit,
     what: impl FnOnce() -> String,
 ) -> Result<Outcome<i16>, JackError> {
-    match exit {
-        Exit::Returned(v) => Ok(Outcome::Value(v)),
-        Exit::SysError {
-            code: OUT_OF_DOMAIN_CODE,
-            ..
-        } => Ok(Outcome::OutOfDomain),
-        Exit::SysError { code, .. } => Ok(Outcome::SysError(code)),
-        Exit::Budget { .. } | Exit::Hang { .. } => Ok(Outcome::Hang),
-        exit @ (Exit::Halted | Exit::RuntimeError { .. } | Exit::BlockedForever { .. }) => {
-            Err(JackError::Unexpected { what: what(), exit })
-        }
-    }
+    crate::bind::vm::outcome_of(exit, Some(OUT_OF_DOMAIN_CODE), what)
 }
 
 impl Raymarcher {

@@ -24,7 +24,7 @@ mod record;
 mod signatures;
 mod spec;
 mod statement;
-mod vm;
+pub(crate) mod vm;
 mod whole;
 
 pub use bound::{normalized_coords, BoundPixel, BoundProgram};
