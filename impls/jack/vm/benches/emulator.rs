@@ -110,7 +110,7 @@ fn jack_raymarcher(c: &mut Criterion) {
 
 /// Each corpus program on each engine, under criterion.
 fn corpus_programs(c: &mut Criterion) {
-    let loaded = load_corpus();
+    let loaded = load_corpus(None);
     let mut g = c.benchmark_group("hack-vm corpus");
     g.sample_size(10)
         .warm_up_time(Duration::from_millis(500))
@@ -143,7 +143,7 @@ fn best_rate(mut run: impl FnMut() -> u64) -> f64 {
 /// ratio to the raymarcher's on the same engine, measured one after
 /// another in this process (so the ratios hold on a loaded machine).
 fn corpus_table(_: &mut Criterion) {
-    let loaded = load_corpus();
+    let loaded = load_corpus(None);
     let ray = raymarcher();
     let _ = ray.compile_native(hack_vm::Profile::Desktop);
     let engines = [Engine::Interp, Engine::Native];

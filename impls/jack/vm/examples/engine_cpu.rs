@@ -55,10 +55,7 @@ fn whole_main(engine: Engine) {
 /// The corpus programs named `name` (all if None) on `engines`, each run
 /// repeated for about a CPU second.
 fn corpus_rates(name: Option<&str>, engines: &[Engine]) {
-    let programs = corpus_runs::load_corpus()
-        .into_iter()
-        .filter(|l| name.is_none_or(|n| n == l.entry.name));
-    for loaded in programs {
+    for loaded in corpus_runs::load_corpus(name) {
         let _ = loaded.program.compile_native(Profile::Desktop);
         for &engine in engines {
             let started = cpu_seconds();

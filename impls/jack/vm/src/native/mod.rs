@@ -19,6 +19,7 @@
 
 mod blocks;
 mod builtin;
+mod code_map;
 mod translate;
 
 use crate::exec::{Flow, Halt};
@@ -216,12 +217,30 @@ impl std::fmt::Debug for Native {
 
 impl Native {
     /// Compile every function of `program` for this host, `Err` naming
-    /// why not (a host Cranelift cannot target, or a translation error).
+    /// why not (a host Cranelift cannot target, or a translation error);
+    /// with the code map written where `HACK_VM_CODE_MAP` names a file.
     pub(crate) fn compile(
         program: &Program,
         profile: Profile,
         divide: jack_os::DivideRule,
         fault: Option<Fault>,
+    ) -> Result<Native, String> {
+        let Some(path) = code_map::wanted() else {
+            return Native::compile_mapped(program, profile, divide, fault, None);
+        };
+        let mut map = String::new();
+        let native = Native::compile_mapped(program, profile, divide, fault, Some(&mut map))?;
+        std::fs::write(&path, map).map_err(|e| format!("code map {}: {e}", path.display()))?;
+        Ok(native)
+    }
+
+    /// [`Native::compile`], with the code map appended to `map` if given.
+    fn compile_mapped(
+        program: &Program,
+        profile: Profile,
+        divide: jack_os::DivideRule,
+        fault: Option<Fault>,
+        mut map: Option<&mut String>,
     ) -> Result<Native, String> {
         let started = Instant::now();
         let mut flags = settings::builder();
@@ -315,6 +334,10 @@ impl Native {
             module
                 .define_function(id, &mut ctx)
                 .map_err(|e| format!("cranelift, function {}: {e:?}", f.name))?;
+            if let Some(map) = map.as_deref_mut() {
+                let compiled = ctx.compiled_code().expect("just compiled");
+                code_map::record(map, &f.name, code, compiled);
+            }
             module.clear_context(&mut ctx);
         }
         module

@@ -29,6 +29,7 @@
 //! from its segment's host address.
 
 use super::blocks::{self, Block, Budget, Kind, MAX_INLINE_LOCALS};
+use super::code_map::{source_loc, Part};
 use super::{builtin, Ctx, Fault, CALLED, CONTINUE, RETURNED};
 use crate::exec::HEAP_START;
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
@@ -477,6 +478,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let entry = b.create_block();
     b.append_block_params_for_function_params(entry);
     b.switch_to_block(entry);
+    b.set_srcloc(source_loc(start, Part::FunctionEntry));
     let params = b.block_params(entry).to_vec();
     let (ctx, which) = (params[0], params[1]);
     let v = Vars {
@@ -636,6 +638,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     }
 
     t.b.switch_to_block(leave);
+    t.b.set_srcloc(source_loc(start, Part::Leave));
     let [code, pc, cur] = t.b.block_params(leave) else {
         unreachable!("leave has three parameters")
     };
@@ -891,6 +894,7 @@ impl Translator<'_, '_> {
         }
         let stub = self.b.create_block();
         self.b.switch_to_block(stub);
+        self.b.set_srcloc(source_loc(blk.start, Part::BlockEntry));
         let steps0 = self.b.use_var(self.v.steps);
         let sp0 = self.b.use_var(self.v.sp);
         let mut ok = vec![self.fits(steps0, self.budgets[index].covers)];
@@ -1018,6 +1022,7 @@ impl Translator<'_, '_> {
 
     fn block(&mut self, index: usize, blk: &Block) {
         self.b.switch_to_block(self.cl[index]);
+        self.b.set_srcloc(source_loc(blk.start, Part::BlockEntry));
         self.flags_known = 0;
         self.ptr_tests = ptr_tests(&self.env.code[blk.start as usize..blk.end as usize]);
         self.block_start = blk.start;
@@ -1137,6 +1142,7 @@ impl Translator<'_, '_> {
         let (first, mut from, mut steps0) = (from, from, steps0);
         for pc in first..to {
             let op = self.env.code[pc as usize];
+            self.b.set_srcloc(source_loc(pc, Part::Op));
             if matches!(
                 op,
                 Op::PushAbs(13 | 14) | Op::PopAbs(13 | 14) | Op::PopRam(13 | 14)

@@ -17,9 +17,14 @@ pub struct Loaded {
     size: u64,
 }
 
-/// Every corpus program, loaded and sized.
-pub fn load_corpus() -> Vec<Loaded> {
-    CORPUS.iter().map(Loaded::new).collect()
+/// The corpus programs named `name` (every one if None), loaded and sized:
+/// a process that profiles one program compiles no other.
+pub fn load_corpus(name: Option<&str>) -> Vec<Loaded> {
+    CORPUS
+        .iter()
+        .filter(|e| name.is_none_or(|n| n == e.name))
+        .map(Loaded::new)
+        .collect()
 }
 
 impl Loaded {

@@ -1,0 +1,114 @@
+//! Which VM instruction each stretch of compiled host code belongs to, for
+//! a profile by instruction kind (`scripts/profile.sh`): where the
+//! environment variable `HACK_VM_CODE_MAP` names a file, compiling a
+//! program writes there one line per stretch, `function start end pc part
+//! kind` (tab-separated; `start..end` are byte offsets in the function's
+//! code, as a profiler's symbol offsets count them). The translation tags
+//! every Cranelift instruction with the VM instruction it runs for
+//! ([`source_loc`]), which Cranelift keeps through code generation.
+
+use crate::program::Op;
+use cranelift_codegen::ir::SourceLoc;
+use cranelift_codegen::CompiledCode;
+use std::fmt::Write as _;
+
+/// The part of a VM instruction's compiled code a host instruction is in.
+#[derive(Clone, Copy)]
+pub(crate) enum Part {
+    /// The instruction itself (its side exits included).
+    Op = 0,
+    /// The entry tests of the block starting at the instruction (budget,
+    /// stack range, where the dispatcher enters).
+    BlockEntry = 1,
+    /// The function's own entry: which entry, registers, the entry test.
+    FunctionEntry = 2,
+    /// Storing the registers and leaving compiled code.
+    Leave = 3,
+}
+
+const PARTS: [&str; 4] = ["op", "block entry", "function entry", "leave"];
+
+/// The source location the translation gives the host code of `part` of
+/// instruction `pc`.
+pub(crate) fn source_loc(pc: u32, part: Part) -> SourceLoc {
+    SourceLoc::new(pc * 4 + part as u32)
+}
+
+/// The file named by `HACK_VM_CODE_MAP`, if any.
+pub(crate) fn wanted() -> Option<std::path::PathBuf> {
+    std::env::var_os("HACK_VM_CODE_MAP").map(Into::into)
+}
+
+/// Append the lines of function `name` (compiled to `compiled`) to `out`.
+pub(crate) fn record(out: &mut String, name: &str, code: &[Op], compiled: &CompiledCode) {
+    for s in compiled.buffer.get_srclocs_sorted() {
+        let loc = s.loc;
+        if loc.is_default() {
+            continue;
+        }
+        let (pc, part) = (loc.bits() / 4, loc.bits() % 4);
+        let kind = kind(code[pc as usize]);
+        let part = PARTS[part as usize];
+        let _ = writeln!(out, "{name}\t{}\t{}\t{pc}\t{part}\t{kind}", s.start, s.end);
+    }
+}
+
+/// The name of `op`'s kind: its variant, and a built-in's name.
+fn kind(op: Op) -> String {
+    if let Op::CallBuiltin { builtin, .. } = op {
+        return format!("CallBuiltin {}", builtin.full_name());
+    }
+    let debug = format!("{op:?}");
+    let end = debug.find([' ', '(']).unwrap_or(debug.len());
+    debug[..end].to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::Native;
+    use crate::program::Program;
+    use jack_os::{DivideRule, Profile};
+
+    /// The map of a small program: each line's stretch lies inside its
+    /// function's code and after the previous one, its instruction inside
+    /// the function, and the kinds name what the code runs.
+    #[test]
+    fn the_code_map_names_each_stretchs_instruction() {
+        let source = "function Main.main 0\npush constant 2\ncall Main.f 1\nreturn\n\
+                      function Main.f 1\npush argument 0\npush constant 3\nadd\npop local 0\n\
+                      push local 0\npush argument 0\ncall Math.multiply 2\nreturn\n";
+        let program = Program::from_sources(&[("Main.vm", source)]).expect("valid VM code");
+        let mut map = String::new();
+        Native::compile_mapped(
+            &program,
+            Profile::Desktop,
+            DivideRule::Truncate,
+            None,
+            Some(&mut map),
+        )
+        .expect("compiles");
+        let f = &program.functions[program.function_id("Main.f").expect("Main.f") as usize];
+        let mut last_end = 0;
+        let mut kinds = Vec::new();
+        for line in map.lines().filter(|l| l.starts_with("Main.f\t")) {
+            let cols: Vec<&str> = line.split('\t').collect();
+            let [_, start, end, pc, part, kind] = cols[..] else {
+                panic!("six columns: {line}");
+            };
+            let (start, end, pc): (u32, u32, u32) = (
+                start.parse().unwrap(),
+                end.parse().unwrap(),
+                pc.parse().unwrap(),
+            );
+            assert!(last_end <= start && start < end, "{line}");
+            last_end = end;
+            assert!((f.start - 1..f.start + 9).contains(&pc), "{line}");
+            assert!(["op", "block entry", "function entry", "leave"].contains(&part));
+            kinds.push(kind.to_string());
+        }
+        for kind in ["PushArg", "Add", "PopLocal", "Multiply", "Return"] {
+            assert!(kinds.iter().any(|k| k == kind), "{kind} in {kinds:?}");
+        }
+        assert_eq!(super::kind(crate::program::Op::PushConst(7)), "PushConst");
+    }
+}
