@@ -574,6 +574,59 @@ fn agree_on(body: &str, pad: u16, args: &[i16], webs: &[bool], budgets: &[u64]) 
     }
 }
 
+/// Locals that compiled code holds in registers across blocks (desktop):
+/// RAM gets them wherever compiled code stops or leaves (every budget
+/// inside the loop; a callee whose `Sys.wait` the interpreter runs, after
+/// which `Main.h` is entered again through the dispatcher and reads them
+/// back) and at its return; a stop on `Main.h`'s `function` line leaves
+/// the words under its locals as they were (nonzero, from `Main.f`'s
+/// pushes), not as the line would zero them.
+#[test]
+fn held_locals_reach_ram_wherever_compiled_code_stops() {
+    let src = format!(
+        "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 0\n{}{}push argument 0\npush argument 1\ncall Main.h 2\nreturn\n\
+         function Main.h 2\npush constant 0\npop local 0\nlabel LOOP\n\
+         push local 0\npush argument 0\nadd\npop local 0\n\
+         push local 1\npush constant 1\nadd\npop local 1\n\
+         push local 1\npush constant 3\nlt\nif-goto LOOP\n\
+         push local 0\ncall Main.k 1\npush local 0\nadd\npop local 1\npush local 1\nreturn\n\
+         function Main.k 0\npush constant 1\ncall Sys.wait 1\npop temp 0\npush argument 0\nreturn\n",
+        "push constant 11\n".repeat(12),
+        "pop temp 0\n".repeat(12),
+    );
+    for budget in 0..90 {
+        let case = EngineCase {
+            src: src.clone(),
+            args: vec![5, 7],
+            web: false,
+            budgets: vec![budget],
+            hold: None,
+            watched: None,
+        };
+        engines_agree(&case, Engine::Native, None)
+            .unwrap_or_else(|e| panic!("first budget {budget}: {e}"));
+    }
+}
+
+/// ARG moved onto the locals (LCL + k, desktop; THAT set again, as the
+/// desktop's THAT 0 is the interpreter's, and a block started where
+/// compiled code can take over): `argument` accesses then reach
+/// the words of locals that compiled code would hold in registers, so the
+/// entry test must leave them to the interpreter.
+#[test]
+fn argument_words_on_held_locals_agree() {
+    for k in 0..3 {
+        let body = format!(
+            "{}\npush constant 3000\npop pointer 1\ngoto HELD\nlabel HELD\n\
+             push constant 8\npop local 0\npush argument 0\npop local 1\n\
+             push constant 9\npop argument 1\npush local 0\npush local 1\nadd\npush local 2\nadd\nreturn",
+            arg_beside_stack(k)
+        );
+        agree_on(&body, 0, &[1, 2], &[false], &[0]);
+    }
+}
+
 /// ARG on the stack words a block keeps in registers (code whose stack
 /// depths are static, where the function's entry test must see it): an
 /// `argument` read of a word just pushed, and a write under a pushed word.

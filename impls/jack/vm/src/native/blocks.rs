@@ -110,6 +110,21 @@ fn stack_effect(op: Op) -> (i32, i32) {
     }
 }
 
+/// Whether no instruction in `start..end` (stack depths before each, SP -
+/// LCL, in `depths` from `start`; None where unreached) pops a word below
+/// `floor`: a call pops its arguments, whose callee's ARG then lies at or
+/// above it. The words below `floor` are then never stack words.
+pub(crate) fn pops_stay_above(code: &[Op], start: u32, depths: &[Option<i32>], floor: i32) -> bool {
+    depths.iter().enumerate().all(|(k, d)| {
+        let Some(d) = *d else { return true };
+        let pops = match code[start as usize + k] {
+            Op::Call { nargs, .. } => i32::from(nargs),
+            op => stack_effect(op).0,
+        };
+        pops == 0 || d - pops >= floor
+    })
+}
+
 /// The lowest and highest stack pointer over `ops`, relative to SP before
 /// them.
 pub(crate) fn depth_range(ops: &[Op]) -> (i32, i32) {

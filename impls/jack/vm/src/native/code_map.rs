@@ -106,7 +106,7 @@ mod tests {
             assert!(["op", "block entry", "function entry", "leave"].contains(&part));
             kinds.push(kind.to_string());
         }
-        for kind in ["PushArg", "Add", "PopLocal", "Multiply", "Return"] {
+        for kind in ["PushArg", "Add", "Multiply", "Return"] {
             assert!(kinds.iter().any(|k| k == kind), "{kind} in {kinds:?}");
         }
         assert_eq!(super::kind(crate::program::Op::PushConst(7)), "PushConst");

@@ -188,6 +188,51 @@ struct Translator<'a, 'b> {
     /// (compiled code reaches neither through `this`, `that` or
     /// `Memory.peek`, which lie in the heap and above).
     return_registers: Option<(Value, Value)>,
+    /// Desktop: the function's locals 0..len, held in these variables
+    /// across its blocks (see [`held_locals`]); RAM gets them where compiled
+    /// code leaves (`leave_held`), returns, or passes on a callee's leave.
+    held: Vec<Variable>,
+    /// Writes the held locals to RAM, then leaves as `leave` does.
+    leave_held: ir::Block,
+    /// The held locals are the function's (its `function` line has run):
+    /// a leave writes them to RAM first.
+    locals_live: bool,
+}
+
+/// Locals held in variables at most.
+const MAX_HELD_LOCALS: u16 = 16;
+
+/// How many of the function's locals its compiled code holds in variables
+/// across blocks (0: none), where no other code of the function can reach
+/// their words: under the desktop profile (whose `this`, `that` and
+/// built-ins reach only the heap and above, compiled code's `argument`
+/// words lie below LCL, and the `function` line zeroes the locals), with
+/// static depths, every `local` access inside the entry test's reach and
+/// below the function's local count, no instruction popping a stack word
+/// below the locals (so no callee's ARG reaches them), and no `pop
+/// constant` into the stack.
+fn held_locals(env: &Env<'_>, depths: Option<&[Option<i32>]>, reach: [Option<u16>; 2]) -> u16 {
+    let f = &env.program.functions[env.id as usize];
+    let (Some(depths), Some(top)) = (depths, reach[LOCAL]) else {
+        return 0;
+    };
+    let held = top + 1;
+    let end = env.start as usize + depths.len();
+    let code = &env.code[env.start as usize..end];
+    let fits = env.profile == Profile::Desktop
+        && env.timing.function_step
+        && matches!(code.first(), Some(Op::Function { .. }))
+        && top < f.n_vars
+        && held <= MAX_HELD_LOCALS
+        && !code
+            .iter()
+            .any(|op| matches!(*op, Op::PopRam(a) if a >= STACK_BASE))
+        && blocks::pops_stay_above(env.code, env.start, depths, i32::from(f.n_vars));
+    if fits {
+        held
+    } else {
+        0
+    }
 }
 
 /// A callee that a compiled call runs inline, in the caller's code: the
@@ -511,6 +556,13 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         .then(|| blocks::static_depths(env.code, start, end, entry_depth))
         .flatten();
     let budgets = blocks::budgets(env.code, start, vm_blocks, block_at);
+    let held: Vec<Variable> = (0..held_locals(&env, depths.as_deref(), reach))
+        .map(|_| b.declare_var(T16))
+        .collect();
+    let leave_held = b.create_block();
+    for _ in 0..3 {
+        b.append_block_param(leave_held, T32);
+    }
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
     let leave = b.create_block();
     for _ in 0..3 {
@@ -541,6 +593,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         range: None,
         inlined: Vec::new(),
         return_registers: None,
+        held,
+        leave_held,
+        locals_live: false,
     };
     t.range = t.static_range();
     // A compiled call passes the registers; the dispatcher, the context.
@@ -573,6 +628,11 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let (from_call, from_ctx) = (t.b.create_block(), t.b.create_block());
     t.b.ins().brif(called, from_call, NONE, from_ctx, NONE);
     t.b.switch_to_block(from_call);
+    // (The held locals are the `function` line's zeroes before any use.)
+    for var in t.held.clone() {
+        let zero = t.c16(0);
+        t.b.def_var(var, zero);
+    }
     match t.called_ok().or_else(|| t.entry_ok()) {
         Some(ok) => {
             let bad = t.b.create_block();
@@ -623,6 +683,12 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         })
         .collect();
     t.b.switch_to_block(dispatch);
+    // The entry test showed the held locals' words plain.
+    for (i, var) in t.held.clone().into_iter().enumerate() {
+        let p = t.lcl_host.expect("held locals have static depths");
+        let x = t.load_at(p, i as u16);
+        t.b.def_var(var, x);
+    }
     let def = t.b.func.dfg.block_call(default, NONE);
     let table = t.b.create_jump_table(JumpTableData::new(def, &stubs));
     t.b.ins().br_table(which, table);
@@ -637,6 +703,17 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         t.block(i, blk);
     }
 
+    if !t.held.is_empty() {
+        t.b.switch_to_block(leave_held);
+        t.b.set_srcloc(source_loc(start, Part::Leave));
+        // (Its first three parameters; the variables add theirs.)
+        let args: Vec<BlockArg> = t.b.block_params(leave_held)[..3]
+            .iter()
+            .map(|&x| BlockArg::Value(x))
+            .collect();
+        t.store_held();
+        t.b.ins().jump(leave, &args);
+    }
     t.b.switch_to_block(leave);
     t.b.set_srcloc(source_loc(start, Part::Leave));
     let [code, pc, cur] = t.b.block_params(leave) else {
@@ -843,7 +920,31 @@ impl Translator<'_, '_> {
             BlockArg::Value(pc),
             BlockArg::Value(me),
         ];
-        self.b.ins().jump(self.leave, &args);
+        let leave = if self.locals_live && !self.held.is_empty() {
+            self.leave_held
+        } else {
+            self.leave
+        };
+        self.b.ins().jump(leave, &args);
+    }
+
+    /// Write the held locals to their words (at LCL, as the entry found it).
+    fn store_held(&mut self) {
+        for (i, var) in self.held.clone().into_iter().enumerate() {
+            let p = self.lcl_host.expect("held locals have static depths");
+            let x = self.b.use_var(var);
+            self.store_at(p, i as u16, x);
+        }
+    }
+
+    /// The held variable of `local i`, in the function's own code (not in
+    /// an inline run's body).
+    fn held_local(&self, i: u16) -> Option<Variable> {
+        if self.inlined.is_empty() {
+            self.held.get(usize::from(i)).copied()
+        } else {
+            None
+        }
     }
 
     fn flag_set(&mut self, bit: u8) -> Value {
@@ -982,11 +1083,20 @@ impl Translator<'_, '_> {
         Some(ok)
     }
 
-    /// The whole entry test (None: nothing to test).
+    /// The whole entry test (None: nothing to test); with held locals,
+    /// the `argument` words lie below LCL (a compiled call's do).
     fn entry_ok(&mut self) -> Option<Value> {
-        match (self.frame_ok(), self.static_ok()) {
+        let ok = match (self.frame_ok(), self.static_ok()) {
             (Some(a), Some(b)) => Some(self.b.ins().band(a, b)),
             (a, b) => a.or(b),
+        };
+        match (self.frame_tops[ARGUMENT], ok) {
+            (Some(top), Some(ok)) if !self.held.is_empty() => {
+                let lcl = self.b.use_var(self.v.lcl);
+                let below = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lcl);
+                Some(self.b.ins().band(ok, below))
+            }
+            _ => ok,
         }
     }
 
@@ -1022,6 +1132,8 @@ impl Translator<'_, '_> {
 
     fn block(&mut self, index: usize, blk: &Block) {
         self.b.switch_to_block(self.cl[index]);
+        // The first block's `function` line makes the held locals live.
+        self.locals_live = index > 0;
         self.b.set_srcloc(source_loc(blk.start, Part::BlockEntry));
         self.flags_known = 0;
         self.ptr_tests = ptr_tests(&self.env.code[blk.start as usize..blk.end as usize]);
@@ -1453,7 +1565,10 @@ impl Translator<'_, '_> {
                 s.push(x);
             }
             Op::PushLocal(i) => {
-                let x = self.seg_read(LOCAL, self.v.lcl, i, before);
+                let x = match self.held_local(i) {
+                    Some(var) => self.b.use_var(var),
+                    None => self.seg_read(LOCAL, self.v.lcl, i, before),
+                };
                 s.push(x);
             }
             Op::PushArg(i) => {
@@ -1488,7 +1603,10 @@ impl Translator<'_, '_> {
             }
             Op::PopLocal(i) => {
                 let x = s.pop(self);
-                self.seg_write(LOCAL, self.v.lcl, i, x, before);
+                match self.held_local(i) {
+                    Some(var) => self.b.def_var(var, x),
+                    None => self.seg_write(LOCAL, self.v.lcl, i, x, before),
+                }
             }
             Op::PopArg(i) => {
                 self.arg_ok(i, before);
@@ -1597,11 +1715,22 @@ impl Translator<'_, '_> {
             }
             Op::CallBuiltin { builtin, nargs } => self.builtin(builtin, nargs, s, before, blk),
             Op::Function { n_vars, .. } => {
-                // The locals, zeroed (the block's entry test covers them).
-                for _ in 0..n_vars {
+                // The locals, zeroed (the block's entry test covers them);
+                // the held ones in their variables, RAM later.
+                let held = match self.held_local(0) {
+                    Some(_) => self.held.len(),
+                    None => 0,
+                };
+                let zero = self.c16(0);
+                for &var in &self.held[..held] {
+                    self.b.def_var(var, zero);
+                }
+                s.depth += held as i32;
+                for _ in held..usize::from(n_vars) {
                     let zero = self.c16(0);
                     s.push(zero);
                 }
+                self.locals_live |= held > 0;
             }
             _ => unreachable!("interpreted instructions end blocks before them"),
         }
@@ -1909,7 +2038,9 @@ impl Translator<'_, '_> {
             .icmp_imm_s(IntCC::Equal, code, i64::from(RETURNED));
         self.b.ins().brif(returned, back, NONE, out, NONE);
         self.b.switch_to_block(out);
-        // The callee left compiled code: the state is in the context.
+        // The callee left compiled code: the state is in the context, and
+        // the held locals go to RAM.
+        self.store_held();
         self.b.ins().return_(&[code, steps]);
 
         // It returned here, all in compiled code: SP is its ARG + 1, the
@@ -2256,6 +2387,10 @@ impl Translator<'_, '_> {
     /// word intact: restore its registers and either return to its
     /// compiled code (it called this one) or to the dispatcher.
     fn ret(&mut self, s: &mut Stack, before: &Before, blk: &Block) {
+        // The held locals' words keep their last values, as the
+        // interpreter leaves them; this function's code ends here.
+        self.store_held();
+        self.locals_live = false;
         let ctx = self.ctx;
         let len = self.frames_len();
         let base = self.fixed_field(offset_of!(Ctx, frames_base));
