@@ -2262,6 +2262,7 @@ impl Translator<'_, '_> {
             slots: Vec::new(),
         };
         let (from, steps0) = self.ops(&mut s, inline.start, inline.end - 1, steps, blk);
+        self.b.set_srcloc(source_loc(inline.end - 1, Part::Op));
         self.return_inline(&mut s, inline.end - 1, from, steps0, inline.keeps_frame);
         (
             self.reach,
