@@ -24,7 +24,6 @@ use crate::commands::jack::cost::{self, Measured};
 use anyhow::{bail, Context, Result};
 use common::image_consts::{HEIGHT, WIDTH};
 use common::{Outcome, F316};
-use hack_vm::Exit;
 use harness::cast::Cast;
 use harness::implementation::{Answer, Implementation, Num};
 use harness_report::model::Comparison;
@@ -238,14 +237,20 @@ fn measured_image(m: &Measured, levels: u8) -> Result<SceneImage> {
                 level: u8::try_from(p.level)
                     .with_context(|| format!("pixel ({x},{y}): level {}", p.level))?,
             })),
-            Err(exit) => match **exit {
-                Exit::SysError { code, .. } if code == scene_jack::OUT_OF_DOMAIN => {
-                    Ok(Outcome::OutOfDomain)
-                }
-                Exit::SysError { code, .. } => Ok(Outcome::SysError(code)),
-                Exit::Budget { .. } | Exit::Hang { .. } => Ok(Outcome::Hang),
-                ref other => bail!("pixel ({x},{y}) stopped: {other}"),
-            },
+            Err(exit) => {
+                let what = || format!("pixel ({x},{y})");
+                let out_of_domain = Some(scene_jack::OUT_OF_DOMAIN);
+                Ok(
+                    match jack::outcome_of((**exit).clone(), out_of_domain, what)? {
+                        Outcome::Value(v) => {
+                            bail!("pixel ({x},{y}) returned {v} without its answer")
+                        }
+                        Outcome::SysError(code) => Outcome::SysError(code),
+                        Outcome::Hang => Outcome::Hang,
+                        Outcome::OutOfDomain => Outcome::OutOfDomain,
+                    },
+                )
+            }
         })
         .collect::<Result<Vec<_>>>()?;
     Ok(SceneImage {

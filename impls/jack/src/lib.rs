@@ -25,8 +25,9 @@ pub mod sources;
 mod trace;
 
 pub use bind::{
-    normalized_coords, BindError, Bindings, BoundPixel, BoundProgram, BudgetFields, Capture,
-    JackProgram, Layout, PixelShade, Ready, Signatures, Statements, WholeRun, DEFAULT_READY_BUDGET,
+    normalized_coords, outcome_of, BindError, Bindings, BoundPixel, BoundProgram, BudgetFields,
+    Capture, JackProgram, Layout, PixelShade, Ready, Signatures, Statements, WholeRun,
+    DEFAULT_READY_BUDGET,
 };
 pub use error::JackError;
 pub use hack_vm::{Config, DivideRule, Profile};

@@ -167,7 +167,7 @@ pub(crate) fn outcome_of(
     exit: Exit,
     what: impl FnOnce() -> String,
 ) -> Result<Outcome<i16>, JackError> {
-    crate::bind::vm::outcome_of(exit, Some(OUT_OF_DOMAIN_CODE), what)
+    crate::bind::outcome_of(exit, Some(OUT_OF_DOMAIN_CODE), what)
 }
 
 impl Raymarcher {

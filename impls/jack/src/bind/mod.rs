@@ -24,7 +24,8 @@ mod record;
 mod signatures;
 mod spec;
 mod statement;
-pub(crate) mod vm;
+mod vm;
+pub use vm::outcome_of;
 mod whole;
 
 pub use bound::{normalized_coords, BoundPixel, BoundProgram};

@@ -58,8 +58,8 @@ pub(crate) fn call_returning(
 
 /// The outcome of a query from its [`Exit`]: `Sys.error(out_of_domain)` is
 /// [`Outcome::OutOfDomain`], any other code a `SysError`, an exhausted
-/// budget a hang; any other end is an error.
-pub(crate) fn outcome_of(
+/// budget a hang; any other end is an error (`what` names the query).
+pub fn outcome_of(
     exit: Exit,
     out_of_domain: Option<i16>,
     what: impl FnOnce() -> String,
