@@ -69,11 +69,9 @@ mod tests {
     use crate::program::Program;
     use jack_os::{DivideRule, Profile};
 
-    /// The map of a small program: each line's stretch lies inside its
-    /// function's code and after the previous one, its instruction inside
-    /// the function, and the kinds name what the code runs.
-    #[test]
-    fn the_code_map_names_each_stretchs_instruction() {
+    /// A small program and its code map under `profile`: `Main.f` has a
+    /// local, written once and read back.
+    fn mapped(profile: Profile) -> (std::sync::Arc<Program>, String) {
         let source = "function Main.main 0\npush constant 2\ncall Main.f 1\nreturn\n\
                       function Main.f 1\npush argument 0\npush constant 3\nadd\npop local 0\n\
                       push local 0\npush argument 0\ncall Math.multiply 2\nreturn\n";
@@ -81,12 +79,40 @@ mod tests {
         let mut map = String::new();
         Native::compile_mapped(
             &program,
-            Profile::Desktop,
+            profile,
             DivideRule::Truncate,
             None,
             Some(&mut map),
         )
         .expect("compiles");
+        (program, map)
+    }
+
+    /// The kinds of `Main.f`'s own instructions that have host code.
+    fn kinds_of_f(map: &str) -> Vec<&str> {
+        map.lines()
+            .filter(|l| l.starts_with("Main.f\t") && l.split('\t').nth(4) == Some("op"))
+            .filter_map(|l| l.split('\t').nth(5))
+            .collect()
+    }
+
+    /// The desktop holds `Main.f`'s local in a register: its `pop local`
+    /// leaves no code of its own. The web stores it.
+    #[test]
+    fn held_locals_have_no_code_of_their_own_on_the_desktop() {
+        let (_, desktop) = mapped(Profile::Desktop);
+        let (_, web) = mapped(Profile::Web);
+        let (desktop, web) = (kinds_of_f(&desktop), kinds_of_f(&web));
+        assert!(!desktop.contains(&"PopLocal"), "{desktop:?}");
+        assert!(web.contains(&"PopLocal"), "{web:?}");
+    }
+
+    /// The map of a small program: each line's stretch lies inside its
+    /// function's code and after the previous one, its instruction inside
+    /// the function, and the kinds name what the code runs.
+    #[test]
+    fn the_code_map_names_each_stretchs_instruction() {
+        let (program, map) = mapped(Profile::Desktop);
         let f = &program.functions[program.function_id("Main.f").expect("Main.f") as usize];
         let mut last_end = 0;
         let mut kinds = Vec::new();
