@@ -578,7 +578,8 @@ fn agree_on(body: &str, pad: u16, args: &[i16], webs: &[bool], budgets: &[u64]) 
 /// RAM gets them wherever compiled code stops or leaves (every budget
 /// inside the loop; a callee whose `Sys.wait` the interpreter runs, after
 /// which `Main.h` is entered again through the dispatcher and reads them
-/// back) and at its return; a stop on `Main.h`'s `function` line leaves
+/// back; a division by zero in the first block) and at its return; a stop
+/// on `Main.h`'s `function` line leaves
 /// the words under its locals as they were (nonzero, from `Main.f`'s
 /// pushes), not as the line would zero them.
 #[test]
@@ -607,6 +608,23 @@ fn held_locals_reach_ram_wherever_compiled_code_stops() {
         engines_agree(&case, Engine::Native, None)
             .unwrap_or_else(|e| panic!("first budget {budget}: {e}"));
     }
+    // A leave in the first block, after the `function` line: a division
+    // by zero, which the interpreter runs (and which ends the run). (The
+    // branch keeps `Main.h` from running inline in `Main.f`.)
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\npush argument 0\ncall Main.h 1\nreturn\n\
+               function Main.h 1\npush constant 7\npop local 0\npush local 0\npush argument 0\n\
+               call Math.divide 2\npop temp 0\npush constant 0\nif-goto X\nlabel X\n\
+               push local 0\nreturn\n";
+    let case = EngineCase {
+        src: src.to_string(),
+        args: vec![0, 0],
+        web: false,
+        budgets: vec![0],
+        hold: None,
+        watched: None,
+    };
+    engines_agree(&case, Engine::Native, None).expect("the engines agree");
 }
 
 /// ARG moved onto the locals (LCL + k, desktop; THAT set again, as the

@@ -207,10 +207,10 @@ const MAX_HELD_LOCALS: u16 = 16;
 /// their words: under the desktop profile (whose `this`, `that` and
 /// built-ins reach only the heap and above, compiled code's `argument`
 /// words lie below LCL, and the `function` line zeroes the locals), with
-/// static depths, every `local` access inside the entry test's reach and
-/// below the function's local count, no instruction popping a stack word
-/// below the locals (so no callee's ARG reaches them), and no `pop
-/// constant` into the stack.
+/// static depths, every `local` access inside the entry test's reach (the
+/// loader makes one past the function's local count a `Fail`), no
+/// instruction popping a stack word below the locals (so no callee's ARG
+/// reaches them), and no `pop constant` into the stack.
 fn held_locals(env: &Env<'_>, depths: Option<&[Option<i32>]>, reach: [Option<u16>; 2]) -> u16 {
     let f = &env.program.functions[env.id as usize];
     let (Some(depths), Some(top)) = (depths, reach[LOCAL]) else {
@@ -222,7 +222,6 @@ fn held_locals(env: &Env<'_>, depths: Option<&[Option<i32>]>, reach: [Option<u16
     let fits = env.profile == Profile::Desktop
         && env.timing.function_step
         && matches!(code.first(), Some(Op::Function { .. }))
-        && top < f.n_vars
         && held <= MAX_HELD_LOCALS
         && !code
             .iter()
