@@ -135,6 +135,14 @@ mod tests {
         for kind in ["PushArg", "Add", "Multiply", "Return"] {
             assert!(kinds.iter().any(|k| k == kind), "{kind} in {kinds:?}");
         }
+        // `Main.f` runs inline in `Main.main`: its instructions, its
+        // return included, are counted to themselves there.
+        let inline_return = map.lines().any(|l| {
+            let cols: Vec<&str> = l.split('\t').collect();
+            let pc: u32 = cols[3].parse().unwrap();
+            cols[0] == "Main.main" && cols[5] == "Return" && (f.start..f.start + 9).contains(&pc)
+        });
+        assert!(inline_return, "{map}");
         assert_eq!(super::kind(crate::program::Op::PushConst(7)), "PushConst");
     }
 }

@@ -1729,7 +1729,7 @@ impl Translator<'_, '_> {
                     let zero = self.c16(0);
                     s.push(zero);
                 }
-                self.locals_live |= held > 0;
+                self.locals_live = true;
             }
             _ => unreachable!("interpreted instructions end blocks before them"),
         }
