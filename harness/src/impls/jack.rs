@@ -548,7 +548,9 @@ fn failed(e: JackError) -> ImplError {
 
 impl JackAdapter {
     /// Say once, on stderr, which budget a hang ran out of: a program whose
-    /// operation really finishes, only later, needs a larger one.
+    /// operation really finishes, only later, needs a larger one (the
+    /// other side of a comparison may hang on the same case too, so the
+    /// note says where a larger budget is the fix).
     fn tell_hang(&self, v: &Vector) {
         let budgets = self.bound.budgets();
         let (field, budget) = match v {
@@ -559,8 +561,9 @@ impl JackAdapter {
         if !self.hang_told.swap(true, Ordering::Relaxed) {
             eprintln!(
                 "note: `{}` ran out of its instruction budget `budget.{field}` ({budget} \
-                 instructions) and is reported as a hang; if the program does finish, set a \
-                 larger one in its bindings: `budget = {{ {field} = N }}` (docs/bindings.md)",
+                 instructions) on at least one case, reported as a hang; where the other side \
+                 finishes such a case, the program may only need longer: set a larger budget \
+                 in its bindings, `budget = {{ {field} = N }}` (docs/bindings.md)",
                 self.label
             );
         }
