@@ -75,6 +75,11 @@ mod tests {
         let source = "function Main.main 0\npush constant 2\ncall Main.f 1\nreturn\n\
                       function Main.f 1\npush argument 0\npush constant 3\nadd\npop local 0\n\
                       push local 0\npush argument 0\ncall Math.multiply 2\nreturn\n";
+        map_of(source, profile)
+    }
+
+    /// The program of VM code `source` and its code map under `profile`.
+    fn map_of(source: &str, profile: Profile) -> (std::sync::Arc<Program>, String) {
         let program = Program::from_sources(&[("Main.vm", source)]).expect("valid VM code");
         let mut map = String::new();
         Native::compile_mapped(
@@ -105,6 +110,23 @@ mod tests {
         let (desktop, web) = (kinds_of_f(&desktop), kinds_of_f(&web));
         assert!(!desktop.contains(&"PopLocal"), "{desktop:?}");
         assert!(web.contains(&"PopLocal"), "{web:?}");
+    }
+
+    /// A `pop constant` to a plain word is compiled code's own store; one
+    /// to a register word (here THIS) is left to the interpreter.
+    #[test]
+    fn pops_to_plain_words_are_compiled() {
+        let source = "function Main.main 0\npush constant 7\npop constant 300\n\
+                      push constant 8\npop constant 3\npush constant 0\nreturn\n";
+        let (program, map) = map_of(source, Profile::Web);
+        let start = program.functions[0].start;
+        let pops: Vec<u32> = map
+            .lines()
+            .map(|l| l.split('\t').collect::<Vec<_>>())
+            .filter(|cols| cols[4] == "op" && cols[5] == "PopRam")
+            .map(|cols| cols[3].parse().unwrap())
+            .collect();
+        assert_eq!(pops, [start + 1], "{map}");
     }
 
     /// The map of a small program: each line's stretch lies inside its

@@ -406,15 +406,16 @@ impl Machine {
         // (a shorter set leaves the rest unwatched).
         let padded: Vec<bool>;
         let set: Option<&[bool]> = watch.as_ref().map(|(set, _)| *set).filter(|_| W);
-        let watched: &[bool] = match set {
-            Some(set) if set.len() >= native.unwatched.len() => set,
-            Some(set) => {
-                padded = (0..native.unwatched.len())
+        let n = native.unwatched.len();
+        let watched: &[bool] = match set.map(|set| (set, set.get(..n))) {
+            Some((_, Some(prefix))) => prefix,
+            Some((set, None)) => {
+                padded = (0..n)
                     .map(|i| set.get(i).copied().unwrap_or(false))
                     .collect();
                 &padded
             }
-            _ => &native.unwatched,
+            None => &native.unwatched,
         };
         let any_watched = set.is_some_and(|set| set.contains(&true));
         loop {
