@@ -72,6 +72,7 @@ impl Ctx<'_> {
     /// in the heap or the screen (2048..=24576, the keyboard included) or
     /// be word 0; else the run stops with the desktop's message. The
     /// address is a 16-bit word, as the desktop's Java `short`.
+    #[inline]
     fn checked(&mut self, addr: i32) -> Option<i32> {
         let addr = i32::from(addr as i16);
         if (2048..=crate::KBD as i32).contains(&addr) || addr == 0 {
