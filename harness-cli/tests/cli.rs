@@ -432,6 +432,22 @@ fn jack_run_stops_a_runaway_program_at_its_budget_with_the_call_stack() {
     let t = text(&o);
     assert!(t.contains("instructions: 1000"), "{t}");
     assert!(t.contains("Main.main > Main.spin"), "{t}");
+    // Too short a run for the default engine to compile; the compiled
+    // engine runs the loop itself, the last steps (where the budget ends
+    // inside a block) interpreted.
+    assert!(t.contains("compiled: 0 (0.00%)\n"), "{t}");
+    let o = jack(
+        "run",
+        src.path(),
+        &["--max-instructions", "1000", "--engine", "native"],
+    );
+    let t = text(&o);
+    assert!(t.contains("instructions: 1000\n"), "{t}");
+    let compiled = t
+        .lines()
+        .find_map(|l| l.strip_prefix("compiled: "))
+        .and_then(|l| l.split(' ').next()?.parse::<u64>().ok());
+    assert!(compiled.is_some_and(|n| (990..1000).contains(&n)), "{t}");
 }
 
 #[test]

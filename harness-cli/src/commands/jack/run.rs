@@ -152,6 +152,11 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     let mut machine = machine(&args, args.profile, config(args.profile))?;
     let exit = finish(&mut machine, args.max_instructions, args.profile);
     println!("instructions: {}", machine.steps());
+    let compiled = machine.compiled_steps();
+    println!(
+        "compiled: {compiled} ({:.2}%)",
+        100.0 * compiled as f64 / machine.steps().max(1) as f64
+    );
     println!("end: {exit}");
     print_ram(machine.ram(), &args.ram);
     if args.profile_functions {

@@ -129,6 +129,8 @@ pub struct Machine {
     pub(crate) startup_pending: bool,
     /// The program's compiled code, when the compiling engine runs.
     pub(crate) native: Option<Arc<Native>>,
+    /// Of `steps`, those compiled code ran (see [`Machine::compiled_steps`]).
+    pub(crate) compiled_steps: u64,
     /// An [`Engine::Auto`] machine still on the interpreter.
     pub(crate) tier: Option<Tier>,
     /// The step at which the current run's budget ends (`u64::MAX`: none).
@@ -190,6 +192,7 @@ impl Machine {
             ram,
             os,
             steps: 0,
+            compiled_steps: 0,
             cur: entry,
             nargs: 0,
             flags: 0,
@@ -281,6 +284,13 @@ impl Machine {
     /// VM instructions executed so far (labels are free, a call is one).
     pub fn steps(&self) -> u64 {
         self.steps
+    }
+
+    /// Of [`Machine::steps`], those run by compiled code (built-ins it
+    /// called included); the interpreter ran the rest. 0 on the
+    /// interpreter, and before an Auto machine switches.
+    pub fn compiled_steps(&self) -> u64 {
+        self.compiled_steps
     }
 
     /// The memory.

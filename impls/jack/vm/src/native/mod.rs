@@ -427,7 +427,10 @@ impl Machine {
             // (Compiled code leaves the desktop's `that` from word 0 to
             // the interpreter: it never runs with THAT_ZERO set.)
             if block != NO_BLOCK && owner == self.cur && self.flags & THAT_ZERO == 0 {
-                match self.enter_native(native, block, stop_at, watched, any_watched) {
+                let before = self.steps;
+                let entered = self.enter_native(native, block, stop_at, watched, any_watched);
+                self.compiled_steps += self.steps - before;
+                match entered {
                     Err(halt) => return self.end_at(halt),
                     Ok(CONTINUE) => continue,
                     Ok(_) => {}
