@@ -1,12 +1,13 @@
 //! The benchmark corpus (tests/support/corpus.rs) on both engines under
 //! both profiles: the same exit, step count, RAM and call stack at every
-//! budget stop of a run cut into slices, and at its end.
+//! budget stop of a run cut into slices, and at its end; and the share of
+//! each run that compiled code runs.
 
 #[path = "support/corpus.rs"]
 mod corpus;
 
 use corpus::{Work, CORPUS};
-use hack_vm::{Engine, Exit, Profile};
+use hack_vm::{Config, Engine, Exit, Machine, Profile, Program};
 
 /// Small runs: a round of each program, the jack-port's start and its
 /// first rows.
@@ -73,5 +74,30 @@ fn corpus_programs_run_almost_wholly_compiled() {
                 m.steps()
             );
         }
+    }
+}
+
+/// Code before a program's first `function` line (its `__implicit`
+/// function) runs compiled too, from its first instruction: 400 straight
+/// instructions, then a loop.
+#[test]
+fn code_before_any_function_runs_compiled() {
+    let source = "push constant 1\npop temp 0\n".repeat(200)
+        + "label LOOP\npush temp 0\npush constant 1\nadd\npop temp 0\ngoto LOOP\n";
+    let program = Program::from_sources(&[("Main.vm", source.as_str())]).expect("loads");
+    for profile in [Profile::Desktop, Profile::Web] {
+        let config = Config {
+            profile,
+            engine: Engine::Native,
+            ..Config::default()
+        };
+        let mut m = Machine::new(program.clone(), config);
+        let exit = m.run(Some(10_000));
+        assert!(matches!(exit, Exit::Budget { .. }), "{exit}");
+        let interpreted = m.steps() - m.compiled_steps();
+        assert!(
+            interpreted <= 8,
+            "{profile:?}: {interpreted} steps interpreted"
+        );
     }
 }

@@ -53,6 +53,7 @@ fn a_short_run_never_compiles() {
     let steps = run_loop(&mut m, 10);
     assert!(steps < AUTO_THRESHOLD);
     assert_eq!(m.engine(), Engine::Interp);
+    assert_eq!(m.compiled_steps(), 0);
 }
 
 #[test]
@@ -62,9 +63,17 @@ fn a_long_run_switches_to_compiled_code() {
     let steps = run_loop(&mut auto, 300);
     assert!(steps > AUTO_THRESHOLD);
     assert_eq!(auto.engine(), Engine::Native);
+    // It interprets up to the threshold (and on to the end of that slice
+    // of the run), then compiled code runs the rest.
+    let interpreted = steps - auto.compiled_steps();
+    assert!(
+        (AUTO_THRESHOLD..steps).contains(&interpreted),
+        "{interpreted} of {steps} interpreted"
+    );
     let mut interp = machine(&program, Engine::Interp, None);
     assert_eq!(run_loop(&mut interp, 300), steps);
     assert!(interp.ram() == auto.ram());
+    assert_eq!(interp.compiled_steps(), 0);
 }
 
 #[test]
