@@ -660,6 +660,53 @@ fn argument_words_on_the_held_stack_agree() {
     }
 }
 
+/// An inline run reads its arguments from the caller's registers, not
+/// from RAM, until something may have written them: Main.a's `that`
+/// points at its own argument 1 (web), Main.b writes its argument 0, and
+/// Main.c's nested Main.a writes Main.c's argument 1 before Main.c reads
+/// it. Each returns what the interpreter does (99, 7 + 55, 99), with
+/// every budget stop inside the runs.
+#[test]
+fn inline_runs_read_arguments_written_in_the_run() {
+    // Main.f's stack starts at 261: the arguments of Main.a are at 261
+    // and 262, those of Main.c at 262 and 263 (below them, the sum so
+    // far). Argument 0 is the address of argument 1.
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 0\npush constant 262\npush constant 55\ncall Main.a 2\n\
+         push constant 3\npush constant 55\ncall Main.b 2\nadd\n\
+         push constant 263\npush constant 55\ncall Main.c 2\nadd\nreturn\n\
+         function Main.a 0\npush argument 0\npop pointer 1\npush constant 99\npop that 0\n\
+         push argument 1\nreturn\n\
+         function Main.b 0\npush constant 7\npop argument 0\npush argument 0\npush argument 1\n\
+         add\nreturn\n\
+         function Main.c 0\npush argument 0\npush argument 1\ncall Main.a 2\npop temp 0\n\
+         push argument 1\nreturn\n"
+        .to_string();
+    let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+    let config = Config {
+        profile: hack_vm::Profile::Web,
+        engine: Engine::Native,
+        ..Config::default()
+    };
+    let mut m = Machine::new(program, config);
+    let exit = m.call("Main.f", &[], None).expect("Main.f exists");
+    assert_eq!(exit, Exit::Returned(99 + 62 + 99));
+    assert_eq!(m.compiled_steps(), m.steps() - 1, "inline runs, compiled");
+    for budget in 0..60 {
+        let case = EngineCase {
+            src: src.clone(),
+            args: vec![],
+            web: true,
+            budgets: vec![budget],
+            hold: None,
+            watched: None,
+        };
+        if let Err(e) = engines_agree(&case, Engine::Native, None) {
+            panic!("first budget {budget}: {e}");
+        }
+    }
+}
+
 /// A block of 1,791 pushes, the whole desktop stack less one word,
 /// entered with SP one word too high (code whose depths are not static,
 /// where each block tests its stack): the last push overflows.

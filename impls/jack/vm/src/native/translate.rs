@@ -182,6 +182,11 @@ struct Translator<'a, 'b> {
     /// that leaving compiled code inside it first makes the frames those
     /// calls would have pushed on the frame stack.
     inlined: Vec<CallSite>,
+    /// Beside `inlined`, a level per run: the values of its argument
+    /// words where the caller's code had them in registers (None where
+    /// not, or once a store may have changed them), so that the run's
+    /// `push argument` takes them without a load of the word just stored.
+    inline_args: Vec<Vec<Option<Value>>>,
     /// Desktop: FRAME and RET as a nested inline run's return left them
     /// for R13 and R14, not yet written: the next return overwrites them,
     /// and they go to RAM before a leave or an access of either word
@@ -282,6 +287,29 @@ fn keeps_frames(ops: &[Op], profile: Profile) -> bool {
         } => profile == Profile::Desktop,
         _ => true,
     })
+}
+
+/// Whether `op` may write a word below the running function's frame, an
+/// inline run's argument words among them: stores to absolute stack
+/// addresses, the web's `this` and `that` (the desktop's lie in the heap
+/// and above), and the built-ins that write memory.
+fn may_write_frames(op: Op, profile: Profile) -> bool {
+    match op {
+        Op::PopRam(a) => a >= STACK_BASE,
+        Op::PopThis(_) | Op::PopThisChk(_) | Op::PopThat(_) | Op::PopThatChk(_) => {
+            profile != Profile::Desktop
+        }
+        Op::CallBuiltin { builtin, .. } => !matches!(
+            builtin,
+            jack_os::Builtin::MathAbs
+                | jack_os::Builtin::MathMin
+                | jack_os::Builtin::MathMax
+                | jack_os::Builtin::MemoryPeek
+                | jack_os::Builtin::StringLength
+                | jack_os::Builtin::StringCharAt
+        ),
+        _ => false,
+    }
 }
 
 /// Callees of more instructions (before their `return`) are called, not
@@ -591,6 +619,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         frame_shown: false,
         range: None,
         inlined: Vec::new(),
+        inline_args: Vec::new(),
         return_registers: None,
         held,
         leave_held,
@@ -1265,6 +1294,11 @@ impl Translator<'_, '_> {
             if may_touch_stack {
                 s.flush(self);
             }
+            if may_write_frames(op, self.env.profile) {
+                for args in &mut self.inline_args {
+                    args.fill(None);
+                }
+            }
             let before = Before {
                 pc,
                 k: u64::from(pc - from),
@@ -1572,7 +1606,11 @@ impl Translator<'_, '_> {
             }
             Op::PushArg(i) => {
                 self.arg_ok(i, before);
-                let x = self.seg_read(ARGUMENT, self.v.arg, i, before);
+                let known = self.inline_args.last().and_then(|a| a[usize::from(i)]);
+                let x = match known {
+                    Some(x) => x,
+                    None => self.seg_read(ARGUMENT, self.v.arg, i, before),
+                };
                 s.push(x);
             }
             Op::PushThis(i) | Op::PushThisChk(i) => {
@@ -1611,6 +1649,9 @@ impl Translator<'_, '_> {
                 self.arg_ok(i, before);
                 let x = s.pop(self);
                 self.seg_write(ARGUMENT, self.v.arg, i, x, before);
+                if let Some(args) = self.inline_args.last_mut() {
+                    args[usize::from(i)] = Some(x);
+                }
             }
             Op::PopThis(i) | Op::PopThisChk(i) => {
                 if matches!(op, Op::PopThisChk(_)) {
@@ -2004,7 +2045,12 @@ impl Translator<'_, '_> {
         };
         let steps = self.b.ins().iadd_imm_s(before.steps0, charged as i64);
         if let Some(inline) = inline {
+            let args = (0..i32::from(n))
+                .map(|i| s.known(s.depth - i32::from(n) + i))
+                .collect();
+            self.inline_args.push(args);
             self.run_inline(call, inline, base, p, steps, n_vars, blk);
+            self.inline_args.pop();
             if nested.is_some() {
                 s.depth += 1 - i32::from(n);
             }
@@ -2589,6 +2635,15 @@ impl Stack {
             dirty: false,
         });
         x
+    }
+
+    /// The value of stack word `depth` where the block has it in a
+    /// register.
+    fn known(&self, depth: i32) -> Option<Value> {
+        self.slots
+            .iter()
+            .find(|s| s.depth == depth)
+            .map(|s| s.value)
     }
 
     /// The words pushed and not yet written.
