@@ -707,6 +707,64 @@ fn inline_runs_read_arguments_written_in_the_run() {
     }
 }
 
+/// A called function (not run inline: it branches) that rewrites its
+/// caller's saved THAT, by popping below its LCL and pushing over the
+/// word, through the web's `that`, or by `pop constant` (Main.f calls it
+/// with its frame at 263..=267): the caller's `push that 0` after the return
+/// reads the word the new THAT points at, 22, not 11 at the old one: a
+/// compiled call's return takes the caller's registers from the frame in
+/// RAM, as the interpreter does, not from what the caller had.
+#[test]
+fn a_callee_that_rewrites_its_callers_saved_that_agrees() {
+    let pop_below = "pop temp 0\npush constant 2200";
+    let through_that = "push constant 267\npop pointer 1\npush constant 2200\npop that 0";
+    let pop_constant = "push constant 2200\npop constant 267";
+    for (rewrite, webs) in [
+        (pop_below, &[false, true][..]),
+        (through_that, &[true][..]),
+        (pop_constant, &[false, true][..]),
+    ] {
+        let src = format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+             function Main.f 1\npush constant 2100\npop pointer 1\npush constant 11\npop that 0\n\
+             push constant 2200\npop pointer 1\npush constant 22\npop that 0\n\
+             push constant 2100\npop pointer 1\npush constant 7\ncall Main.x 1\npop temp 1\n\
+             push that 0\nreturn\n\
+             function Main.x 0\npush argument 0\nif-goto A\nlabel A\n{rewrite}\n\
+             push constant 0\nreturn\n"
+        );
+        let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+        for &web in webs {
+            let profile = if web {
+                hack_vm::Profile::Web
+            } else {
+                hack_vm::Profile::Desktop
+            };
+            let config = Config {
+                profile,
+                engine: Engine::Native,
+                ..Config::default()
+            };
+            let mut m = Machine::new(program.clone(), config);
+            let exit = m.call("Main.f", &[], None).expect("Main.f exists");
+            assert_eq!(exit, Exit::Returned(22), "web {web}");
+            for budget in 0..40 {
+                let case = EngineCase {
+                    src: src.clone(),
+                    args: vec![],
+                    web,
+                    budgets: vec![budget],
+                    hold: None,
+                    watched: None,
+                };
+                if let Err(e) = engines_agree(&case, Engine::Native, None) {
+                    panic!("web {web}, first budget {budget}: {e}");
+                }
+            }
+        }
+    }
+}
+
 /// A block of 1,791 pushes, the whole desktop stack less one word,
 /// entered with SP one word too high (code whose depths are not static,
 /// where each block tests its stack): the last push overflows.
