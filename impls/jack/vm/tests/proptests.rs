@@ -889,6 +889,31 @@ fn a_deep_recursion_through_nested_inline_runs_agrees() {
     }
 }
 
+/// Compiled calls nest at most 256 deep on the host's stack: in a
+/// recursion 1,000 deep, every 256th call is left to the interpreter, and
+/// compiled code is entered again above it, so that the host's stack holds
+/// at most 256 compiled frames whatever the VM's depth (depths 200, 256,
+/// 600 and 1,000 interpret 1, 2, 3 and 4 steps).
+#[test]
+fn compiled_calls_nest_at_most_256_deep() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.r 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\n\
+               label MORE\npush argument 0\npush constant 1\nsub\ncall Main.r 1\n\
+               push constant 1\nadd\nreturn\n";
+    let program = Program::from_sources(&[("Main.vm", src)]).expect("it loads");
+    let config = Config {
+        profile: hack_vm::Profile::Web,
+        engine: Engine::Native,
+        ..Config::default()
+    };
+    let mut m = Machine::new(program, config);
+    let exit = m.call("Main.r", &[1000], None).expect("Main.r exists");
+    assert_eq!(exit, Exit::Returned(1000));
+    // The calls 256, 512 and 768 levels down, and the last return, to
+    // the host.
+    assert_eq!(m.steps() - m.compiled_steps(), 4);
+}
+
 /// Built-ins called from compiled code where the interpreter's rules
 /// decide: a `Memory.poke` of each register (of SP too, so that the
 /// built-in's push lands where SP then says: a register, the stack's end,
