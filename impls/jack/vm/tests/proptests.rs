@@ -914,6 +914,40 @@ fn compiled_calls_nest_at_most_256_deep() {
     assert_eq!(m.steps() - m.compiled_steps(), 4);
 }
 
+/// A one-operand operator (`neg`, `not`) on an empty stack pops below
+/// word 256, and a desktop static past RAM[255] lies in the stack: each
+/// fails, or writes a stack word the block has pushed, as the interpreter
+/// has it, on the compiled engine too.
+#[test]
+fn stack_edges_of_operators_and_statics_agree() {
+    for op in ["neg", "not"] {
+        let src = format!("{op}\n");
+        let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+        for profile in [hack_vm::Profile::Desktop, hack_vm::Profile::Web] {
+            let run = |engine| {
+                let config = Config {
+                    profile,
+                    engine,
+                    ..Config::default()
+                };
+                let mut m = Machine::new(program.clone(), config);
+                let exit = m.run(Some(10));
+                (exit, m.steps())
+            };
+            let (interp, native) = (run(Engine::Interp), run(Engine::Native));
+            let failed = matches!(interp.0, Exit::RuntimeError { .. });
+            assert!(failed, "{op} {profile:?}: {}", interp.0);
+            assert_eq!(native, interp, "{op} {profile:?}");
+        }
+    }
+    // Main.f's stack starts at 261 (desktop): its sixth push lands on
+    // RAM[266], static 250's word, which `pop static 250` then writes.
+    let body = "push constant 1\npush constant 2\npush constant 3\npush constant 4\n\
+                push constant 5\npush constant 6\npush constant 99\npop static 250\n\
+                add\nadd\nadd\nadd\nadd\npop temp 0";
+    agree_on(body, 0, &[0, 0], &[false], &[0, 3, 7]);
+}
+
 /// Built-ins called from compiled code where the interpreter's rules
 /// decide: a `Memory.poke` of each register (of SP too, so that the
 /// built-in's push lands where SP then says: a register, the stack's end,

@@ -373,3 +373,37 @@ pub(crate) fn budgets(
         .map(|(tested, covers)| Budget { tested, covers })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{kind, Kind, MAX_INLINE_LOCALS};
+    use crate::program::Op;
+    use jack_os::Builtin;
+
+    /// Where compiled code stops for the interpreter, at each edge: the
+    /// arithmetic built-ins run inside the block and the others through
+    /// the host; statics to RAM[255] are compiled, past it (where they may
+    /// alias the stack) interpreted; a `function` line zeroes up to
+    /// `MAX_INLINE_LOCALS` locals itself.
+    #[test]
+    fn kinds_at_their_edges() {
+        let builtin = |builtin, nargs| Op::CallBuiltin { builtin, nargs };
+        assert_eq!(kind(builtin(Builtin::MathAbs, 1)), Kind::Straight);
+        assert_eq!(kind(builtin(Builtin::StringCharAt, 2)), Kind::Straight);
+        assert_eq!(
+            kind(builtin(Builtin::OutputPrintInt, 1)),
+            Kind::CallOrReturn
+        );
+        assert_eq!(kind(builtin(Builtin::SysWait, 1)), Kind::Interpreted);
+        for (a, k) in [(255, Kind::Straight), (256, Kind::Interpreted)] {
+            assert_eq!(kind(Op::PushAbs(a)), k, "push {a}");
+            assert_eq!(kind(Op::PopAbs(a)), k, "pop {a}");
+        }
+        let function = |n_vars| Op::Function {
+            n_vars,
+            method: false,
+        };
+        assert_eq!(kind(function(MAX_INLINE_LOCALS)), Kind::Straight);
+        assert_eq!(kind(function(MAX_INLINE_LOCALS + 1)), Kind::Interpreted);
+    }
+}
