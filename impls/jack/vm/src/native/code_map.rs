@@ -129,6 +129,25 @@ mod tests {
         assert_eq!(pops, [start + 1], "{map}");
     }
 
+    /// A run nested in an inline run is inline too, its return counted in
+    /// the outermost caller's code: Main.f pushes three words and pops two
+    /// (its depth before the nested call is 2, the call's two arguments).
+    #[test]
+    fn nested_inline_runs_return_in_the_outermost_caller() {
+        let source = "function Main.main 0\npush constant 2\ncall Main.f 1\nreturn\n\
+                      function Main.f 0\npush argument 0\npush constant 3\nadd\n\
+                      push argument 0\ncall Main.g 2\nreturn\n\
+                      function Main.g 0\npush argument 0\npush argument 1\nsub\nreturn\n";
+        let (program, map) = map_of(source, Profile::Desktop);
+        let g = &program.functions[program.function_id("Main.g").expect("Main.g") as usize];
+        let nested_return = map.lines().any(|l| {
+            let cols: Vec<&str> = l.split('\t').collect();
+            let pc: u32 = cols[3].parse().unwrap();
+            cols[0] == "Main.main" && cols[5] == "Return" && (g.start..g.start + 4).contains(&pc)
+        });
+        assert!(nested_return, "{map}");
+    }
+
     /// The map of a small program: each line's stretch lies inside its
     /// function's code and after the previous one, its instruction inside
     /// the function, and the kinds name what the code runs.
