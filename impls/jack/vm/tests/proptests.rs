@@ -682,27 +682,46 @@ fn inline_runs_read_arguments_written_in_the_run() {
          function Main.c 0\npush argument 0\npush argument 1\ncall Main.a 2\npop temp 0\n\
          push argument 1\nreturn\n"
         .to_string();
-    let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+    let (m, exit) = native_call(&src, true);
+    assert_eq!(exit, Exit::Returned(99 + 62 + 99));
+    assert_eq!(m.compiled_steps(), m.steps() - 1, "inline runs, compiled");
+    agree_at_every_budget(&src, true, 0..60);
+}
+
+/// `Main.f` of `src` (a program of its own, not [`random_program`]'s)
+/// called with no arguments on the compiled engine, under the web
+/// profile or the desktop's: the machine after it, and its exit.
+fn native_call(src: &str, web: bool) -> (Machine, Exit) {
+    let program = Program::from_sources(&[("Main.vm", src)]).expect("it loads");
+    let profile = if web {
+        hack_vm::Profile::Web
+    } else {
+        hack_vm::Profile::Desktop
+    };
     let config = Config {
-        profile: hack_vm::Profile::Web,
+        profile,
         engine: Engine::Native,
         ..Config::default()
     };
     let mut m = Machine::new(program, config);
     let exit = m.call("Main.f", &[], None).expect("Main.f exists");
-    assert_eq!(exit, Exit::Returned(99 + 62 + 99));
-    assert_eq!(m.compiled_steps(), m.steps() - 1, "inline runs, compiled");
-    for budget in 0..60 {
+    (m, exit)
+}
+
+/// Both engines agree on `Main.f` of `src` (as [`native_call`] runs it),
+/// its first budget each of `budgets`.
+fn agree_at_every_budget(src: &str, web: bool, budgets: std::ops::Range<u64>) {
+    for budget in budgets {
         let case = EngineCase {
-            src: src.clone(),
+            src: src.to_string(),
             args: vec![],
-            web: true,
+            web,
             budgets: vec![budget],
             hold: None,
             watched: None,
         };
         if let Err(e) = engines_agree(&case, Engine::Native, None) {
-            panic!("first budget {budget}: {e}");
+            panic!("web {web}, first budget {budget}: {e}");
         }
     }
 }
@@ -733,34 +752,10 @@ fn a_callee_that_rewrites_its_callers_saved_that_agrees() {
              function Main.x 0\npush argument 0\nif-goto A\nlabel A\n{rewrite}\n\
              push constant 0\nreturn\n"
         );
-        let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
         for &web in webs {
-            let profile = if web {
-                hack_vm::Profile::Web
-            } else {
-                hack_vm::Profile::Desktop
-            };
-            let config = Config {
-                profile,
-                engine: Engine::Native,
-                ..Config::default()
-            };
-            let mut m = Machine::new(program.clone(), config);
-            let exit = m.call("Main.f", &[], None).expect("Main.f exists");
+            let (_, exit) = native_call(&src, web);
             assert_eq!(exit, Exit::Returned(22), "web {web}");
-            for budget in 0..40 {
-                let case = EngineCase {
-                    src: src.clone(),
-                    args: vec![],
-                    web,
-                    budgets: vec![budget],
-                    hold: None,
-                    watched: None,
-                };
-                if let Err(e) = engines_agree(&case, Engine::Native, None) {
-                    panic!("web {web}, first budget {budget}: {e}");
-                }
-            }
+            agree_at_every_budget(&src, web, 0..40);
         }
     }
 }
