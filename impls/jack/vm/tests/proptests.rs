@@ -557,20 +557,9 @@ fn pointer_reads_of_held_stack_words_agree() {
 /// engines under each profile in `profiles` from each first budget in
 /// `budgets` (then to the end): they agree.
 fn agree_on(body: &str, pad: u16, args: &[i16], webs: &[bool], budgets: &[u64]) {
+    let src = random_program(vec![body.to_string()], vec![], pad);
     for &web in webs {
-        for &budget in budgets {
-            let case = EngineCase {
-                src: random_program(vec![body.to_string()], vec![], pad),
-                args: args.to_vec(),
-                web,
-                budgets: vec![budget],
-                hold: None,
-                watched: None,
-            };
-            if let Err(e) = engines_agree(&case, Engine::Native, None) {
-                panic!("web {web}, first budget {budget}: {e}");
-            }
-        }
+        agree_at_every_budget(&src, args, web, budgets.iter().copied());
     }
 }
 
@@ -685,7 +674,7 @@ fn inline_runs_read_arguments_written_in_the_run() {
     let (m, exit) = native_call(&src, true);
     assert_eq!(exit, Exit::Returned(99 + 62 + 99));
     assert_eq!(m.compiled_steps(), m.steps() - 1, "inline runs, compiled");
-    agree_at_every_budget(&src, true, 0..60);
+    agree_at_every_budget(&src, &[], true, 0..60);
 }
 
 /// `Main.f` of `src` (a program of its own, not [`random_program`]'s)
@@ -708,13 +697,18 @@ fn native_call(src: &str, web: bool) -> (Machine, Exit) {
     (m, exit)
 }
 
-/// Both engines agree on `Main.f` of `src` (as [`native_call`] runs it),
-/// its first budget each of `budgets`.
-fn agree_at_every_budget(src: &str, web: bool, budgets: std::ops::Range<u64>) {
+/// Both engines agree on `Main.f` of `src` called with `args`, its first
+/// budget each of `budgets`.
+fn agree_at_every_budget(
+    src: &str,
+    args: &[i16],
+    web: bool,
+    budgets: impl IntoIterator<Item = u64>,
+) {
     for budget in budgets {
         let case = EngineCase {
             src: src.to_string(),
-            args: vec![],
+            args: args.to_vec(),
             web,
             budgets: vec![budget],
             hold: None,
@@ -755,7 +749,7 @@ fn a_callee_that_rewrites_its_callers_saved_that_agrees() {
         for &web in webs {
             let (_, exit) = native_call(&src, web);
             assert_eq!(exit, Exit::Returned(22), "web {web}");
-            agree_at_every_budget(&src, web, 0..40);
+            agree_at_every_budget(&src, &[], web, 0..40);
         }
     }
 }
