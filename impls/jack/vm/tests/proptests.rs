@@ -937,6 +937,50 @@ fn stack_edges_of_operators_and_statics_agree() {
     agree_on(body, 0, &[0, 0], &[false], &[0, 3, 7]);
 }
 
+/// A call near the desktop stack's end of a callee run inline, which
+/// pushes, adds and pushes again before its nested call: its highest
+/// stack word is counted exactly, so wherever the run fits it runs
+/// compiled (only the entry's last return is interpreted), with the same
+/// result as the interpreter; 1,772 words pushed first and it overflows
+/// on both engines.
+#[test]
+fn an_inline_run_near_the_stack_end_runs_where_it_fits() {
+    for k in 1760..=1773 {
+        let src = format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+             function Main.f 0\n{}push constant 5\ncall Main.p 1\npop temp 0\n{}\
+             push constant 0\nreturn\n\
+             function Main.p 0\npush argument 0\npush constant 3\nadd\npush argument 0\n\
+             call Main.g 2\nreturn\n\
+             function Main.g 0\npush argument 0\npush argument 1\nsub\nreturn\n",
+            "push constant 1\n".repeat(k),
+            "pop temp 1\n".repeat(k)
+        );
+        let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+        let run = |engine| {
+            let config = Config {
+                engine,
+                ..Config::default()
+            };
+            let mut m = Machine::new(program.clone(), config);
+            let exit = m.call("Main.f", &[], None).expect("Main.f exists");
+            (exit, m.steps(), m.steps() - m.compiled_steps())
+        };
+        let (interp, native) = (run(Engine::Interp), run(Engine::Native));
+        assert_eq!(native.0, interp.0, "{k} pushed");
+        assert_eq!(native.1, interp.1, "{k} pushed");
+        if k <= 1771 {
+            assert_eq!(native.2, 1, "{k} pushed: steps interpreted");
+        } else {
+            assert!(
+                matches!(interp.0, Exit::RuntimeError { .. }),
+                "{k}: {}",
+                interp.0
+            );
+        }
+    }
+}
+
 /// Built-ins called from compiled code where the interpreter's rules
 /// decide: a `Memory.poke` of each register (of SP too, so that the
 /// built-in's push lands where SP then says: a register, the stack's end,
