@@ -299,15 +299,15 @@ fn may_write_frames(op: Op, profile: Profile) -> bool {
         Op::PopThis(_) | Op::PopThisChk(_) | Op::PopThat(_) | Op::PopThatChk(_) => {
             profile != Profile::Desktop
         }
-        Op::CallBuiltin { builtin, .. } => !matches!(
-            builtin,
-            jack_os::Builtin::MathAbs
-                | jack_os::Builtin::MathMin
-                | jack_os::Builtin::MathMax
-                | jack_os::Builtin::MemoryPeek
-                | jack_os::Builtin::StringLength
-                | jack_os::Builtin::StringCharAt
-        ),
+        // Of the built-ins compiled code runs itself, only these two
+        // write; every one called through the host may.
+        Op::CallBuiltin { builtin, .. } => {
+            !blocks::inline_builtin(builtin)
+                || matches!(
+                    builtin,
+                    jack_os::Builtin::MemoryPoke | jack_os::Builtin::StringAppendChar
+                )
+        }
         _ => false,
     }
 }
@@ -541,6 +541,15 @@ fn reach(code: &[Op]) -> [Option<u16>; 2] {
     top.map(|t| t.filter(|&t| usize::from(t) + 6 < RAM_SIZE))
 }
 
+/// A block that leaves compiled code, its parameters (code, pc, function).
+fn leave_block(b: &mut FunctionBuilder<'_>) -> ir::Block {
+    let block = b.create_block();
+    for _ in 0..3 {
+        b.append_block_param(block, T32);
+    }
+    block
+}
+
 /// Build the IR of function `env.id` into `b` (signature: ctx pointer,
 /// block index; returns the code).
 pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
@@ -586,15 +595,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let held: Vec<Variable> = (0..held_locals(&env, depths.as_deref(), reach))
         .map(|_| b.declare_var(T16))
         .collect();
-    let leave_held = b.create_block();
-    for _ in 0..3 {
-        b.append_block_param(leave_held, T32);
-    }
+    let leave_held = leave_block(&mut b);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
-    let leave = b.create_block();
-    for _ in 0..3 {
-        b.append_block_param(leave, T32);
-    }
+    let leave = leave_block(&mut b);
     let mut t = Translator {
         b,
         env,
@@ -2625,8 +2628,8 @@ impl Stack {
     fn pop(&mut self, t: &mut Translator<'_, '_>) -> Value {
         self.depth -= 1;
         let depth = self.depth;
-        if let Some(s) = self.slots.iter().find(|s| s.depth == depth) {
-            return s.value;
+        if let Some(x) = self.known(depth) {
+            return x;
         }
         let x = t.b.ins().load(T16, t.mem.ram, self.base, 2 * depth);
         self.slots.push(Slot {
