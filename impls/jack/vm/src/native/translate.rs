@@ -27,6 +27,18 @@
 //! its stack words, and the span test of a `this`/`that` run that its words
 //! miss them. Every access is then one load or store at a fixed offset
 //! from its segment's host address.
+//!
+//! Words live in 32-bit values: a register (SP, LCL, ARG, THIS, THAT, the
+//! argument count) zero-extended, an operand-stack word or a held local in
+//! its low 16 bits, the bits above left as the arithmetic made them (a sum
+//! can carry past bit 15). RAM is read zero-extended and written 16 bits
+//! wide; whatever needs the word itself (an address, a branch, `pop
+//! pointer`, a comparison, a division, `Math.abs`/`min`/`max`) takes the
+//! low 16 bits, zero- or sign-extended. Address arithmetic on registers
+//! does not wrap, so a sum past 65535 fails the test that would have
+//! passed its 16-bit wrap, and the interpreter runs that instruction. (16-bit
+//! operations with a 16-bit immediate, which Cranelift emits for every
+//! 16-bit constant operand, stall x86 decoders several cycles each.)
 
 use super::blocks::{self, Block, Budget, Kind, MAX_INLINE_LOCALS};
 use super::code_map::{source_loc, Part};
@@ -46,7 +58,6 @@ use std::mem::offset_of;
 
 mod strings;
 
-const T16: ir::Type = types::I16;
 const T32: ir::Type = types::I32;
 const T64: ir::Type = types::I64;
 
@@ -563,13 +574,13 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let params = b.block_params(entry).to_vec();
     let (ctx, which) = (params[0], params[1]);
     let v = Vars {
-        sp: b.declare_var(T16),
-        lcl: b.declare_var(T16),
-        arg: b.declare_var(T16),
-        this: b.declare_var(T16),
-        that: b.declare_var(T16),
+        sp: b.declare_var(T32),
+        lcl: b.declare_var(T32),
+        arg: b.declare_var(T32),
+        this: b.declare_var(T32),
+        that: b.declare_var(T32),
         flags: b.declare_var(T32),
-        nargs: b.declare_var(T16),
+        nargs: b.declare_var(T32),
         steps: b.declare_var(T64),
     };
     let mem = Mem::new(b.func);
@@ -593,7 +604,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         .flatten();
     let budgets = blocks::budgets(env.code, start, vm_blocks, block_at);
     let held: Vec<Variable> = (0..held_locals(&env, depths.as_deref(), reach))
-        .map(|_| b.declare_var(T16))
+        .map(|_| b.declare_var(T32))
         .collect();
     let leave_held = leave_block(&mut b);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
@@ -781,8 +792,38 @@ impl Translator<'_, '_> {
         )
     }
 
+    /// The 16-bit word `v` as a value: zero-extended, in 32 bits.
     fn c16(&mut self, v: i64) -> Value {
-        self.b.ins().iconst(T16, v & 0xFFFF)
+        self.b.ins().iconst(T32, v & 0xFFFF)
+    }
+
+    /// The word in the low 16 bits of `x`, zero-extended (an address, or
+    /// a register's value).
+    fn exact(&mut self, x: Value) -> Value {
+        self.b.ins().band_imm_u(x, 0xFFFF)
+    }
+
+    /// The word in the low 16 bits of `x` in the high 16 bits, so that
+    /// 32-bit comparisons of two such values compare the words as signed
+    /// 16-bit numbers (and `Equal` compares the words).
+    fn signed_high(&mut self, x: Value) -> Value {
+        self.b.ins().ishl_imm_u(x, 16)
+    }
+
+    /// The word in the low 16 bits of `x`, sign-extended to 32 bits.
+    fn signed(&mut self, x: Value) -> Value {
+        let high = self.signed_high(x);
+        self.b.ins().sshr_imm_u(high, 16)
+    }
+
+    /// Load the word at host address `p` + `offset`, zero-extended.
+    fn load16(&mut self, flags: MemFlagsData, p: Value, offset: i32) -> Value {
+        self.b.ins().uload16(T32, flags, p, offset)
+    }
+
+    /// Store the low 16 bits of `x` at host address `p` + `offset`.
+    fn store16(&mut self, flags: MemFlagsData, x: Value, p: Value, offset: i32) {
+        self.b.ins().istore16(flags, x, p, offset);
     }
 
     fn c32(&mut self, v: i64) -> Value {
@@ -794,8 +835,7 @@ impl Translator<'_, '_> {
     /// THAT, the argument count and entry flags, the step count.
     fn enter_called(&mut self, args: &[Value]) {
         let (base, ptrs, nargs_flags, steps) = (args[0], args[1], args[2], args[3]);
-        let base = self.b.ins().ireduce(T16, base);
-        let nargs = self.b.ins().ireduce(T16, nargs_flags);
+        let nargs = self.exact(nargs_flags);
         let lcl = self.b.ins().iadd_imm_s(base, 5);
         let arg = self.b.ins().isub(base, nargs);
         let f = &self.env.program.functions[self.env.id as usize];
@@ -807,9 +847,8 @@ impl Translator<'_, '_> {
             f.n_vars
         };
         let sp = self.b.ins().iadd_imm_s(lcl, i64::from(locals));
-        let this = self.b.ins().ireduce(T16, ptrs);
+        let this = self.exact(ptrs);
         let that = self.b.ins().ushr_imm_u(ptrs, 16);
-        let that = self.b.ins().ireduce(T16, that);
         let flags = self.b.ins().ushr_imm_u(nargs_flags, 16);
         for (var, x) in [
             (self.v.sp, sp),
@@ -826,15 +865,17 @@ impl Translator<'_, '_> {
     }
 
     /// The registers as the context holds them: variable, field offset,
-    /// and width (the flags are one byte).
+    /// and width in the context (the flags are one byte, the step count
+    /// eight, the others a word; all but the step count are 32-bit
+    /// variables).
     fn state_fields(&self) -> [(Variable, usize, ir::Type); 8] {
         [
-            (self.v.sp, offset_of!(Ctx, sp), T16),
-            (self.v.lcl, offset_of!(Ctx, lcl), T16),
-            (self.v.arg, offset_of!(Ctx, arg), T16),
-            (self.v.this, offset_of!(Ctx, this), T16),
-            (self.v.that, offset_of!(Ctx, that), T16),
-            (self.v.nargs, offset_of!(Ctx, nargs), T16),
+            (self.v.sp, offset_of!(Ctx, sp), types::I16),
+            (self.v.lcl, offset_of!(Ctx, lcl), types::I16),
+            (self.v.arg, offset_of!(Ctx, arg), types::I16),
+            (self.v.this, offset_of!(Ctx, this), types::I16),
+            (self.v.that, offset_of!(Ctx, that), types::I16),
+            (self.v.nargs, offset_of!(Ctx, nargs), types::I16),
             (self.v.flags, offset_of!(Ctx, flags), types::I8),
             (self.v.steps, offset_of!(Ctx, steps), T64),
         ]
@@ -844,10 +885,10 @@ impl Translator<'_, '_> {
     fn load_state(&mut self) {
         let mem = self.mem.ctx;
         for (var, o, ty) in self.state_fields() {
-            let x = if ty == types::I8 {
-                self.b.ins().uload8(T32, mem, self.ctx, field(o))
-            } else {
-                self.b.ins().load(ty, mem, self.ctx, field(o))
+            let x = match ty {
+                types::I8 => self.b.ins().uload8(T32, mem, self.ctx, field(o)),
+                types::I16 => self.load16(mem, self.ctx, field(o)),
+                _ => self.b.ins().load(ty, mem, self.ctx, field(o)),
             };
             self.b.def_var(var, x);
         }
@@ -858,16 +899,20 @@ impl Translator<'_, '_> {
         let mem = self.mem.ctx;
         for (var, o, ty) in self.state_fields() {
             let x = self.b.use_var(var);
-            if ty == types::I8 {
-                self.b.ins().istore8(mem, x, self.ctx, field(o));
-            } else {
-                self.b.ins().store(mem, x, self.ctx, field(o));
+            match ty {
+                types::I8 => {
+                    self.b.ins().istore8(mem, x, self.ctx, field(o));
+                }
+                types::I16 => self.store16(mem, x, self.ctx, field(o)),
+                _ => {
+                    self.b.ins().store(mem, x, self.ctx, field(o));
+                }
             }
         }
     }
 
-    /// The host address of RAM word `a` (a 16-bit value known to be a
-    /// plain word).
+    /// The host address of RAM word `a` (a zero-extended value known to be
+    /// a plain word).
     fn word(&mut self, a: Value) -> Value {
         let a = self.b.ins().uextend(T64, a);
         let off = self.b.ins().ishl_imm_u(a, 1);
@@ -876,20 +921,21 @@ impl Translator<'_, '_> {
 
     fn load_word(&mut self, a: Value) -> Value {
         let p = self.word(a);
-        self.b.ins().load(T16, self.mem.ram, p, 0)
+        self.load16(self.mem.ram, p, 0)
     }
 
     fn store_word(&mut self, a: Value, x: Value) {
         let p = self.word(a);
-        self.b.ins().store(self.mem.ram, x, p, 0);
+        self.store16(self.mem.ram, x, p, 0);
     }
 
-    /// `5 <= a <= 24576` for a 16-bit address.
+    /// `5 <= a <= 24576` for a zero-extended address (or a sum of one and
+    /// an offset, which a word past 65535 fails).
     fn is_plain(&mut self, a: Value) -> Value {
-        let minus5 = self.c16(-5);
-        let t = self.b.ins().iadd(a, minus5);
-        let limit = self.c16(RAM_SIZE as i64 - 5);
-        self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit)
+        let t = self.b.ins().iadd_imm_s(a, -5);
+        self.b
+            .ins()
+            .icmp_imm_u(IntCC::UnsignedLessThan, t, RAM_SIZE as i64 - 5)
     }
 
     /// Continue if `ok`, else leave for the interpreter at `at.pc` with
@@ -920,7 +966,7 @@ impl Translator<'_, '_> {
     /// Write stack words (depth relative to `base`, value) to RAM.
     fn store_pending(&mut self, base: Value, words: &[(i32, Value)]) {
         for &(d, x) in words {
-            self.b.ins().store(self.mem.ram, x, base, 2 * d);
+            self.store16(self.mem.ram, x, base, 2 * d);
         }
     }
 
@@ -1092,7 +1138,6 @@ impl Translator<'_, '_> {
             self.b.ins().iconst(types::I8, 0)
         } else {
             let lcl = self.b.use_var(self.v.lcl);
-            let lcl = self.b.ins().uextend(T32, lcl);
             let d = self.b.ins().iadd_imm_s(lcl, -first);
             self.b
                 .ins()
@@ -1457,11 +1502,13 @@ impl Translator<'_, '_> {
     /// Whether `var + 0 ..= var + top` are all plain words, with no
     /// wrapping: 5 <= var <= RAM_SIZE - 1 - top.
     fn span_ok(&mut self, var: Variable, top: u16) -> Value {
+        let limit = RAM_SIZE as i64 - 5 - i64::from(top);
+        if limit <= 0 {
+            return self.b.ins().iconst(types::I8, 0);
+        }
         let base = self.b.use_var(var);
-        let minus5 = self.c16(-5);
-        let t = self.b.ins().iadd(base, minus5);
-        let limit = self.c16(RAM_SIZE as i64 - 5 - i64::from(top));
-        self.b.ins().icmp(IntCC::UnsignedLessThan, t, limit)
+        let t = self.b.ins().iadd_imm_s(base, -5);
+        self.b.ins().icmp_imm_u(IntCC::UnsignedLessThan, t, limit)
     }
 
     /// Leave unless the words `var + 0 ..= var + top` (no wrapping) miss
@@ -1564,12 +1611,12 @@ impl Translator<'_, '_> {
 
     /// Word `i` from host address `p`.
     fn load_at(&mut self, p: Value, i: u16) -> Value {
-        self.b.ins().load(T16, self.mem.ram, p, 2 * i32::from(i))
+        self.load16(self.mem.ram, p, 2 * i32::from(i))
     }
 
     /// Word `i` from host address `p` = x.
     fn store_at(&mut self, p: Value, i: u16, x: Value) {
-        self.b.ins().store(self.mem.ram, x, p, 2 * i32::from(i));
+        self.store16(self.mem.ram, x, p, 2 * i32::from(i));
     }
 
     /// RAM[base + i] of segment `seg` (`base` its register).
@@ -1683,6 +1730,7 @@ impl Translator<'_, '_> {
             }
             Op::PopPtr(p) => {
                 let x = s.pop(self);
+                let x = self.exact(x);
                 self.desktop_pointer_ok(p, x, before);
                 let (var, bit) = if p == 0 {
                     (self.v.this, THIS_OK)
@@ -1714,8 +1762,9 @@ impl Translator<'_, '_> {
                     Op::Gt => IntCC::SignedGreaterThan,
                     _ => IntCC::SignedLessThan,
                 };
+                let (x, y) = (self.signed_high(x), self.signed_high(y));
                 let c = self.b.ins().icmp(cc, x, y);
-                let r = self.b.ins().bmask(T16, c);
+                let r = self.b.ins().bmask(T32, c);
                 s.push(r);
             }
             Op::Neg | Op::Not => {
@@ -1731,6 +1780,7 @@ impl Translator<'_, '_> {
                 let y = s.pop(self);
                 let x = s.pop(self);
                 // A zero divisor goes through the OS's error path.
+                let y = self.signed(y);
                 let ok = self.b.ins().icmp_imm_s(IntCC::NotEqual, y, 0);
                 self.guard(ok, before);
                 let q = self.divide(x, y);
@@ -1742,6 +1792,7 @@ impl Translator<'_, '_> {
             }
             Op::IfGoto(t) => {
                 let x = s.pop(self);
+                let x = self.exact(x);
                 let steps0 = before.steps0;
                 self.end_block(s, steps0, blk);
                 let taken = self.block_at[(t - self.start) as usize].expect("a block");
@@ -1788,11 +1839,14 @@ impl Translator<'_, '_> {
         let r = match builtin {
             MathAbs => {
                 let x = s.pop(self);
+                let x = self.signed(x);
                 self.b.ins().iabs(x)
             }
             MathMin | MathMax => {
                 let y = s.pop(self);
+                let y = self.signed(y);
                 let x = s.pop(self);
+                let x = self.signed(x);
                 if builtin == MathMin {
                     self.b.ins().smin(x, y)
                 } else {
@@ -1802,6 +1856,7 @@ impl Translator<'_, '_> {
             MemoryPeek | MemoryPoke => {
                 let v = (builtin == MemoryPoke).then(|| s.pop(self));
                 let a = s.pop(self);
+                let a = self.exact(a);
                 let ok = self.os_word_ok(a);
                 self.guard(ok, before);
                 // The word may be one of the stack words held in registers.
@@ -1824,7 +1879,7 @@ impl Translator<'_, '_> {
         s.push(r);
     }
 
-    /// Whether 16-bit address `a` is a word a built-in reads and writes
+    /// Whether zero-extended address `a` is a word a built-in reads and writes
     /// without a rule: web, a plain word (not a register, inside RAM);
     /// desktop, the heap or the screen (its `Memory` check, word 0 aside).
     fn os_word_ok(&mut self, a: Value) -> Value {
@@ -1872,7 +1927,6 @@ impl Translator<'_, '_> {
             regs = self.b.ins().bor(regs, x);
         }
         let that = self.b.use_var(self.v.that);
-        let that = self.b.ins().uextend(T32, that);
         let steps = self.b.use_var(self.v.steps);
         let call = self
             .b
@@ -1900,7 +1954,7 @@ impl Translator<'_, '_> {
             (self.v.this, offset_of!(Ctx, this)),
             (self.v.that, offset_of!(Ctx, that)),
         ] {
-            let x = self.b.ins().load(T16, self.mem.ctx, self.ctx, field(o));
+            let x = self.load16(self.mem.ctx, self.ctx, field(o));
             self.b.def_var(var, x);
         }
         let pc = self.c32(i64::from(before.pc + 1));
@@ -1911,11 +1965,13 @@ impl Translator<'_, '_> {
         self.jump_to(before.pc + 1);
     }
 
-    /// `Math.divide` of a non-zero divisor under the OS's rounding.
+    /// `Math.divide` of `x` by a non-zero divisor `y` (sign-extended) under
+    /// the OS's rounding.
     fn divide(&mut self, x: Value, y: Value) -> Value {
-        // In 32 bits, so that -32768 / -1 does not trap (it wraps below).
-        let x32 = self.b.ins().sextend(T32, x);
-        let y32 = self.b.ins().sextend(T32, y);
+        // In 32 bits, so that -32768 / -1 does not trap (it wraps: only
+        // the low 16 bits of the result count).
+        let x32 = self.signed(x);
+        let y32 = y;
         let q = self.b.ins().sdiv(x32, y32);
         let q = match self.env.divide {
             jack_os::DivideRule::Truncate => q,
@@ -1931,7 +1987,7 @@ impl Translator<'_, '_> {
                 self.b.ins().isub(q, one)
             }
         };
-        self.b.ins().ireduce(T16, q)
+        q
     }
 
     /// `call callee nargs`: push the frame in RAM and in the frame stack and
@@ -2021,11 +2077,11 @@ impl Translator<'_, '_> {
         ];
         let p = self.b.ins().iadd_imm_s(s.base, 2 * i64::from(s.depth));
         for (k, x) in saved.into_iter().enumerate() {
-            self.b.ins().store(self.mem.ram, x, p, 2 * k as i32);
+            self.store16(self.mem.ram, x, p, 2 * k as i32);
         }
         let zero = self.c16(0);
         for k in 0..i32::from(n_vars) {
-            self.b.ins().store(self.mem.ram, zero, p, 10 + 2 * k);
+            self.store16(self.mem.ram, zero, p, 10 + 2 * k);
         }
         let call = CallSite {
             callee,
@@ -2064,19 +2120,16 @@ impl Translator<'_, '_> {
 
         // The callee's registers go as arguments (`native::Entry`).
         let this = self.b.use_var(self.v.this);
-        let this = self.b.ins().uextend(T32, this);
         let that = self.b.use_var(self.v.that);
-        let that = self.b.ins().uextend(T32, that);
         let that = self.b.ins().ishl_imm_u(that, 16);
         let ptrs = self.b.ins().bor(this, that);
         let nargs_flags = self.c32(i64::from(n) | i64::from(entry_flags) << 16);
-        let base32 = self.b.ins().uextend(T32, base);
         let func = (self.env.callee)(self.b.func, callee);
         let called = self.c32(CALLED);
         let call = self
             .b
             .ins()
-            .call(func, &[ctx, called, base32, ptrs, nargs_flags, steps]);
+            .call(func, &[ctx, called, base, ptrs, nargs_flags, steps]);
         let (code, steps) = (self.b.inst_results(call)[0], self.b.inst_results(call)[1]);
         let back = self.b.create_block();
         let out = self.b.create_block();
@@ -2106,7 +2159,7 @@ impl Translator<'_, '_> {
             (self.v.this, 3),
             (self.v.that, 4),
         ] {
-            let x = self.b.ins().load(T16, self.mem.ram, p, 2 * k);
+            let x = self.load16(self.mem.ram, p, 2 * k);
             self.b.def_var(var, x);
             restored.push(x);
         }
@@ -2359,11 +2412,11 @@ impl Translator<'_, '_> {
         } else {
             // The RET word intact (else the interpreter returns where it
             // says).
-            let ret_word = self.b.ins().load(T16, self.mem.ram, fr, -10);
+            let ret_word = self.load16(self.mem.ram, fr, -10);
             let ok = self
                 .b
                 .ins()
-                .icmp_imm_s(IntCC::Equal, ret_word, i64::from(call.ret as i16));
+                .icmp_imm_s(IntCC::Equal, ret_word, i64::from(call.ret));
             self.guard(ok, &before);
             ret_word
         };
@@ -2404,7 +2457,7 @@ impl Translator<'_, '_> {
                 (self.v.this, -4),
                 (self.v.that, -2),
             ] {
-                let r = self.b.ins().load(T16, self.mem.ram, fr, at);
+                let r = self.load16(self.mem.ram, fr, at);
                 self.b.def_var(var, r);
                 restored.push(r);
             }
@@ -2427,8 +2480,8 @@ impl Translator<'_, '_> {
     /// desktop's does (crate::exec).
     fn desktop_return_registers(&mut self, frame: Value, ret_word: Value) {
         if self.env.profile == Profile::Desktop {
-            self.b.ins().store(self.mem.ram, frame, self.ram, 2 * 13);
-            self.b.ins().store(self.mem.ram, ret_word, self.ram, 2 * 14);
+            self.store16(self.mem.ram, frame, self.ram, 2 * 13);
+            self.store16(self.mem.ram, ret_word, self.ram, 2 * 14);
         }
     }
 
@@ -2488,21 +2541,19 @@ impl Translator<'_, '_> {
         let ok = if self.frame_shown {
             ok
         } else {
-            let ten = self.c16(-10);
-            let t = self.b.ins().iadd(frame, ten);
-            let lim = self.c16(RAM_SIZE as i64 - 10);
-            let c = self.b.ins().icmp(IntCC::UnsignedLessThanOrEqual, t, lim);
+            let t = self.b.ins().iadd_imm_s(frame, -10);
+            let c =
+                self.b
+                    .ins()
+                    .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, t, RAM_SIZE as i64 - 10);
             let ok = self.b.ins().band(ok, c);
             let c = self.is_plain(arg);
             self.b.ins().band(ok, c)
         };
         self.guard(ok, before);
         let fr = self.word(frame);
-        let ret_word = self.b.ins().load(T16, self.mem.ram, fr, -10);
-        let expected = self
-            .b
-            .ins()
-            .load(T16, self.mem.frames, fp, field(offset_of!(Frame, ret)));
+        let ret_word = self.load16(self.mem.ram, fr, -10);
+        let expected = self.load16(self.mem.frames, fp, field(offset_of!(Frame, ret)));
         let ok = self.b.ins().icmp(IntCC::Equal, ret_word, expected);
         self.guard(ok, before);
 
@@ -2540,17 +2591,14 @@ impl Translator<'_, '_> {
             (self.v.lcl, -8),
         ];
         for (var, at) in regs {
-            let r = self.b.ins().load(T16, self.mem.ram, fr, at);
+            let r = self.load16(self.mem.ram, fr, at);
             self.b.def_var(var, r);
         }
         let caller = self
             .b
             .ins()
             .load(T32, self.mem.frames, fp, field(offset_of!(Frame, caller)));
-        let nargs = self
-            .b
-            .ins()
-            .load(T16, self.mem.frames, fp, field(offset_of!(Frame, nargs)));
+        let nargs = self.load16(self.mem.frames, fp, field(offset_of!(Frame, nargs)));
         self.b.def_var(self.v.nargs, nargs);
         let flags = self
             .b
@@ -2631,7 +2679,7 @@ impl Stack {
         if let Some(x) = self.known(depth) {
             return x;
         }
-        let x = t.b.ins().load(T16, t.mem.ram, self.base, 2 * depth);
+        let x = t.load16(t.mem.ram, self.base, 2 * depth);
         self.slots.push(Slot {
             depth,
             value: x,

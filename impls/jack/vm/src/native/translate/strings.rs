@@ -13,9 +13,9 @@ use cranelift_codegen::ir::{InstBuilder, Value};
 use jack_os::{Builtin, Profile};
 
 impl Translator<'_, '_> {
-    /// 16-bit `s + k`, as the OS computes a string's word (its Java `short`
-    /// on the desktop; on the web an address past RAM, which the tests
-    /// send to the interpreter).
+    /// `s + k` for a zero-extended `s`, without wrapping: an address past
+    /// 65535 fails every test, and goes to the interpreter (where the
+    /// desktop's Java `short` wraps it, and the web finds it past RAM).
     fn offset(&mut self, s: Value, k: i64) -> Value {
         self.b.ins().iadd_imm_s(s, k)
     }
@@ -49,18 +49,19 @@ impl Translator<'_, '_> {
         match builtin {
             Builtin::StringLength => {
                 let string = s.pop(self);
+                let string = self.exact(string);
                 self.length(string, s, before)
             }
             Builtin::StringCharAt => {
                 let i = s.pop(self);
+                let i = self.exact(i);
                 let string = s.pop(self);
+                let string = self.exact(string);
                 let len = self.length(string, s, before);
-                // ERR15 unless 0 <= i < length.
-                let from_0 = self
-                    .b
-                    .ins()
-                    .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, i, 0);
-                let below = self.b.ins().icmp(IntCC::SignedLessThan, i, len);
+                // ERR15 unless 0 <= i < length (as 16-bit numbers).
+                let from_0 = self.b.ins().icmp_imm_u(IntCC::UnsignedLessThan, i, 0x8000);
+                let (i_high, len_high) = (self.signed_high(i), self.signed_high(len));
+                let below = self.b.ins().icmp(IntCC::SignedLessThan, i_high, len_high);
                 let chars = if desktop {
                     self.offset(string, 2)
                 } else {
@@ -77,6 +78,7 @@ impl Translator<'_, '_> {
             Builtin::StringAppendChar => {
                 let c = s.pop(self);
                 let string = s.pop(self);
+                let string = self.exact(string);
                 // The string's words (maxLength, length and, on the web, the
                 // array's address) lie in the words a built-in may touch:
                 // its first and its last, which cannot wrap past the end.
@@ -101,13 +103,13 @@ impl Translator<'_, '_> {
                     self.store_word(length_at, next);
                 } else {
                     // The length, then setCharAt(length): ERR16 unless
-                    // 0 <= length < length + 1.
+                    // 0 <= length < length + 1 (as 16-bit numbers).
                     let array = self.load_offset(string, 2);
                     let at = self.b.ins().iadd(array, len);
                     let from_0 = self
                         .b
                         .ins()
-                        .icmp_imm_s(IntCC::SignedGreaterThanOrEqual, len, 0);
+                        .icmp_imm_u(IntCC::UnsignedLessThan, len, 0x8000);
                     let no_wrap =
                         self.b
                             .ins()
