@@ -292,22 +292,24 @@ impl Native {
         let timing = Timing::of(profile);
         let code = &program.code[timing::index(profile)].plain;
         let mut block_at = vec![(0, NO_BLOCK); code.len()];
+        let plans: Vec<Plan> = program
+            .functions
+            .iter()
+            .map(|f| Plan::of(code, f, timing))
+            .collect();
+        let frames_intact = frames_intact(code, &plans, profile);
         let mut ctx = module.make_context();
         let mut fctx = FunctionBuilderContext::new();
         for (i, &id) in ids.iter().enumerate() {
             ctx.func.signature = sig.clone();
             ctx.func.name = UserFuncName::user(0, id.as_u32());
             let f = &program.functions[i];
-            let (start, end) = extent(code, f, timing);
-            // Where a run may stand in this function other than at a block
-            // that compiled code reaches: the body of a function without a
-            // `function` line (the start of `__implicit`).
-            let entries: &[u32] = if start == f.start || f.headed {
-                &[]
-            } else {
-                std::slice::from_ref(&f.start)
-            };
-            let (vm_blocks, starts) = blocks::blocks(code, start, end, entries);
+            let Plan {
+                start,
+                blocks: ref vm_blocks,
+                ref starts,
+                ref depths,
+            } = plans[i];
             for (k, b) in starts.iter().enumerate() {
                 block_at[start as usize + k] = (i as FnId, b.unwrap_or(NO_BLOCK));
             }
@@ -322,8 +324,10 @@ impl Native {
                     start,
                     timing,
                     id: i as FnId,
-                    blocks: &vm_blocks,
-                    block_at: &starts,
+                    blocks: vm_blocks,
+                    block_at: starts,
+                    depths: depths.as_deref(),
+                    frames_intact,
                     profile,
                     divide,
                     fault,
@@ -371,6 +375,69 @@ impl Native {
 /// code runs: from the instruction a call lands on (its `function` line
 /// where that is a step, crate::timing, else its body), through its
 /// `Halt` and the wasted-step jumps after it.
+/// One function's code as the translator takes it: its first
+/// instruction, its blocks and the block at each instruction
+/// ([`blocks::blocks`]), and its static stack depths, if it has them
+/// ([`blocks::static_depths`]).
+struct Plan {
+    start: u32,
+    blocks: Vec<blocks::Block>,
+    starts: Vec<Option<u32>>,
+    depths: Option<Vec<Option<i32>>>,
+}
+
+impl Plan {
+    fn of(code: &[Op], f: &crate::program::Function, timing: Timing) -> Plan {
+        let (start, end) = extent(code, f, timing);
+        // Where a run may stand in this function other than at a block
+        // that compiled code reaches: the body of a function without a
+        // `function` line (the start of `__implicit`).
+        let entries: &[u32] = if start == f.start || f.headed {
+            &[]
+        } else {
+            std::slice::from_ref(&f.start)
+        };
+        let (blocks, starts) = blocks::blocks(code, start, end, entries);
+        let end = blocks.last().map_or(start, |b| b.end.max(b.start + 1));
+        // A call lands on the `function` line (SP = LCL) or on the body.
+        let entry_depth = match code[start as usize] {
+            Op::Function { .. } => 0,
+            _ => i32::from(f.n_vars),
+        };
+        let depths = f
+            .headed
+            .then(|| blocks::static_depths(code, start, end, entry_depth))
+            .flatten();
+        Plan {
+            start,
+            blocks,
+            starts,
+            depths,
+        }
+    }
+}
+
+/// Whether no code that runs compiled can write a word of a saved frame
+/// (RET, LCL, ARG, THIS, THAT of a call in progress), so that a compiled
+/// call's return may keep the caller's registers instead of reading them
+/// back: on the desktop (whose `this`, `that`, `Memory.poke` and built-in
+/// writes lie in the heap and the screen, above the stack, or leave
+/// compiled code), where every function's stack depths are static and
+/// never pop below its LCL (its saved frame), and no `pop constant`
+/// writes into the stack. A callee's `local` and `argument` words lie
+/// above and below the frame its call wrote, and a deeper callee's above.
+fn frames_intact(code: &[Op], plans: &[Plan], profile: Profile) -> bool {
+    profile == Profile::Desktop
+        && !code
+            .iter()
+            .any(|op| matches!(*op, Op::PopRam(a) if a >= crate::timing::STACK_BASE))
+        && plans.iter().all(|p| {
+            p.depths
+                .as_deref()
+                .is_some_and(|d| blocks::pops_stay_above(code, p.start, d, 0))
+        })
+}
+
 fn extent(code: &[Op], f: &crate::program::Function, timing: Timing) -> (u32, u32) {
     let start = f.start - u32::from(timing.function_step);
     let halt = f.start as usize
@@ -520,5 +587,60 @@ impl Machine {
             Some(halt) => Err(halt),
             None => Ok(exit.code),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{frames_intact, Plan};
+    use crate::program::Program;
+    use crate::timing::{self, Timing};
+    use jack_os::Profile;
+
+    fn intact(src: &str, profile: Profile) -> bool {
+        let program = Program::from_sources(&[("Main.vm", src)]).expect("it loads");
+        let timing = Timing::of(profile);
+        let code = &program.code[timing::index(profile)].plain;
+        let plans: Vec<Plan> = program
+            .functions
+            .iter()
+            .map(|f| Plan::of(code, f, timing))
+            .collect();
+        frames_intact(code, &plans, profile)
+    }
+
+    /// A compiled call's return keeps the caller's registers only on the
+    /// desktop, and only where no function pops below its LCL (onto its
+    /// saved frame), every function's depths are static, and no `pop
+    /// constant` writes into the stack.
+    #[test]
+    fn frames_stay_intact_only_where_no_code_can_write_them() {
+        let program = "function Main.main 1\npush constant 3\ncall Main.g 1\npop local 0\n\
+                       push constant 0\nreturn\nfunction Main.g 0\npush argument 0\nreturn\n";
+        assert!(intact(program, Profile::Desktop));
+        assert!(!intact(program, Profile::Web));
+        let edits = [
+            // Main.g pops the saved THAT (its stack is empty).
+            (
+                "push argument 0\nreturn",
+                "pop temp 0\npush constant 1\nreturn",
+            ),
+            // Two paths reach `return` with different depths.
+            (
+                "push argument 0\nreturn",
+                "push argument 0\nif-goto A\npush constant 2\nlabel A\npush constant 1\nreturn",
+            ),
+            ("pop local 0", "pop constant 300"),
+        ];
+        for (from, to) in edits {
+            let edited = program.replace(from, to);
+            assert_ne!(edited, program);
+            assert!(!intact(&edited, Profile::Desktop), "{to}");
+        }
+        // A `pop constant` below the stack writes no frame.
+        assert!(intact(
+            &program.replace("pop local 0", "pop constant 200"),
+            Profile::Desktop
+        ));
     }
 }

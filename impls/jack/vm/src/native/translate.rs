@@ -54,6 +54,7 @@ use cranelift_codegen::ir::{
 };
 use cranelift_frontend::{FunctionBuilder, Variable};
 use jack_os::{Profile, KBD, RAM_SIZE};
+use std::collections::HashSet;
 use std::mem::offset_of;
 
 mod strings;
@@ -129,6 +130,11 @@ pub(crate) struct Env<'a> {
     /// (relative to the function's start), from [`blocks::blocks`].
     pub blocks: &'a [Block],
     pub block_at: &'a [Option<u32>],
+    /// SP - LCL before each instruction, where the function's code fixes
+    /// it ([`blocks::static_depths`]).
+    pub depths: Option<&'a [Option<i32>]>,
+    /// No compiled code writes a saved frame word (`native::frames_intact`).
+    pub frames_intact: bool,
     pub profile: Profile,
     /// `Math.divide`'s rounding (the profile's unless the machine chose).
     pub divide: jack_os::DivideRule,
@@ -176,7 +182,7 @@ struct Translator<'a, 'b> {
     /// it on entering), every stack word lies at a fixed offset from
     /// `lcl_host`, and the stack tests are made once on entering the
     /// function. None: each block tests its stack.
-    depths: Option<Vec<Option<i32>>>,
+    depths: Option<&'a [Option<i32>]>,
     /// The host address of RAM[LCL] (static depths only).
     lcl_host: Option<Value>,
     /// Where each block tests the step budget ([`blocks::budgets`]).
@@ -213,6 +219,9 @@ struct Translator<'a, 'b> {
     /// The held locals are the function's (its `function` line has run):
     /// a leave writes them to RAM first.
     locals_live: bool,
+    /// Values known to be zero-extended words (loads, constants, registers),
+    /// which [`Translator::exact`] takes as they are.
+    zero_extended: HashSet<Value>,
 }
 
 /// Locals held in variables at most.
@@ -592,18 +601,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         .load(T64, mem.fixed, ctx, field(offset_of!(Ctx, stop_at)));
     let end = vm_blocks.last().map_or(start, |b| b.end.max(b.start + 1));
     let reach = reach(&env.code[start as usize..end as usize]);
-    let f = &env.program.functions[env.id as usize];
-    // A call lands on the `function` line (SP = LCL) or on the body.
-    let entry_depth = match env.code[start as usize] {
-        Op::Function { .. } => 0,
-        _ => i32::from(f.n_vars),
-    };
-    let depths = f
-        .headed
-        .then(|| blocks::static_depths(env.code, start, end, entry_depth))
-        .flatten();
+    let depths = env.depths;
     let budgets = blocks::budgets(env.code, start, vm_blocks, block_at);
-    let held: Vec<Variable> = (0..held_locals(&env, depths.as_deref(), reach))
+    let held: Vec<Variable> = (0..held_locals(&env, depths, reach))
         .map(|_| b.declare_var(T32))
         .collect();
     let leave_held = leave_block(&mut b);
@@ -638,6 +638,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         held,
         leave_held,
         locals_live: false,
+        zero_extended: HashSet::new(),
     };
     t.range = t.static_range();
     // A compiled call passes the registers; the dispatcher, the context.
@@ -794,13 +795,20 @@ impl Translator<'_, '_> {
 
     /// The 16-bit word `v` as a value: zero-extended, in 32 bits.
     fn c16(&mut self, v: i64) -> Value {
-        self.b.ins().iconst(T32, v & 0xFFFF)
+        let x = self.b.ins().iconst(T32, v & 0xFFFF);
+        self.zero_extended.insert(x);
+        x
     }
 
     /// The word in the low 16 bits of `x`, zero-extended (an address, or
     /// a register's value).
     fn exact(&mut self, x: Value) -> Value {
-        self.b.ins().band_imm_u(x, 0xFFFF)
+        if self.zero_extended.contains(&x) {
+            return x;
+        }
+        let w = self.b.ins().band_imm_u(x, 0xFFFF);
+        self.zero_extended.insert(w);
+        w
     }
 
     /// The word in the low 16 bits of `x` in the high 16 bits, so that
@@ -818,7 +826,9 @@ impl Translator<'_, '_> {
 
     /// Load the word at host address `p` + `offset`, zero-extended.
     fn load16(&mut self, flags: MemFlagsData, p: Value, offset: i32) -> Value {
-        self.b.ins().uload16(T32, flags, p, offset)
+        let x = self.b.ins().uload16(T32, flags, p, offset);
+        self.zero_extended.insert(x);
+        x
     }
 
     /// Store the low 16 bits of `x` at host address `p` + `offset`.
@@ -1045,7 +1055,7 @@ impl Translator<'_, '_> {
     /// SP - LCL at the start of block `blk`, where depths are static
     /// (`Some(None)`: no path reaches it).
     fn depth_at(&self, blk: &Block) -> Option<Option<i32>> {
-        let d = self.depths.as_ref()?;
+        let d = self.depths?;
         Some(d[(blk.start - self.start) as usize])
     }
 
@@ -1098,7 +1108,7 @@ impl Translator<'_, '_> {
     /// The stack range of a function with static depths (see
     /// `Translator::range`).
     fn static_range(&self) -> Option<(i32, i32, i32)> {
-        let depths = self.depths.as_ref()?;
+        let depths = self.depths?;
         let (mut low, mut high) = (i32::MAX, i32::MIN);
         let mut args_below = i32::MAX;
         for blk in self.env.blocks {
@@ -1686,6 +1696,7 @@ impl Translator<'_, '_> {
                 let x = self
                     .b
                     .use_var(if p == 0 { self.v.this } else { self.v.that });
+                self.zero_extended.insert(x);
                 s.push(x);
             }
             Op::PopLocal(i) => {
@@ -1762,7 +1773,12 @@ impl Translator<'_, '_> {
                     Op::Gt => IntCC::SignedGreaterThan,
                     _ => IntCC::SignedLessThan,
                 };
-                let (x, y) = (self.signed_high(x), self.signed_high(y));
+                let both = self.zero_extended.contains(&x) && self.zero_extended.contains(&y);
+                let (x, y) = if op == Op::Eq && both {
+                    (x, y)
+                } else {
+                    (self.signed_high(x), self.signed_high(y))
+                };
                 let c = self.b.ins().icmp(cc, x, y);
                 let r = self.b.ins().bmask(T32, c);
                 s.push(r);
@@ -2146,11 +2162,16 @@ impl Translator<'_, '_> {
 
         // It returned here, all in compiled code: SP is its ARG + 1, the
         // registers are the frame's words in RAM (which the callee may have
-        // written), nargs and flags are this function's own.
+        // written, unless no compiled code can: then they are this
+        // function's own), nargs and flags are this function's own.
         self.b.switch_to_block(back);
         self.b.def_var(self.v.steps, steps);
         let sp = self.b.ins().iadd_imm_s(base, 1 - i64::from(n));
         self.b.def_var(self.v.sp, sp);
+        if self.env.frames_intact {
+            self.jump_to(before.pc + 1);
+            return;
+        }
         let (lcl, arg) = (self.b.use_var(self.v.lcl), self.b.use_var(self.v.arg));
         let mut restored = Vec::new();
         for (var, k) in [
