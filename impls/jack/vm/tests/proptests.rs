@@ -977,6 +977,36 @@ fn words_past_sixteen_bits_agree() {
     }
 }
 
+/// A branch on comparisons combined by `not`, `and` and `or` (compiled
+/// code branches on the conditions themselves, by De Morgan's laws where
+/// both are negated), for every pair of outcomes: the branch goes the
+/// interpreter's way, and the words stay in RAM as it leaves them.
+#[test]
+fn branches_on_combined_comparisons_agree() {
+    for combine in ["and", "or"] {
+        for (not_a, not_b, not_both) in [
+            (false, false, false),
+            (true, true, false),
+            (true, true, true),
+            (false, false, true),
+            (true, false, false),
+        ] {
+            let not = |n: bool| if n { "not\n" } else { "" };
+            let body = format!(
+                "push argument 0\npush constant 0\ngt\n{}push argument 1\npush constant 0\nlt\n{}\
+                 {combine}\n{}if-goto TAKEN\npush constant 1\npop temp 0\ngoto END\n\
+                 label TAKEN\npush constant 2\npop temp 0\nlabel END",
+                not(not_a),
+                not(not_b),
+                not(not_both)
+            );
+            for args in [[0, 0], [1, 0], [0, -1], [1, -1]] {
+                agree_on(&body, 0, &args, &[false], &[1000]);
+            }
+        }
+    }
+}
+
 /// A call near the desktop stack's end of a callee run inline, which
 /// pushes, adds and pushes again before its nested call: its highest
 /// stack word is counted exactly, so wherever the run fits it runs
