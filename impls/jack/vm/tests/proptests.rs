@@ -977,9 +977,8 @@ fn words_past_sixteen_bits_agree() {
     }
 }
 
-/// A branch on comparisons combined by `not`, `and` and `or` (compiled
-/// code branches on the conditions themselves, by De Morgan's laws where
-/// both are negated), for every pair of outcomes: the branch goes the
+/// A branch on comparisons combined by `not`, `and` and `or` (as Jack
+/// writes a loop's test), for every pair of outcomes: the branch goes the
 /// interpreter's way, and the words stay in RAM as it leaves them.
 #[test]
 fn branches_on_combined_comparisons_agree() {

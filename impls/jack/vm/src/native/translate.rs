@@ -54,7 +54,7 @@ use cranelift_codegen::ir::{
 };
 use cranelift_frontend::{FunctionBuilder, Variable};
 use jack_os::{Profile, KBD, RAM_SIZE};
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 use std::mem::offset_of;
 
 mod strings;
@@ -222,10 +222,6 @@ struct Translator<'a, 'b> {
     /// Values known to be zero-extended words (loads, constants, registers),
     /// which [`Translator::exact`] takes as they are.
     zero_extended: HashSet<Value>,
-    /// Words that are a comparison's -1 or 0 (`eq`, `gt`, `lt`, and `not`,
-    /// `and`, `or` of them): the condition, and whether the word is its
-    /// negation. A branch on such a word branches on the condition.
-    conds: HashMap<Value, (Value, bool)>,
 }
 
 /// Locals held in variables at most.
@@ -643,7 +639,6 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         leave_held,
         locals_live: false,
         zero_extended: HashSet::new(),
-        conds: HashMap::new(),
     };
     t.range = t.static_range();
     // A compiled call passes the registers; the dispatcher, the context.
@@ -1778,7 +1773,6 @@ impl Translator<'_, '_> {
             Op::Add | Op::Sub | Op::And | Op::Or | Op::Multiply => {
                 let y = s.pop(self);
                 let x = s.pop(self);
-                let conds = (self.conds.get(&x).copied(), self.conds.get(&y).copied());
                 let r = match op {
                     Op::Add => self.b.ins().iadd(x, y),
                     Op::Sub if self.env.fault == Some(Fault::SubSwapped) => self.b.ins().isub(y, x),
@@ -1787,18 +1781,6 @@ impl Translator<'_, '_> {
                     Op::Or => self.b.ins().bor(x, y),
                     _ => self.b.ins().imul(x, y),
                 };
-                // Both words -1 or 0, under one negation: `and` and `or` of
-                // the conditions (of their negations, by De Morgan's laws).
-                if let (Some((a, neg)), Some((b, neg_b))) = conds {
-                    if neg == neg_b && matches!(op, Op::And | Op::Or) {
-                        let c = if (op == Op::And) != neg {
-                            self.b.ins().band(a, b)
-                        } else {
-                            self.b.ins().bor(a, b)
-                        };
-                        self.conds.insert(r, (c, neg));
-                    }
-                }
                 s.push(r);
             }
             Op::Eq | Op::Gt | Op::Lt => {
@@ -1817,7 +1799,6 @@ impl Translator<'_, '_> {
                 };
                 let c = self.b.ins().icmp(cc, x, y);
                 let r = self.b.ins().bmask(T32, c);
-                self.conds.insert(r, (c, false));
                 s.push(r);
             }
             Op::Neg | Op::Not => {
@@ -1828,9 +1809,6 @@ impl Translator<'_, '_> {
                     (None, Op::Neg) => self.b.ins().ineg(x),
                     (None, _) => self.b.ins().bnot(x),
                 };
-                if let (Some((c, neg)), Op::Not) = (self.conds.get(&x).copied(), op) {
-                    self.conds.insert(r, (c, !neg));
-                }
                 s.push(r);
             }
             Op::Divide => {
@@ -1849,18 +1827,12 @@ impl Translator<'_, '_> {
             }
             Op::IfGoto(t) => {
                 let x = s.pop(self);
-                let (x, negated) = match self.conds.get(&x) {
-                    Some(&(c, neg)) => (c, neg),
-                    None => (self.exact(x), false),
-                };
+                let x = self.exact(x);
                 let steps0 = before.steps0;
                 self.end_block(s, steps0, blk);
                 let taken = self.block_at[(t - self.start) as usize].expect("a block");
                 let next = self.block_at[(before.pc + 1 - self.start) as usize].expect("a block");
-                let (mut taken, mut next) = (self.cl[taken as usize], self.cl[next as usize]);
-                if negated {
-                    std::mem::swap(&mut taken, &mut next);
-                }
+                let (taken, next) = (self.cl[taken as usize], self.cl[next as usize]);
                 self.b.ins().brif(x, taken, NONE, next, NONE);
             }
             Op::Call {
