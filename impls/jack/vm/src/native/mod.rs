@@ -371,10 +371,6 @@ impl Native {
     }
 }
 
-/// The instructions `start..end` of function `f` in `code` that compiled
-/// code runs: from the instruction a call lands on (its `function` line
-/// where that is a step, crate::timing, else its body), through its
-/// `Halt` and the wasted-step jumps after it.
 /// One function's code as the translator takes it: its first
 /// instruction, its blocks and the block at each instruction
 /// ([`blocks::blocks`]), and its static stack depths, if it has them
@@ -438,6 +434,10 @@ fn frames_intact(code: &[Op], plans: &[Plan], profile: Profile) -> bool {
         })
 }
 
+/// The instructions `start..end` of function `f` in `code` that compiled
+/// code runs: from the instruction a call lands on (its `function` line
+/// where that is a step, crate::timing, else its body), through its
+/// `Halt` and the wasted-step jumps after it.
 fn extent(code: &[Op], f: &crate::program::Function, timing: Timing) -> (u32, u32) {
     let start = f.start - u32::from(timing.function_step);
     let halt = f.start as usize
