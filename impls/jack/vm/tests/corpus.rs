@@ -77,6 +77,28 @@ fn corpus_programs_run_almost_wholly_compiled() {
     }
 }
 
+/// `this` and `that` accesses run compiled up to RAM's last word on the web
+/// (whose test is that the span's words are all plain, without wrapping):
+/// a loop reads `that 6` with THAT at 24570 (word 24576) and writes `this 1`
+/// with THIS at 24575.
+#[test]
+fn pointer_accesses_at_the_top_of_ram_run_compiled() {
+    let source = "function Main.main 0\nlabel LOOP\npush constant 24570\npop pointer 1\n\
+                  push that 6\npush constant 24575\npop pointer 0\npop this 1\ngoto LOOP\n";
+    let program = Program::from_sources(&[("Main.vm", source)]).expect("loads");
+    let config = Config {
+        profile: Profile::Web,
+        engine: Engine::Native,
+        ..Config::default()
+    };
+    let mut m = Machine::new(program, config);
+    m.call("Main.main", &[], Some(0)).expect("Main.main exists");
+    let exit = m.run(Some(10_000));
+    assert!(matches!(exit, Exit::Budget { .. }), "{exit}");
+    let interpreted = m.steps() - m.compiled_steps();
+    assert!(interpreted <= 8, "{interpreted} steps interpreted");
+}
+
 /// Code before a program's first `function` line (its `__implicit`
 /// function) runs compiled too, from its first instruction: 400 straight
 /// instructions, then a loop.
