@@ -1006,6 +1006,22 @@ fn branches_on_combined_comparisons_agree() {
     }
 }
 
+/// A web `that` access onto a stack word that the block holds in a
+/// register, past the first one: the block pushes three words from SP = S
+/// with THAT at S + 2 (S read through RAM[0] before it, by the interpreter,
+/// after which a `goto` enters the block compiled), and its `push that 0`
+/// reads the third, 33, not the 99 that RAM had there.
+#[test]
+fn a_that_read_of_the_third_held_stack_word_agrees() {
+    let body = "push constant 99\npush constant 99\npush constant 99\n\
+                pop temp 5\npop temp 6\npop temp 7\n\
+                push constant 0\npop pointer 1\npush that 0\npop temp 0\ngoto HELD\n\
+                label HELD\npush temp 0\npush constant 2\nadd\npop pointer 1\n\
+                push constant 11\npush constant 22\npush constant 33\npush that 0\n\
+                pop temp 1\npop temp 2\npop temp 3\npop temp 4";
+    agree_on(body, 0, &[0, 0], &[true], &[1000]);
+}
+
 /// A call near the desktop stack's end of a callee run inline, which
 /// pushes, adds and pushes again before its nested call: its highest
 /// stack word is counted exactly, so wherever the run fits it runs
