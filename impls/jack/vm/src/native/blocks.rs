@@ -204,12 +204,11 @@ pub(crate) fn blocks(
     for &e in entries {
         leader[(e - start) as usize] = true;
     }
-    for (i, &op) in code[start as usize..end as usize].iter().enumerate() {
+    // (A jump, call or return ends its block, and an interpreted
+    // instruction is a block of its own, in the loop below.)
+    for &op in &code[start as usize..end as usize] {
         if let Op::Goto(t) | Op::IfGoto(t) = op {
             leader[(t - start) as usize] = true;
-        }
-        if kind(op) != Kind::Straight && i + 1 < len {
-            leader[i + 1] = true;
         }
     }
     let mut blocks = Vec::new();
