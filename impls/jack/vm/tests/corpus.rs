@@ -99,6 +99,30 @@ fn pointer_accesses_at_the_top_of_ram_run_compiled() {
     assert!(interpreted <= 8, "{interpreted} steps interpreted");
 }
 
+/// A block that touches no stack word runs compiled wherever SP is (no
+/// stack test): here SP is 100, below the stack, set by `pop constant 0`,
+/// and the loop only jumps.
+#[test]
+fn blocks_without_stack_words_run_compiled_wherever_sp_is() {
+    let source = "push constant 100\npop constant 0\nlabel LOOP\ngoto LOOP\n";
+    let program = Program::from_sources(&[("Main.vm", source)]).expect("loads");
+    for profile in [Profile::Desktop, Profile::Web] {
+        let config = Config {
+            profile,
+            engine: Engine::Native,
+            ..Config::default()
+        };
+        let mut m = Machine::new(program.clone(), config);
+        let exit = m.run(Some(10_000));
+        assert!(matches!(exit, Exit::Budget { .. }), "{profile:?}: {exit}");
+        let interpreted = m.steps() - m.compiled_steps();
+        assert!(
+            interpreted <= 8,
+            "{profile:?}: {interpreted} steps interpreted"
+        );
+    }
+}
+
 /// Code before a program's first `function` line (its `__implicit`
 /// function) runs compiled too, from its first instruction: 400 straight
 /// instructions, then a loop.
