@@ -1022,6 +1022,41 @@ fn a_that_read_of_the_third_held_stack_word_agrees() {
     agree_on(body, 0, &[0, 0], &[true], &[1000]);
 }
 
+/// Code whose stack depths are not fixed (here before any `function`
+/// line) tests the stack in each block: SP set to 2040 by `pop constant 0`,
+/// a block of ten pushes overflows the desktop's stack (it ends at 2047)
+/// at the same push on both engines, and on the web (whose stack runs on)
+/// both finish.
+#[test]
+fn a_block_past_the_stack_end_overflows_where_depths_are_not_fixed() {
+    let src = format!(
+        "push constant 2040\npop constant 0\ngoto B\nlabel B\n{}label END\ngoto END\n",
+        "push constant 1\n".repeat(10)
+    );
+    let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
+    for profile in [hack_vm::Profile::Desktop, hack_vm::Profile::Web] {
+        let run = |engine| {
+            let config = Config {
+                profile,
+                engine,
+                ..Config::default()
+            };
+            let mut m = Machine::new(program.clone(), config);
+            let exit = m.run(Some(100));
+            (exit, m.steps())
+        };
+        let (interp, native) = (run(Engine::Interp), run(Engine::Native));
+        let failed = matches!(interp.0, Exit::RuntimeError { .. });
+        assert_eq!(
+            failed,
+            profile == hack_vm::Profile::Desktop,
+            "{profile:?}: {}",
+            interp.0
+        );
+        assert_eq!(native, interp, "{profile:?}");
+    }
+}
+
 /// A call near the desktop stack's end of a callee run inline, which
 /// pushes, adds and pushes again before its nested call: its highest
 /// stack word is counted exactly, so wherever the run fits it runs

@@ -375,7 +375,7 @@ pub(crate) fn budgets(
 
 #[cfg(test)]
 mod tests {
-    use super::{kind, Kind, MAX_INLINE_LOCALS};
+    use super::{kind, static_depths, Kind, MAX_INLINE_LOCALS};
     use crate::program::Op;
     use jack_os::Builtin;
 
@@ -404,5 +404,45 @@ mod tests {
         };
         assert_eq!(kind(function(MAX_INLINE_LOCALS)), Kind::Straight);
         assert_eq!(kind(function(MAX_INLINE_LOCALS + 1)), Kind::Interpreted);
+    }
+
+    /// SP - LCL before each instruction of Jack-shaped code: the entry
+    /// function's checked `pop local`/`push local`, a branch to a return,
+    /// a loop whose head is reached twice at one depth, a call, and an
+    /// unreached `Halt` (no depth). A range ending at a straight
+    /// instruction follows nothing past it.
+    #[test]
+    fn static_depths_follow_jack_shaped_code() {
+        let entry = |push| Op::EntryAccess {
+            local: true,
+            push,
+            index: 0,
+        };
+        let call = Op::Call {
+            callee: 0,
+            nargs: 1,
+            ret: 0,
+            method: false,
+        };
+        let code = [
+            Op::PushConst(1),
+            entry(false),
+            entry(true),
+            Op::IfGoto(9),
+            Op::PushConst(3), // the loop's head
+            call,
+            Op::PopAbs(5),
+            Op::Goto(4),
+            Op::PushConst(0),
+            Op::PushConst(2), // the branch's target
+            Op::Return,
+            Op::Halt,
+        ];
+        let depths = |d: &[i32]| d.iter().map(|&d| (d >= 0).then_some(d)).collect::<Vec<_>>();
+        assert_eq!(
+            static_depths(&code, 0, code.len() as u32, 0),
+            Some(depths(&[0, 1, 0, 1, 0, 1, 1, 0, -1, 0, 1, -1]))
+        );
+        assert_eq!(static_depths(&code, 0, 2, 0), Some(depths(&[0, 1])));
     }
 }
