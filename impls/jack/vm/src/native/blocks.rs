@@ -325,7 +325,9 @@ pub(crate) fn budgets(
         *t = true;
     }
     // Flow edges of compiled code between blocks (a call's continuation
-    // is entered after the callee, so it tests).
+    // is entered after the callee, so it tests). A function's code ends
+    // in `Halt` and jumps, so a block that falls through, branches or
+    // calls has a next block.
     let succ = |b: &Block| -> Vec<usize> {
         if b.end == b.start {
             return Vec::new();
@@ -334,8 +336,7 @@ pub(crate) fn budgets(
             Op::Goto(t) => vec![at(t)],
             Op::IfGoto(t) => vec![at(t), at(b.end)],
             Op::Return | Op::Call { .. } | Op::CallBuiltin { .. } => Vec::new(),
-            _ if ((b.end - start) as usize) < index.len() => vec![at(b.end)],
-            _ => Vec::new(),
+            _ => vec![at(b.end)],
         }
     };
     for (i, b) in blocks.iter().enumerate() {
@@ -343,9 +344,7 @@ pub(crate) fn budgets(
             continue;
         }
         match code[b.end as usize - 1] {
-            Op::Call { .. } | Op::CallBuiltin { .. }
-                if ((b.end - start) as usize) < index.len() =>
-            {
+            Op::Call { .. } | Op::CallBuiltin { .. } => {
                 tested[at(b.end)] = true;
             }
             _ => {}
