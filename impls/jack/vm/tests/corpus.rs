@@ -85,18 +85,7 @@ fn corpus_programs_run_almost_wholly_compiled() {
 fn pointer_accesses_at_the_top_of_ram_run_compiled() {
     let source = "function Main.main 0\nlabel LOOP\npush constant 24570\npop pointer 1\n\
                   push that 6\npush constant 24575\npop pointer 0\npop this 1\ngoto LOOP\n";
-    let program = Program::from_sources(&[("Main.vm", source)]).expect("loads");
-    let config = Config {
-        profile: Profile::Web,
-        engine: Engine::Native,
-        ..Config::default()
-    };
-    let mut m = Machine::new(program, config);
-    m.call("Main.main", &[], Some(0)).expect("Main.main exists");
-    let exit = m.run(Some(10_000));
-    assert!(matches!(exit, Exit::Budget { .. }), "{exit}");
-    let interpreted = m.steps() - m.compiled_steps();
-    assert!(interpreted <= 8, "{interpreted} steps interpreted");
+    runs_compiled(source, &[Profile::Web], Some("Main.main"));
 }
 
 /// A block that touches no stack word runs compiled wherever SP is (no
@@ -105,22 +94,7 @@ fn pointer_accesses_at_the_top_of_ram_run_compiled() {
 #[test]
 fn blocks_without_stack_words_run_compiled_wherever_sp_is() {
     let source = "push constant 100\npop constant 0\nlabel LOOP\ngoto LOOP\n";
-    let program = Program::from_sources(&[("Main.vm", source)]).expect("loads");
-    for profile in [Profile::Desktop, Profile::Web] {
-        let config = Config {
-            profile,
-            engine: Engine::Native,
-            ..Config::default()
-        };
-        let mut m = Machine::new(program.clone(), config);
-        let exit = m.run(Some(10_000));
-        assert!(matches!(exit, Exit::Budget { .. }), "{profile:?}: {exit}");
-        let interpreted = m.steps() - m.compiled_steps();
-        assert!(
-            interpreted <= 8,
-            "{profile:?}: {interpreted} steps interpreted"
-        );
-    }
+    runs_compiled(source, &[Profile::Desktop, Profile::Web], None);
 }
 
 /// Code before a program's first `function` line (its `__implicit`
@@ -130,16 +104,26 @@ fn blocks_without_stack_words_run_compiled_wherever_sp_is() {
 fn code_before_any_function_runs_compiled() {
     let source = "push constant 1\npop temp 0\n".repeat(200)
         + "label LOOP\npush temp 0\npush constant 1\nadd\npop temp 0\ngoto LOOP\n";
-    let program = Program::from_sources(&[("Main.vm", source.as_str())]).expect("loads");
-    for profile in [Profile::Desktop, Profile::Web] {
+    runs_compiled(&source, &[Profile::Desktop, Profile::Web], None);
+}
+
+/// `source` (from its start, or from a call of `entry`) runs 10,000 steps
+/// on the compiled engine under each of `profiles`, interpreting at most 8
+/// of them.
+fn runs_compiled(source: &str, profiles: &[Profile], entry: Option<&str>) {
+    let program = Program::from_sources(&[("Main.vm", source)]).expect("loads");
+    for &profile in profiles {
         let config = Config {
             profile,
             engine: Engine::Native,
             ..Config::default()
         };
         let mut m = Machine::new(program.clone(), config);
+        if let Some(f) = entry {
+            m.call(f, &[], Some(0)).expect("the entry exists");
+        }
         let exit = m.run(Some(10_000));
-        assert!(matches!(exit, Exit::Budget { .. }), "{exit}");
+        assert!(matches!(exit, Exit::Budget { .. }), "{profile:?}: {exit}");
         let interpreted = m.steps() - m.compiled_steps();
         assert!(
             interpreted <= 8,

@@ -917,19 +917,8 @@ fn compiled_calls_nest_at_most_256_deep() {
 fn stack_edges_of_operators_and_statics_agree() {
     for op in ["neg", "not"] {
         let src = format!("{op}\n");
-        let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
         for profile in [hack_vm::Profile::Desktop, hack_vm::Profile::Web] {
-            let run = |engine| {
-                let config = Config {
-                    profile,
-                    engine,
-                    ..Config::default()
-                };
-                let mut m = Machine::new(program.clone(), config);
-                let exit = m.run(Some(10));
-                (exit, m.steps())
-            };
-            let (interp, native) = (run(Engine::Interp), run(Engine::Native));
+            let (interp, native) = on_both_engines(&src, profile, 10);
             let failed = matches!(interp.0, Exit::RuntimeError { .. });
             assert!(failed, "{op} {profile:?}: {}", interp.0);
             assert_eq!(native, interp, "{op} {profile:?}");
@@ -1033,19 +1022,8 @@ fn a_block_past_the_stack_end_overflows_where_depths_are_not_fixed() {
         "push constant 2040\npop constant 0\ngoto B\nlabel B\n{}label END\ngoto END\n",
         "push constant 1\n".repeat(10)
     );
-    let program = Program::from_sources(&[("Main.vm", src.as_str())]).expect("it loads");
     for profile in [hack_vm::Profile::Desktop, hack_vm::Profile::Web] {
-        let run = |engine| {
-            let config = Config {
-                profile,
-                engine,
-                ..Config::default()
-            };
-            let mut m = Machine::new(program.clone(), config);
-            let exit = m.run(Some(100));
-            (exit, m.steps())
-        };
-        let (interp, native) = (run(Engine::Interp), run(Engine::Native));
+        let (interp, native) = on_both_engines(&src, profile, 100);
         let failed = matches!(interp.0, Exit::RuntimeError { .. });
         assert_eq!(
             failed,
@@ -1055,6 +1033,27 @@ fn a_block_past_the_stack_end_overflows_where_depths_are_not_fixed() {
         );
         assert_eq!(native, interp, "{profile:?}");
     }
+}
+
+/// How program `src` ends from its start within `budget` steps, and after
+/// how many, on the interpreter and on the compiled engine.
+fn on_both_engines(
+    src: &str,
+    profile: hack_vm::Profile,
+    budget: u64,
+) -> ((Exit, u64), (Exit, u64)) {
+    let program = Program::from_sources(&[("Main.vm", src)]).expect("it loads");
+    let run = |engine| {
+        let config = Config {
+            profile,
+            engine,
+            ..Config::default()
+        };
+        let mut m = Machine::new(program.clone(), config);
+        let exit = m.run(Some(budget));
+        (exit, m.steps())
+    };
+    (run(Engine::Interp), run(Engine::Native))
 }
 
 /// A call near the desktop stack's end of a callee run inline, which
