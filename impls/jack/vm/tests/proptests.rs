@@ -1104,8 +1104,9 @@ fn an_inline_run_near_the_stack_end_runs_where_it_fits() {
 /// decide: a `Memory.poke` of each register (of SP too, so that the
 /// built-in's push lands where SP then says: a register, the stack's end,
 /// past RAM), `Memory.peek` and `poke` at the ends of the words they may
-/// touch, a built-in's error, and built-ins with SP at either end of the
-/// stack, under both profiles, with budget stops on the way.
+/// touch, a host-called built-in that moves SP out of the stack, a
+/// built-in's error, and built-ins with SP at either end of the stack,
+/// under both profiles, with budget stops on the way.
 #[test]
 fn builtins_that_move_registers_or_stop_agree() {
     let budgets = [0, 3, 5];
@@ -1135,6 +1136,19 @@ fn builtins_that_move_registers_or_stop_agree() {
              push constant {a}\ncall Memory.peek 1\npop temp 1"
         );
         agree_on(&body, 0, &[0, 0], &[false, true], &[0]);
+    }
+    // A host-called built-in that moves SP out of the stack (the web's
+    // `setCharAt` of a string whose characters lie at word 0 writes SP):
+    // its result is pushed at RAM[5000], over the 7 there, at RAM's last
+    // word, and past RAM (nowhere), and the web's stack runs on without an
+    // overflow.
+    for sp in [5000, 24576, 24577] {
+        let body = format!(
+            "push constant 7\npop constant 5000\npush constant 5\npop constant 3001\n\
+             push constant 0\npop constant 3002\npush constant 3000\npush constant 0\n\
+             push constant {sp}\ncall String.setCharAt 3\npop temp 0"
+        );
+        agree_on(&body, 0, &[0, 0], &[true], &budgets);
     }
     for error in [
         "push constant 1\nneg\ncall Math.sqrt 1",
