@@ -5,6 +5,7 @@
 //! test at the block's entry covers every stack access inside it.
 
 use crate::program::Op;
+use crate::timing::STACK_BASE;
 use jack_os::Builtin;
 
 /// A frame's locals are zeroed by straight-line stores up to this many; a
@@ -108,6 +109,18 @@ fn stack_effect(op: Op) -> (i32, i32) {
         Op::CallBuiltin { nargs, .. } => (i32::from(nargs), 1),
         _ => (0, 0),
     }
+}
+
+/// Whether `op` is a `pop constant` into the stack (RAM[256] and up), a
+/// write no stack-depth reasoning sees.
+pub(crate) fn pops_into_stack(op: Op) -> bool {
+    matches!(op, Op::PopRam(a) if a >= STACK_BASE)
+}
+
+/// The end of the code that `blocks` (from [`blocks`], of a function
+/// starting at `start`) cover.
+pub(crate) fn code_end(blocks: &[Block], start: u32) -> u32 {
+    blocks.last().map_or(start, |b| b.end.max(b.start + 1))
 }
 
 /// Whether no instruction in `start..end` (stack depths before each, SP -

@@ -394,7 +394,7 @@ impl Plan {
             std::slice::from_ref(&f.start)
         };
         let (blocks, starts) = blocks::blocks(code, start, end, entries);
-        let end = blocks.last().map_or(start, |b| b.end.max(b.start + 1));
+        let end = blocks::code_end(&blocks, start);
         // A call lands on the `function` line (SP = LCL) or on the body.
         let entry_depth = match code[start as usize] {
             Op::Function { .. } => 0,
@@ -424,9 +424,7 @@ impl Plan {
 /// above and below the frame its call wrote, and a deeper callee's above.
 fn frames_intact(code: &[Op], plans: &[Plan], profile: Profile) -> bool {
     profile == Profile::Desktop
-        && !code
-            .iter()
-            .any(|op| matches!(*op, Op::PopRam(a) if a >= crate::timing::STACK_BASE))
+        && !code.iter().any(|&op| blocks::pops_into_stack(op))
         && plans.iter().all(|p| {
             p.depths
                 .as_deref()

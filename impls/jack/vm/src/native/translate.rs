@@ -248,9 +248,7 @@ fn held_locals(env: &Env<'_>, depths: Option<&[Option<i32>]>, reach: [Option<u16
         && env.timing.function_step
         && matches!(code.first(), Some(Op::Function { .. }))
         && held <= MAX_HELD_LOCALS
-        && !code
-            .iter()
-            .any(|op| matches!(*op, Op::PopRam(a) if a >= STACK_BASE))
+        && !code.iter().any(|&op| blocks::pops_into_stack(op))
         && blocks::pops_stay_above(env.code, env.start, depths, i32::from(f.n_vars));
     if fits {
         held
@@ -296,7 +294,7 @@ struct Inline {
 /// web a write through a pointer or `Memory.poke`, may.
 fn keeps_frames(ops: &[Op], profile: Profile) -> bool {
     ops.iter().all(|op| match *op {
-        Op::PopRam(a) => a < STACK_BASE,
+        Op::PopRam(_) => !blocks::pops_into_stack(*op),
         Op::PopThis(_)
         | Op::PopThisChk(_)
         | Op::PopThat(_)
@@ -315,7 +313,7 @@ fn keeps_frames(ops: &[Op], profile: Profile) -> bool {
 /// and above), and the built-ins that write memory.
 fn may_write_frames(op: Op, profile: Profile) -> bool {
     match op {
-        Op::PopRam(a) => a >= STACK_BASE,
+        Op::PopRam(_) => blocks::pops_into_stack(op),
         Op::PopThis(_) | Op::PopThisChk(_) | Op::PopThat(_) | Op::PopThatChk(_) => {
             profile != Profile::Desktop
         }
@@ -599,7 +597,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let stop_at = b
         .ins()
         .load(T64, mem.fixed, ctx, field(offset_of!(Ctx, stop_at)));
-    let end = vm_blocks.last().map_or(start, |b| b.end.max(b.start + 1));
+    let end = blocks::code_end(vm_blocks, start);
     let reach = reach(&env.code[start as usize..end as usize]);
     let depths = env.depths;
     let budgets = blocks::budgets(env.code, start, vm_blocks, block_at);
@@ -836,6 +834,12 @@ impl Translator<'_, '_> {
         }
     }
 
+    /// Whether the zero-extended word `x` is not negative as a 16-bit
+    /// number.
+    fn non_negative(&mut self, x: Value) -> Value {
+        self.b.ins().icmp_imm_u(IntCC::UnsignedLessThan, x, 0x8000)
+    }
+
     /// The word in the low 16 bits of `x`, sign-extended to 32 bits.
     fn signed(&mut self, x: Value) -> Value {
         let high = self.signed_high(x);
@@ -960,10 +964,18 @@ impl Translator<'_, '_> {
     /// `5 <= a <= 24576` for a zero-extended address (or a sum of one and
     /// an offset, which a word past 65535 fails).
     fn is_plain(&mut self, a: Value) -> Value {
+        self.plain_from(a, 0)
+    }
+
+    /// Whether `a + 0 ..= a + top` are all plain words, with no wrapping:
+    /// 5 <= a <= RAM_SIZE - 1 - top.
+    fn plain_from(&mut self, a: Value, top: u16) -> Value {
+        let limit = RAM_SIZE as i64 - 5 - i64::from(top);
+        if limit <= 0 {
+            return self.b.ins().iconst(types::I8, 0);
+        }
         let t = self.b.ins().iadd_imm_s(a, -5);
-        self.b
-            .ins()
-            .icmp_imm_u(IntCC::UnsignedLessThan, t, RAM_SIZE as i64 - 5)
+        self.b.ins().icmp_imm_u(IntCC::UnsignedLessThan, t, limit)
     }
 
     /// Continue if `ok`, else leave for the interpreter at `at.pc` with
@@ -1408,7 +1420,7 @@ impl Translator<'_, '_> {
         let ptr_each = || self.ptr_tests[(pc - self.block_start) as usize] == PtrTest::Each;
         match op {
             Op::Call { .. } | Op::Return => true,
-            Op::PopRam(a) => usize::from(a) >= usize::from(STACK_BASE),
+            Op::PopRam(_) => blocks::pops_into_stack(op),
             Op::PushLocal(_) | Op::PopLocal(_) => self.reach[LOCAL].is_none(),
             Op::PushArg(_) | Op::PopArg(_) => self.reach[ARGUMENT].is_none(),
             Op::PushThis(_)
@@ -1527,16 +1539,10 @@ impl Translator<'_, '_> {
         ok
     }
 
-    /// Whether `var + 0 ..= var + top` are all plain words, with no
-    /// wrapping: 5 <= var <= RAM_SIZE - 1 - top.
+    /// [`Self::plain_from`] of register `var`'s value.
     fn span_ok(&mut self, var: Variable, top: u16) -> Value {
-        let limit = RAM_SIZE as i64 - 5 - i64::from(top);
-        if limit <= 0 {
-            return self.b.ins().iconst(types::I8, 0);
-        }
         let base = self.b.use_var(var);
-        let t = self.b.ins().iadd_imm_s(base, -5);
-        self.b.ins().icmp_imm_u(IntCC::UnsignedLessThan, t, limit)
+        self.plain_from(base, top)
     }
 
     /// Leave unless the words `var + 0 ..= var + top` (no wrapping) miss
@@ -1791,8 +1797,10 @@ impl Translator<'_, '_> {
                     Op::Gt => IntCC::SignedGreaterThan,
                     _ => IntCC::SignedLessThan,
                 };
-                let both = self.zero_extended.contains(&x) && self.zero_extended.contains(&y);
-                let (x, y) = if op == Op::Eq && both {
+                let words_equal = op == Op::Eq
+                    && self.zero_extended.contains(&x)
+                    && self.zero_extended.contains(&y);
+                let (x, y) = if words_equal {
                     (x, y)
                 } else {
                     (self.signed_high(x), self.signed_high(y))
@@ -2006,23 +2014,21 @@ impl Translator<'_, '_> {
         // In 32 bits, so that -32768 / -1 does not trap (it wraps: only
         // the low 16 bits of the result count).
         let x32 = self.signed(x);
-        let y32 = y;
-        let q = self.b.ins().sdiv(x32, y32);
-        let q = match self.env.divide {
+        let q = self.b.ins().sdiv(x32, y);
+        match self.env.divide {
             jack_os::DivideRule::Truncate => q,
             jack_os::DivideRule::Floor => {
                 // Round toward minus infinity: one less when the remainder
                 // is non-zero and the signs differ.
-                let r = self.b.ins().srem(x32, y32);
+                let r = self.b.ins().srem(x32, y);
                 let inexact = self.b.ins().icmp_imm_s(IntCC::NotEqual, r, 0);
-                let signs = self.b.ins().bxor(x32, y32);
+                let signs = self.b.ins().bxor(x32, y);
                 let differ = self.b.ins().icmp_imm_s(IntCC::SignedLessThan, signs, 0);
                 let both = self.b.ins().band(inexact, differ);
                 let one = self.b.ins().uextend(T32, both);
                 self.b.ins().isub(q, one)
             }
-        };
-        q
+        }
     }
 
     /// `call callee nargs`: push the frame in RAM and in the frame stack and
@@ -2187,23 +2193,21 @@ impl Translator<'_, '_> {
         self.b.def_var(self.v.steps, steps);
         let sp = self.b.ins().iadd_imm_s(base, 1 - i64::from(n));
         self.b.def_var(self.v.sp, sp);
-        if self.env.frames_intact {
-            self.jump_to(before.pc + 1);
-            return;
+        if !self.env.frames_intact {
+            let (lcl, arg) = (self.b.use_var(self.v.lcl), self.b.use_var(self.v.arg));
+            let mut restored = Vec::new();
+            for (var, k) in [
+                (self.v.lcl, 1),
+                (self.v.arg, 2),
+                (self.v.this, 3),
+                (self.v.that, 4),
+            ] {
+                let x = self.load16(self.mem.ram, p, 2 * k);
+                self.b.def_var(var, x);
+                restored.push(x);
+            }
+            self.same_frame_or_leave(restored[0], restored[1], lcl, arg, before.pc + 1);
         }
-        let (lcl, arg) = (self.b.use_var(self.v.lcl), self.b.use_var(self.v.arg));
-        let mut restored = Vec::new();
-        for (var, k) in [
-            (self.v.lcl, 1),
-            (self.v.arg, 2),
-            (self.v.this, 3),
-            (self.v.that, 4),
-        ] {
-            let x = self.load16(self.mem.ram, p, 2 * k);
-            self.b.def_var(var, x);
-            restored.push(x);
-        }
-        self.same_frame_or_leave(restored[0], restored[1], lcl, arg, before.pc + 1);
         self.jump_to(before.pc + 1);
     }
 

@@ -59,7 +59,7 @@ impl Translator<'_, '_> {
                 let string = self.exact(string);
                 let len = self.length(string, s, before);
                 // ERR15 unless 0 <= i < length (as 16-bit numbers).
-                let from_0 = self.b.ins().icmp_imm_u(IntCC::UnsignedLessThan, i, 0x8000);
+                let from_0 = self.non_negative(i);
                 let (i_high, len_high) = (self.signed_high(i), self.signed_high(len));
                 let below = self.b.ins().icmp(IntCC::SignedLessThan, i_high, len_high);
                 let chars = if desktop {
@@ -106,10 +106,7 @@ impl Translator<'_, '_> {
                     // 0 <= length < length + 1 (as 16-bit numbers).
                     let array = self.load_offset(string, 2);
                     let at = self.b.ins().iadd(array, len);
-                    let from_0 = self
-                        .b
-                        .ins()
-                        .icmp_imm_u(IntCC::UnsignedLessThan, len, 0x8000);
+                    let from_0 = self.non_negative(len);
                     let no_wrap =
                         self.b
                             .ins()
