@@ -141,11 +141,7 @@ fn expression() -> impl Strategy<Value = Vec<String>> {
     let leaf = prop_oneof![
         (0i16..40).prop_map(|v| vec![format!("push constant {v}")]),
         // -2 to 2 as words, made by sums past 65535.
-        (0u16..5).prop_map(|k| ["push constant 32767", "push constant 32767", "add"]
-            .map(String::from)
-            .into_iter()
-            .chain([format!("push constant {k}"), "add".to_string()])
-            .collect()),
+        (0u16..5).prop_map(|k| wrapped_word(k).lines().map(String::from).collect()),
         (seg, 0u16..3).prop_map(|(s, i)| vec![format!(
             "push {s} {}",
             if s == "pointer" { i % 2 } else { i }
@@ -932,6 +928,12 @@ fn stack_edges_of_operators_and_statics_agree() {
     agree_on(body, 0, &[0, 0], &[false], &[0, 3, 7]);
 }
 
+/// Commands that push k - 2 as a word, by a sum past 65535 (32767 + 32767
+/// + k).
+fn wrapped_word(k: u16) -> String {
+    format!("push constant 32767\npush constant 32767\nadd\npush constant {k}\nadd")
+}
+
 /// Compiled code computes words in 32-bit registers, where a sum can pass
 /// 65535 (32767 + 32767 + k is k - 2 as a word): every use that needs the
 /// word itself sees its low 16 bits, as the interpreter's 16-bit
@@ -942,18 +944,16 @@ fn stack_edges_of_operators_and_statics_agree() {
 /// budget, so the callee's registers reach the context).
 #[test]
 fn words_past_sixteen_bits_agree() {
-    let wrapped =
-        |k: u16| format!("push constant 32767\npush constant 32767\nadd\npush constant {k}\nadd");
     let bodies = [
-        format!("{}\nif-goto WRAP\npush constant 7\npop temp 0\nlabel WRAP", wrapped(2)),
-        format!("{}\npush constant 0\neq\npop temp 0", wrapped(2)),
-        format!("{}\npush constant 2\nlt\npop temp 1\n{}\npush constant 0\ngt\npop temp 2", wrapped(3), wrapped(3)),
-        format!("push constant 5\n{}\ncall Math.divide 2\npop temp 0", wrapped(2)),
-        format!("push constant 5\n{}\ncall Math.divide 2\npop temp 0\n{}\npush constant 1\ncall Math.divide 2\npop temp 1", wrapped(3), wrapped(4)),
-        format!("{}\ncall Math.abs 1\npop temp 0", wrapped(0)),
-        format!("{}\npush constant 1\ncall Math.min 2\npop temp 0\npush constant 1\n{}\ncall Math.max 2\npop temp 1", wrapped(0), wrapped(0)),
-        format!("push constant 3000\npop pointer 1\n{}\npop pointer 0\npush constant 3\ncall Main.r 1\npop temp 0", wrapped(3)),
-        format!("push constant 3000\npop pointer 0\n{}\npop pointer 1\npush constant 3\ncall Main.r 1\npop temp 0", wrapped(4)),
+        format!("{}\nif-goto WRAP\npush constant 7\npop temp 0\nlabel WRAP", wrapped_word(2)),
+        format!("{}\npush constant 0\neq\npop temp 0", wrapped_word(2)),
+        format!("{}\npush constant 2\nlt\npop temp 1\n{}\npush constant 0\ngt\npop temp 2", wrapped_word(3), wrapped_word(3)),
+        format!("push constant 5\n{}\ncall Math.divide 2\npop temp 0", wrapped_word(2)),
+        format!("push constant 5\n{}\ncall Math.divide 2\npop temp 0\n{}\npush constant 1\ncall Math.divide 2\npop temp 1", wrapped_word(3), wrapped_word(4)),
+        format!("{}\ncall Math.abs 1\npop temp 0", wrapped_word(0)),
+        format!("{}\npush constant 1\ncall Math.min 2\npop temp 0\npush constant 1\n{}\ncall Math.max 2\npop temp 1", wrapped_word(0), wrapped_word(0)),
+        format!("push constant 3000\npop pointer 1\n{}\npop pointer 0\npush constant 3\ncall Main.r 1\npop temp 0", wrapped_word(3)),
+        format!("push constant 3000\npop pointer 0\n{}\npop pointer 1\npush constant 3\ncall Main.r 1\npop temp 0", wrapped_word(4)),
     ];
     for body in &bodies {
         agree_on(
@@ -1303,9 +1303,9 @@ fn command() -> impl Strategy<Value = String> {
             "push constant 0\npop pointer 1\npush that 0\npush constant {k}\nadd\npush constant {v}\ncall Main.v 2"
         )),
         1 => Just("push constant 24576\npop pointer 1\npush that 0".to_string()),
-        // A sum past 65535 (k - 2 as a word), which compiled code's 32-bit
-        // registers hold with bits above the word's.
-        1 => (0u16..5).prop_map(|k| format!("push constant 32767\npush constant 32767\nadd\npush constant {k}\nadd")),
+        // A sum past 65535, which compiled code's 32-bit registers hold
+        // with bits above the word's.
+        1 => (0u16..5).prop_map(wrapped_word),
         // THIS or THAT at SP (read through RAM[0]): their accesses meet
         // the stack words that compiled code keeps in registers.
         1 => (0u16..2).prop_map(|p| format!("push constant 0\npop pointer 1\npush that 0\npop pointer {p}")),
