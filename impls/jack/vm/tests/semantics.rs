@@ -221,15 +221,37 @@ fn web_on_both_engines(src: &str, budget: u64) -> (String, u64) {
 /// `Main.f` stores `ret` into its own RET word (through `that`, from
 /// LCL - 5) and returns: 11 steps from the start to its return.
 fn returning_to(ret: i16) -> String {
-    let set = if ret < 0 {
-        format!("push constant 0\npush constant {}\nsub\n", -i32::from(ret))
-    } else {
-        format!("push constant {ret}\n")
-    };
+    let set = constant(ret);
     format!(
         "function Sys.init 0\ncall Main.f 0\nlabel L\ngoto L\n\
          function Main.f 0\npush constant 0\npop pointer 1\npush that 1\npush constant 5\nsub\n\
          pop pointer 1\n{set}pop that 0\npush constant 0\nreturn\n"
+    )
+}
+
+/// The commands that push `k`.
+fn constant(k: i16) -> String {
+    if k < 0 {
+        format!("push constant 0\npush constant {}\nsub\n", -i32::from(k))
+    } else {
+        format!("push constant {k}\n")
+    }
+}
+
+/// As [`returning_to`], with `Main.g` (Sys.init's callee, which the
+/// interpreter calls) calling `Main.f`, which writes its RET word at 261
+/// without reading a register, after `pad` pairs of commands (`push
+/// constant 1`, `pop temp 0`): from 17 on, too long for compiled code to
+/// run it inline, so that it runs as a compiled call's callee. 8 + 2 pad
+/// steps to its return.
+fn returning_after(ret: i16, pad: usize) -> String {
+    let set = constant(ret);
+    format!(
+        "function Sys.init 0\ncall Main.g 0\nlabel L\ngoto L\n\
+         function Main.g 0\ncall Main.f 0\nlabel M\ngoto M\n\
+         function Main.f 0\n{}push constant 261\npop pointer 1\n{set}pop that 0\n\
+         push constant 0\nreturn\n",
+        "push constant 1\npop temp 0\n".repeat(pad)
     )
 }
 
@@ -253,6 +275,27 @@ fn a_web_return_past_its_callers_end_fails_the_next_step() {
     let (exit, steps) = web_on_both_engines(&returning_to(1), 100);
     assert!(exit.contains("budget"), "{exit}");
     assert_eq!(steps, 100);
+}
+
+/// The same returns from a callee that a compiled call runs (not inline):
+/// its return finds a RET word other than the one the call wrote, and the
+/// interpreter makes it; with its own RET word, compiled code goes on.
+#[test]
+fn a_compiled_callee_returns_where_its_ret_word_says() {
+    for pad in [17, 40] {
+        let (exit, steps) = web_on_both_engines(&returning_after(30000, pad), 1000);
+        assert!(exit.contains("(30001 > 4) in Sys.init > Main.g"), "{exit}");
+        assert_eq!(steps, 9 + 2 * pad as u64);
+        let (exit, steps) = web_on_both_engines(&returning_after(-5, pad), 1000);
+        assert_eq!((exit.as_str(), steps), ("halted", 10 + 2 * pad as u64));
+        let (exit, steps) = web_on_both_engines(&returning_after(1, pad), 1000);
+        assert!(exit.contains("budget"), "{exit}");
+        assert_eq!(steps, 1000);
+        // Every step but Sys.init's call ran compiled, the return included.
+        let mut m = web_machine(&returning_after(1, pad), hack_vm::Engine::Native);
+        m.run(Some(1000));
+        assert_eq!(m.compiled_steps(), 999);
+    }
 }
 
 /// A recursion that runs its stack past the end of RAM. Each level takes

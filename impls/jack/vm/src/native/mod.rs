@@ -105,9 +105,11 @@ pub(crate) const CONTINUE: i32 = -2;
 /// Code: a built-in called from compiled code ended the run, with
 /// `Ctx::stopped`.
 pub(crate) const STOPPED: i32 = -3;
-/// The block index a compiled call passes: the registers come as the
-/// entry's other arguments, not in the context.
-pub(crate) const CALLED: i64 = -1;
+/// The bit that marks a compiled call in place of a block index, beside
+/// the RET word it wrote in the low 16 bits: the registers come as the
+/// entry's other arguments, not in the context, and the call's frame stack
+/// entry is written only if the callee leaves compiled code.
+pub(crate) const CALLED: u32 = 1 << 31;
 /// Compiled functions nested deeper than this leave calls to the
 /// interpreter, which bounds the host stack compiled code uses.
 pub(crate) const NATIVE_DEPTH: u32 = 256;
@@ -124,13 +126,9 @@ pub(crate) struct Ctx {
     /// fails compiled code's room test for both.
     pub frames_cap: u64,
     /// Compiled calls run while `frames_len` is below this: the capacity,
-    /// and at most [`NATIVE_DEPTH`] frames above `frames_base` (0 where
-    /// `frames_cap` is).
+    /// and at most [`NATIVE_DEPTH`] frames above its length on entering
+    /// compiled code (0 where `frames_cap` is).
     pub frames_limit: u64,
-    /// `frames_len` on entering compiled code: a frame above it was pushed
-    /// by a compiled call, whose caller's compiled code a return goes
-    /// back to.
-    pub frames_base: u64,
     /// One byte per function, nonzero where the watcher wants its calls:
     /// a compiled call to it leaves for the interpreter (a frame the
     /// interpreter pushed for a watched call is marked `Frame::watched`,
@@ -159,12 +157,13 @@ pub(crate) struct Ctx {
     pub stopped: Option<Halt>,
 }
 
-/// A compiled function: (context, block index or [`CALLED`], and for a
-/// call the caller's SP, THIS | THAT << 16, the argument count | the entry
-/// flags << 16, the step count) -> (code, step count). The dispatcher
-/// enters at a block with the registers in the context, and finds them
-/// there on the way out; a compiled call gets them as arguments, and on
-/// [`RETURNED`] reads the caller's from the frame it pushed.
+/// A compiled function: (context, block index or [`CALLED`] | RET word,
+/// and for a call the caller's SP, THIS | THAT << 16, the argument count |
+/// the entry flags << 16, the step count) -> (code, step count). The
+/// dispatcher enters at a block with the registers in the context, and
+/// finds them there on the way out; a compiled call gets them as
+/// arguments, and on [`RETURNED`] reads the caller's from the frame it
+/// wrote to RAM.
 type Entry = unsafe extern "C" fn(*mut Ctx, i32, u32, u32, u32, u64) -> Exit;
 
 /// What a compiled function returns (two registers).
@@ -548,16 +547,13 @@ impl Machine {
             cur: self.cur,
             pc: self.pc,
             frames_limit: 0,
-            frames_base: self.frames.len() as u64,
             watch: watched.as_ptr().cast(),
             any_watched: u8::from(any_watched),
             os: &mut self.os,
             ram_obj,
             stopped: None,
         };
-        ctx.frames_limit = ctx
-            .frames_cap
-            .min(ctx.frames_base + u64::from(NATIVE_DEPTH));
+        ctx.frames_limit = ctx.frames_cap.min(ctx.frames_len + u64::from(NATIVE_DEPTH));
         ctx.ram = w.as_mut_ptr();
         // SAFETY: the entry was compiled for this program and function; it
         // reads and writes RAM words 5..RAM_SIZE only (all it checks), and

@@ -151,6 +151,11 @@ struct Translator<'a, 'b> {
     ctx: Value,
     ram: Value,
     stop_at: Value,
+    /// Whether a compiled call entered this function, and (if it did) the
+    /// RET word it wrote, which is not on the frame stack (see
+    /// [`Translator::call`]).
+    called: Value,
+    called_ret: Value,
     mem: Mem,
     /// The Cranelift block of each VM block.
     cl: Vec<ir::Block>,
@@ -607,6 +612,9 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let leave_held = leave_block(&mut b);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
     let leave = leave_block(&mut b);
+    // A compiled call passes the registers; the dispatcher, the context.
+    let called = b.ins().icmp_imm_s(IntCC::SignedLessThan, which, 0);
+    let called_ret = b.ins().band_imm_u(which, 0xFFFF);
     let mut t = Translator {
         b,
         env,
@@ -614,6 +622,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         ctx,
         ram,
         stop_at,
+        called,
+        called_ret,
         mem,
         cl,
         block_at,
@@ -639,8 +649,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         zero_extended: HashSet::new(),
     };
     t.range = t.static_range();
-    // A compiled call passes the registers; the dispatcher, the context.
-    let called = t.b.ins().icmp_imm_s(IntCC::Equal, which, CALLED);
+    t.zero_extended.insert(called_ret);
     let (from_call, from_ctx, join) = (t.b.create_block(), t.b.create_block(), t.b.create_block());
     t.b.ins().brif(called, from_call, NONE, from_ctx, NONE);
     t.b.switch_to_block(from_call);
@@ -2031,10 +2040,12 @@ impl Translator<'_, '_> {
         }
     }
 
-    /// `call callee nargs`: push the frame in RAM and in the frame stack and
-    /// run the callee's compiled code directly; when it returns here,
-    /// continue with the next block. A callee that runs inline pushes no
-    /// frame stack entry unless compiled code leaves inside it; inside an
+    /// `call callee nargs`: push the frame in RAM and run the callee's
+    /// compiled code directly; when it returns here, continue with the
+    /// next block. The frame stack's entry for the call is written only
+    /// where compiled code leaves inside the callee (a compiled return
+    /// reads nothing of it: the callee has the RET word as an argument), as
+    /// for a callee that runs inline; inside an
     /// inline run (a nested call, which [`inline_run`] showed runs inline
     /// too), the run's code goes on after its return.
     fn call(
@@ -2157,7 +2168,11 @@ impl Translator<'_, '_> {
             return;
         }
         assert!(nested.is_none(), "inline_run runs every nested call inline");
-        self.push_frame_entry(self.env.id, &call);
+        // The frame stack grows by the call's entry, which is written only
+        // if the callee leaves compiled code (below): a return into this
+        // code needs none of it.
+        let len1 = self.b.ins().iadd_imm_s(len, 1);
+        self.set_frames_len(len1);
 
         // The callee's registers go as arguments (`native::Entry`).
         let this = self.b.use_var(self.v.this);
@@ -2166,7 +2181,8 @@ impl Translator<'_, '_> {
         let ptrs = self.b.ins().bor(this, that);
         let nargs_flags = self.c32(i64::from(n) | i64::from(entry_flags) << 16);
         let func = (self.env.callee)(self.b.func, callee);
-        let called = self.c32(CALLED);
+        let called = self.c32(i64::from(CALLED | u32::from(ret)));
+        let site = call;
         let call = self
             .b
             .ins()
@@ -2181,7 +2197,8 @@ impl Translator<'_, '_> {
         self.b.ins().brif(returned, back, NONE, out, NONE);
         self.b.switch_to_block(out);
         // The callee left compiled code: the state is in the context, and
-        // the held locals go to RAM.
+        // the call's frame stack entry and the held locals go to memory.
+        self.write_frame_entry(self.env.id, &site);
         self.store_held();
         self.b.ins().return_(&[code, steps]);
 
@@ -2294,10 +2311,37 @@ impl Translator<'_, '_> {
         }
     }
 
-    /// Push the frame stack entry of a call from `caller` (`Frame`, two
+    /// Push the frame stack entry of a call from `caller` at index
+    /// `call.frames_len`.
+    fn push_frame_entry(&mut self, caller: FnId, call: &CallSite) {
+        self.write_frame_entry(caller, call);
+        let len1 = self.b.ins().iadd_imm_s(call.frames_len, 1);
+        self.set_frames_len(len1);
+    }
+
+    fn set_frames_len(&mut self, len: Value) {
+        self.b.ins().store(
+            self.mem.ctx,
+            len,
+            self.ctx,
+            field(offset_of!(Ctx, frames_len)),
+        );
+    }
+
+    /// The host address of frame stack entry `i`.
+    fn frame_entry(&mut self, i: Value) -> Value {
+        let frames = self.fixed_field(offset_of!(Ctx, frames));
+        let off = self
+            .b
+            .ins()
+            .imul_imm_s(i, std::mem::size_of::<Frame>() as i64);
+        self.b.ins().iadd(frames, off)
+    }
+
+    /// Write the frame stack entry of a call from `caller` (`Frame`, two
     /// words: caller and ret_pc; ret, nargs, flags, and watched = false) at
     /// index `call.frames_len`.
-    fn push_frame_entry(&mut self, caller: FnId, call: &CallSite) {
+    fn write_frame_entry(&mut self, caller: FnId, call: &CallSite) {
         let CallSite {
             frames_len: len,
             ret_pc,
@@ -2306,12 +2350,7 @@ impl Translator<'_, '_> {
             flags,
             ..
         } = *call;
-        let frames = self.fixed_field(offset_of!(Ctx, frames));
-        let off = self
-            .b
-            .ins()
-            .imul_imm_s(len, std::mem::size_of::<Frame>() as i64);
-        let fp = self.b.ins().iadd(frames, off);
+        let fp = self.frame_entry(len);
         let head = i64::from(caller) | i64::from(ret_pc) << 32;
         let head = self.b.ins().iconst(T64, head);
         self.b.ins().store(self.mem.frames, head, fp, 0);
@@ -2322,13 +2361,6 @@ impl Translator<'_, '_> {
         let tail = self.b.ins().bor(nargs, flags);
         let tail = self.b.ins().bor_imm_u(tail, i64::from(ret));
         self.b.ins().store(self.mem.frames, tail, fp, 8);
-        let len1 = self.b.ins().iadd_imm_s(len, 1);
-        self.b.ins().store(
-            self.mem.ctx,
-            len1,
-            self.ctx,
-            field(offset_of!(Ctx, frames_len)),
-        );
     }
 
     /// Run callee `inline` of `call` in this function's code, its frame
@@ -2529,34 +2561,30 @@ impl Translator<'_, '_> {
         }
     }
 
-    /// `return` to a caller whose frame is on the frame stack with its RET
-    /// word intact: restore its registers and either return to its
-    /// compiled code (it called this one) or to the dispatcher.
+    /// `return` to a caller whose frame holds its RET word intact: return
+    /// to its compiled code (it called this one; it restores its own
+    /// registers) or, through its frame stack entry, to the dispatcher.
     fn ret(&mut self, s: &mut Stack, before: &Before, blk: &Block) {
         // The held locals' words keep their last values, as the
         // interpreter leaves them; this function's code ends here.
         self.store_held();
         self.locals_live = false;
-        let ctx = self.ctx;
         let len = self.frames_len();
-        let base = self.fixed_field(offset_of!(Ctx, frames_base));
-        let frames = self.fixed_field(offset_of!(Ctx, frames));
         let len1 = self.b.ins().iadd_imm_s(len, -1);
-        let off = self
-            .b
-            .ins()
-            .imul_imm_s(len1, std::mem::size_of::<Frame>() as i64);
-        let fp = self.b.ins().iadd(frames, off);
-        // A frame that a compiled call pushed returns to compiled code (so
-        // not to the host, not watched, and returns may run compiled);
-        // another needs a frame to return to (0 < len <= cap; cap is 0 if
-        // returns must not run compiled) that does not return to the host
-        // and whose call was not watched (the interpreter tells the
-        // watcher).
-        let nested = self.b.ins().icmp(IntCC::UnsignedGreaterThan, len, base);
+        // A compiled call returns to compiled code (so not to the host, not
+        // watched, and returns may run compiled), its RET word the one it
+        // passed; another frame needs a frame stack entry to return to
+        // (0 < len <= cap; cap is 0 if returns must not run compiled) that
+        // does not return to the host and whose call was not watched (the
+        // interpreter tells the watcher), its RET word the entry's.
+        let nested = self.called;
         let (other, checked) = (self.b.create_block(), self.b.create_block());
-        self.b.ins().brif(nested, checked, NONE, other, NONE);
+        let expected = self.b.append_block_param(checked, T32);
+        self.zero_extended.insert(expected);
+        let ret = [BlockArg::Value(self.called_ret)];
+        self.b.ins().brif(nested, checked, &ret, other, NONE);
         self.b.switch_to_block(other);
+        let fp = self.frame_entry(len1);
         let cap = self.fixed_field(offset_of!(Ctx, frames_cap));
         let ok = self.b.ins().icmp(IntCC::UnsignedLessThan, len1, cap);
         self.guard(ok, before);
@@ -2575,7 +2603,8 @@ impl Translator<'_, '_> {
                 .uload8(T32, self.mem.frames, fp, field(offset_of!(Frame, watched)));
         let ok = self.b.ins().icmp_imm_s(IntCC::Equal, watched, 0);
         self.guard(ok, before);
-        self.b.ins().jump(checked, NONE);
+        let ret = self.load16(self.mem.frames, fp, field(offset_of!(Frame, ret)));
+        self.b.ins().jump(checked, &[BlockArg::Value(ret)]);
         self.b.switch_to_block(checked);
         let ok = self.b.ins().iconst(types::I8, 1);
         // FRAME = LCL: FRAME-5 ..= FRAME-1 are plain words, and so is ARG
@@ -2597,7 +2626,6 @@ impl Translator<'_, '_> {
         self.guard(ok, before);
         let fr = self.word(frame);
         let ret_word = self.load16(self.mem.ram, fr, -10);
-        let expected = self.load16(self.mem.frames, fp, field(offset_of!(Frame, ret)));
         let ok = self.b.ins().icmp(IntCC::Equal, ret_word, expected);
         self.guard(ok, before);
 
@@ -2607,9 +2635,7 @@ impl Translator<'_, '_> {
         self.desktop_return_registers(frame, ret_word);
         let x = s.pop(self);
         self.store_word(arg, x);
-        self.b
-            .ins()
-            .store(self.mem.ctx, len1, ctx, field(offset_of!(Ctx, frames_len)));
+        self.set_frames_len(len1);
         let steps = self.b.ins().iadd_imm_s(before.steps0, blk.steps as i64);
         self.b.def_var(self.v.steps, steps);
         // Back into the caller's compiled code if it is below this one (it
@@ -2622,6 +2648,7 @@ impl Translator<'_, '_> {
         self.b.ins().return_(&[returned, steps]);
 
         self.b.switch_to_block(top);
+        let fp = self.frame_entry(len1);
         let ret_pc = self
             .b
             .ins()
