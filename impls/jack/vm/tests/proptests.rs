@@ -756,6 +756,27 @@ fn a_callee_that_rewrites_its_callers_saved_that_agrees() {
     }
 }
 
+/// An inline callee (one straight block) that writes a word of its own
+/// frame by `pop constant` (Main.f calls it with its frame at 263..=267:
+/// its RET word, then the saved LCL, ARG, THIS and THAT): its return
+/// reads the frame back from RAM, as the interpreter does, not the words
+/// the call wrote.
+#[test]
+fn an_inline_callee_that_pops_into_its_own_frame_agrees() {
+    for at in 263..=267 {
+        let src = format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+             function Main.f 1\npush constant 2200\npop pointer 1\npush constant 22\npop that 0\n\
+             push constant 2100\npop pointer 1\npush constant 7\ncall Main.y 1\npop temp 1\n\
+             push that 0\nreturn\n\
+             function Main.y 0\npush constant 2200\npop constant {at}\npush argument 0\nreturn\n"
+        );
+        for web in [false, true] {
+            agree_at_every_budget(&src, &[], web, 0..20);
+        }
+    }
+}
+
 /// A block of 1,791 pushes, the whole desktop stack less one word,
 /// entered with SP one word too high (code whose depths are not static,
 /// where each block tests its stack): the last push overflows.
