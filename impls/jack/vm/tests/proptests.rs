@@ -777,6 +777,27 @@ fn an_inline_callee_that_pops_into_its_own_frame_agrees() {
     }
 }
 
+/// An inline callee that writes its own argument word (262, where Main.f
+/// pushes it) by `pop constant`, and on the web by `Memory.poke`, then
+/// pushes it: it reads 99 from RAM, not the 7 its caller's code holds.
+#[test]
+fn an_inline_callee_that_writes_its_argument_reads_it_back() {
+    let pop = "push constant 99\npop constant 262";
+    let poke = "push constant 262\npush constant 99\ncall Memory.poke 2\npop temp 0";
+    for (write, webs) in [(pop, &[false, true][..]), (poke, &[true][..])] {
+        let src = format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+             function Main.f 1\npush constant 7\ncall Main.y 1\nreturn\n\
+             function Main.y 0\n{write}\npush argument 0\nreturn\n"
+        );
+        for &web in webs {
+            let (_, exit) = native_call(&src, web);
+            assert_eq!(exit, Exit::Returned(99), "web {web}");
+            agree_at_every_budget(&src, &[], web, 0..12);
+        }
+    }
+}
+
 /// A block of 1,791 pushes, the whole desktop stack less one word,
 /// entered with SP one word too high (code whose depths are not static,
 /// where each block tests its stack): the last push overflows.
