@@ -312,25 +312,22 @@ fn keeps_frames(ops: &[Op], profile: Profile) -> bool {
     })
 }
 
-/// Whether `op` may write a word below the running function's frame, an
-/// inline run's argument words among them: stores to absolute stack
-/// addresses, the web's `this` and `that` (the desktop's lie in the heap
-/// and above), and the built-ins that write memory.
+/// Whether `op`, an instruction of an inline run, may write a word below
+/// the running function's frame, the run's argument words among them:
+/// stores to absolute stack addresses, the web's `this` and `that` (the
+/// desktop's lie in the heap and above), and the built-ins that write
+/// memory. (An inline run holds only straight instructions, so no built-in
+/// called through the host.)
 fn may_write_frames(op: Op, profile: Profile) -> bool {
     match op {
         Op::PopRam(_) => blocks::pops_into_stack(op),
         Op::PopThis(_) | Op::PopThisChk(_) | Op::PopThat(_) | Op::PopThatChk(_) => {
             profile != Profile::Desktop
         }
-        // Of the built-ins compiled code runs itself, only these two
-        // write; every one called through the host may.
-        Op::CallBuiltin { builtin, .. } => {
-            !blocks::inline_builtin(builtin)
-                || matches!(
-                    builtin,
-                    jack_os::Builtin::MemoryPoke | jack_os::Builtin::StringAppendChar
-                )
-        }
+        Op::CallBuiltin { builtin, .. } => matches!(
+            builtin,
+            jack_os::Builtin::MemoryPoke | jack_os::Builtin::StringAppendChar
+        ),
         _ => false,
     }
 }
