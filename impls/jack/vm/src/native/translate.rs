@@ -151,11 +151,9 @@ struct Translator<'a, 'b> {
     ctx: Value,
     ram: Value,
     stop_at: Value,
-    /// Whether a compiled call entered this function, and (if it did) the
-    /// RET word it wrote, which is not on the frame stack (see
-    /// [`Translator::call`]).
-    called: Value,
-    called_ret: Value,
+    /// Two words in the host stack frame, not registers, since only exits
+    /// read them ([`SLOT_LEN`], [`SLOT_WHICH`]).
+    slots: ir::StackSlot,
     mem: Mem,
     /// The Cranelift block of each VM block.
     cl: Vec<ir::Block>,
@@ -331,6 +329,15 @@ fn may_write_frames(op: Op, profile: Profile) -> bool {
         _ => false,
     }
 }
+
+/// In `Translator::slots`: a compiled call's frame stack length (its
+/// entry's index), which the call's leave path writes the entry at.
+const SLOT_LEN: i32 = 0;
+/// In `Translator::slots`: the entry's block index or [`CALLED`] | RET
+/// word, for the returns: whether a compiled call entered the function,
+/// and the RET word that call wrote, which is not on the frame stack (see
+/// [`Translator::call`]).
+const SLOT_WHICH: i32 = 8;
 
 /// Callees of more instructions (before their `return`) are called, not
 /// run inline.
@@ -611,7 +618,12 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let leave = leave_block(&mut b);
     // A compiled call passes the registers; the dispatcher, the context.
     let called = b.ins().icmp_imm_s(IntCC::SignedLessThan, which, 0);
-    let called_ret = b.ins().band_imm_u(which, 0xFFFF);
+    let slots = b.create_sized_stack_slot(ir::StackSlotData::new(
+        ir::StackSlotKind::ExplicitSlot,
+        16,
+        3,
+    ));
+    b.ins().stack_store(T64, which, slots, SLOT_WHICH);
     let mut t = Translator {
         b,
         env,
@@ -619,8 +631,7 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         ctx,
         ram,
         stop_at,
-        called,
-        called_ret,
+        slots,
         mem,
         cl,
         block_at,
@@ -646,7 +657,6 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         zero_extended: HashSet::new(),
     };
     t.range = t.static_range();
-    t.zero_extended.insert(called_ret);
     let (from_call, from_ctx, join) = (t.b.create_block(), t.b.create_block(), t.b.create_block());
     t.b.ins().brif(called, from_call, NONE, from_ctx, NONE);
     t.b.switch_to_block(from_call);
@@ -2179,6 +2189,9 @@ impl Translator<'_, '_> {
         let nargs_flags = self.c32(i64::from(n) | i64::from(entry_flags) << 16);
         let func = (self.env.callee)(self.b.func, callee);
         let called = self.c32(i64::from(CALLED | u32::from(ret)));
+        self.b
+            .ins()
+            .stack_store(T64, call.frames_len, self.slots, SLOT_LEN);
         let site = call;
         let call = self
             .b
@@ -2193,9 +2206,11 @@ impl Translator<'_, '_> {
             .icmp_imm_s(IntCC::Equal, code, i64::from(RETURNED));
         self.b.ins().brif(returned, back, NONE, out, NONE);
         self.b.switch_to_block(out);
+        self.b.set_cold_block(out);
         // The callee left compiled code: the state is in the context, and
         // the call's frame stack entry and the held locals go to memory.
-        self.write_frame_entry(self.env.id, &site);
+        let frames_len = self.b.ins().stack_load(T64, T64, self.slots, SLOT_LEN);
+        self.write_frame_entry(self.env.id, &CallSite { frames_len, ..site });
         self.store_held();
         self.b.ins().return_(&[code, steps]);
 
@@ -2574,11 +2589,13 @@ impl Translator<'_, '_> {
         // (0 < len <= cap; cap is 0 if returns must not run compiled) that
         // does not return to the host and whose call was not watched (the
         // interpreter tells the watcher), its RET word the entry's.
-        let nested = self.called;
+        let which = self.b.ins().stack_load(T64, T32, self.slots, SLOT_WHICH);
+        let nested = self.b.ins().icmp_imm_s(IntCC::SignedLessThan, which, 0);
+        let called_ret = self.exact(which);
         let (other, checked) = (self.b.create_block(), self.b.create_block());
         let expected = self.b.append_block_param(checked, T32);
         self.zero_extended.insert(expected);
-        let ret = [BlockArg::Value(self.called_ret)];
+        let ret = [BlockArg::Value(called_ret)];
         self.b.ins().brif(nested, checked, &ret, other, NONE);
         self.b.switch_to_block(other);
         let fp = self.frame_entry(len1);
