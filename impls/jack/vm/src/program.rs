@@ -22,6 +22,8 @@ pub type FnId = u32;
 #[repr(u8)]
 pub(crate) enum Op {
     PushConst(i16),
+    /// `local i`, with i below the function's local count (the loader
+    /// makes any other index a [`Op::Fail`]); likewise `PopLocal`.
     PushLocal(u16),
     PushArg(u16),
     /// `this i`, proven at load time to follow a `pop pointer 0` of the

@@ -798,6 +798,66 @@ fn an_inline_callee_that_writes_its_argument_reads_it_back() {
     }
 }
 
+/// Callees short enough to run inline that step outside their own words:
+/// `Main.lo` reads `local 0` though it has no locals, which both profiles
+/// stop on; `Main.pb` pops its frame's saved THAT into `temp 0` and pushes
+/// over it before a nested call, so that its return brings back THAT = 1.
+/// Both engines agree, under both profiles, at every early budget: the
+/// inline runs may not assume the words they skip.
+#[test]
+fn inline_callees_that_step_outside_their_words_agree() {
+    let program = |calls: &str, f: &str| {
+        format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+             function Main.f 1\npush constant 2200\npop pointer 1\n{calls}\nreturn\n{f}\n\
+             function Main.z 0\npush constant 5\nreturn\n"
+        )
+    };
+    let lo = program(
+        "call Main.lo 0",
+        "function Main.lo 0\npush constant 5\npush local 0\nadd\nreturn",
+    );
+    let pb = program(
+        "call Main.pb 0\npop temp 2\npush pointer 1",
+        "function Main.pb 0\npop temp 0\npush constant 1\ncall Main.z 0\nreturn",
+    );
+    for web in [false, true] {
+        let (_, exit) = native_call(&lo, web);
+        assert!(
+            matches!(exit, Exit::RuntimeError { .. }),
+            "web {web}: {exit:?}"
+        );
+        let (_, exit) = native_call(&pb, web);
+        assert_eq!(exit, Exit::Returned(1), "web {web}");
+        for src in [&lo, &pb] {
+            agree_at_every_budget(src, &[], web, 0..24);
+        }
+    }
+}
+
+/// Callees that each call the next one eight times, nine levels deep, all
+/// short enough to run inline: inlining them all would translate 8^8
+/// copies of the last; the bound on an inline run's size keeps the
+/// compile small, and the engines agree on the first few thousand steps.
+#[test]
+fn a_wide_tree_of_inline_calls_compiles_within_its_bound() {
+    let mut src = String::from(
+        "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 0\npush constant 3\ncall Main.t0 1\nreturn\n",
+    );
+    for k in 0..8 {
+        let call = format!("push argument 0\ncall Main.t{} 1\nadd\n", k + 1);
+        src += &format!(
+            "function Main.t{k} 0\npush argument 0\n{}return\n",
+            call.repeat(8)
+        );
+    }
+    src += "function Main.t8 0\npush argument 0\nreturn\n";
+    for web in [false, true] {
+        agree_at_every_budget(&src, &[], web, [0, 100, 2000]);
+    }
+}
+
 /// A block of 1,791 pushes, the whole desktop stack less one word,
 /// entered with SP one word too high (code whose depths are not static,
 /// where each block tests its stack): the last push overflows.

@@ -397,8 +397,8 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
     let mut from = 0;
     // The stretches between nested calls, each call's run, the return.
     for (k, op) in ops[..=len].iter().enumerate() {
+        // (A `local` index is always below the callee's local count.)
         let fits = match *op {
-            Op::PushLocal(i) | Op::PopLocal(i) => i < f.n_vars,
             Op::PushArg(i) | Op::PopArg(i) => i < nargs,
             Op::Call { .. } | Op::Return => true,
             op => blocks::kind(op) == Kind::Straight,
