@@ -801,9 +801,13 @@ fn an_inline_callee_that_writes_its_argument_reads_it_back() {
 /// Callees short enough to run inline that step outside their own words:
 /// `Main.lo` reads `local 0` though it has no locals, which both profiles
 /// stop on; `Main.pb` pops its frame's saved THAT into `temp 0` and pushes
-/// over it before a nested call, so that its return brings back THAT = 1.
-/// Both engines agree, under both profiles, at every early budget: the
-/// inline runs may not assume the words they skip.
+/// over it before a nested call, so that its return brings back THAT = 1;
+/// `Main.pa` calls `Main.add2` with two arguments it never pushed (its
+/// frame's saved THIS and THAT: 2100 + 2200), and `Main.ps` calls
+/// `Main.set2` with one argument pushed and the other its saved THAT,
+/// which the callee's result then overwrites with 0. Both engines agree, under
+/// both profiles, at every early budget: the inline runs may not assume
+/// the words they skip.
 #[test]
 fn inline_callees_that_step_outside_their_words_agree() {
     let program = |calls: &str, f: &str| {
@@ -821,6 +825,16 @@ fn inline_callees_that_step_outside_their_words_agree() {
         "call Main.pb 0\npop temp 2\npush pointer 1",
         "function Main.pb 0\npop temp 0\npush constant 1\ncall Main.z 0\nreturn",
     );
+    let pa = program(
+        "push constant 2100\npop pointer 0\ncall Main.pa 0",
+        "function Main.pa 0\ncall Main.add2 2\nreturn\n\
+         function Main.add2 0\npush argument 0\npush argument 1\nadd\nreturn",
+    );
+    let ps = program(
+        "call Main.ps 0\npop temp 2\npush pointer 1",
+        "function Main.ps 0\npush constant 9\ncall Main.set2 2\npush constant 4\nreturn\n\
+         function Main.set2 0\npush constant 1\npop argument 1\npush constant 0\nreturn",
+    );
     for web in [false, true] {
         let (_, exit) = native_call(&lo, web);
         assert!(
@@ -829,9 +843,48 @@ fn inline_callees_that_step_outside_their_words_agree() {
         );
         let (_, exit) = native_call(&pb, web);
         assert_eq!(exit, Exit::Returned(1), "web {web}");
-        for src in [&lo, &pb] {
+        let (_, exit) = native_call(&pa, web);
+        assert_eq!(exit, Exit::Returned(4300), "web {web}");
+        let (_, exit) = native_call(&ps, web);
+        assert_eq!(exit, Exit::Returned(0), "web {web}");
+        for src in [&lo, &pb, &pa, &ps] {
             agree_at_every_budget(src, &[], web, 0..24);
         }
+    }
+}
+
+/// A recursion without end that calls, at every level, a callee short
+/// enough to run inline whose run pushes ten words, adds them, and only
+/// then makes a nested call (of `Main.z`, inline too): on the desktop that
+/// run is what overflows the stack, and compiled code must leave for the
+/// interpreter before it (the stack test counts the run's highest word,
+/// which lies before its nested call), whichever word of the run the end
+/// falls on.
+#[test]
+fn an_inline_run_at_the_stack_end_overflows_where_the_interpreter_does() {
+    let src = |pad: usize| {
+        format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 0\n{}push constant 400\ncall Main.r 1\nreturn\n\
+         function Main.r 0\npush argument 0\ncall Main.deep 1\npop temp 0\n\
+         push argument 0\npush constant 1\nsub\ncall Main.r 1\nreturn\n\
+         function Main.deep 0\npush argument 0\n{}{}call Main.z 0\nadd\nreturn\n\
+         function Main.z 0\npush constant 5\nreturn\n",
+            "push constant 0\n".repeat(pad),
+            "push constant 1\n".repeat(9),
+            "add\n".repeat(9)
+        )
+    };
+    // Each level moves SP by 6 words: each alignment of the run's top
+    // with the stack's end.
+    for pad in 0..6 {
+        let (_, exit) = native_call(&src(pad), false);
+        assert!(
+            matches!(&exit, Exit::RuntimeError { message, .. } if message.contains("Stack overflow")),
+            "{exit:?}"
+        );
+        // (About 10,000 steps to the overflow.)
+        agree_at_every_budget(&src(pad), &[], false, [0, 9000, 10010]);
     }
 }
 
