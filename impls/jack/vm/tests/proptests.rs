@@ -805,7 +805,9 @@ fn an_inline_callee_that_writes_its_argument_reads_it_back() {
 /// `Main.pa` calls `Main.add2` with two arguments it never pushed (its
 /// frame's saved THIS and THAT: 2100 + 2200), and `Main.ps` calls
 /// `Main.set2` with one argument pushed and the other its saved THAT,
-/// which the callee's result then overwrites with 0. Both engines agree, under
+/// which the callee's result then overwrites with 0, and `Main.pc`, after
+/// a nested call of two arguments, pops one word more than it holds (its
+/// saved THAT) and pushes 0 over it. Both engines agree, under
 /// both profiles, at every early budget: the inline runs may not assume
 /// the words they skip.
 #[test]
@@ -835,7 +837,15 @@ fn inline_callees_that_step_outside_their_words_agree() {
         "function Main.ps 0\npush constant 9\ncall Main.set2 2\npush constant 4\nreturn\n\
          function Main.set2 0\npush constant 1\npop argument 1\npush constant 0\nreturn",
     );
+    let pc = program(
+        "call Main.pc 0\npop temp 2\npush pointer 1",
+        "function Main.pc 0\npush constant 1\npush constant 2\ncall Main.add2 2\n\
+         pop temp 0\npop temp 1\npush constant 0\nreturn\n\
+         function Main.add2 0\npush argument 0\npush argument 1\nadd\nreturn",
+    );
     for web in [false, true] {
+        let (_, exit) = native_call(&pc, web);
+        assert_eq!(exit, Exit::Returned(0), "web {web}");
         let (_, exit) = native_call(&lo, web);
         assert!(
             matches!(exit, Exit::RuntimeError { .. }),
@@ -847,7 +857,7 @@ fn inline_callees_that_step_outside_their_words_agree() {
         assert_eq!(exit, Exit::Returned(4300), "web {web}");
         let (_, exit) = native_call(&ps, web);
         assert_eq!(exit, Exit::Returned(0), "web {web}");
-        for src in [&lo, &pb, &pa, &ps] {
+        for src in [&lo, &pb, &pa, &ps, &pc] {
             agree_at_every_budget(src, &[], web, 0..24);
         }
     }
