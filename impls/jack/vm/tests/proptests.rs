@@ -748,11 +748,18 @@ fn a_callee_that_rewrites_its_callers_saved_that_agrees() {
              function Main.x 0\npush argument 0\nif-goto A\nlabel A\n{rewrite}\n\
              push constant 0\nreturn\n"
         );
-        for &web in webs {
-            let (_, exit) = native_call(&src, web);
-            assert_eq!(exit, Exit::Returned(22), "web {web}");
-            agree_at_every_budget(&src, &[], web, 0..40);
-        }
+        returns_and_agrees(&src, webs, 22, 0..40);
+    }
+}
+
+/// `src`'s `Main.f` returns `value` on the compiled engine under each
+/// profile of `webs`, and both engines agree from each first budget of
+/// `budgets`.
+fn returns_and_agrees(src: &str, webs: &[bool], value: i16, budgets: std::ops::Range<u64>) {
+    for &web in webs {
+        let (_, exit) = native_call(src, web);
+        assert_eq!(exit, Exit::Returned(value), "web {web}");
+        agree_at_every_budget(src, &[], web, budgets.clone());
     }
 }
 
@@ -790,11 +797,7 @@ fn an_inline_callee_that_writes_its_argument_reads_it_back() {
              function Main.f 1\npush constant 7\ncall Main.y 1\nreturn\n\
              function Main.y 0\n{write}\npush argument 0\nreturn\n"
         );
-        for &web in webs {
-            let (_, exit) = native_call(&src, web);
-            assert_eq!(exit, Exit::Returned(99), "web {web}");
-            agree_at_every_budget(&src, &[], web, 0..12);
-        }
+        returns_and_agrees(&src, webs, 99, 0..12);
     }
 }
 
@@ -843,23 +846,17 @@ fn inline_callees_that_step_outside_their_words_agree() {
          pop temp 0\npop temp 1\npush constant 0\nreturn\n\
          function Main.add2 0\npush argument 0\npush argument 1\nadd\nreturn",
     );
-    for web in [false, true] {
-        let (_, exit) = native_call(&pc, web);
-        assert_eq!(exit, Exit::Returned(0), "web {web}");
+    let both = [false, true];
+    for (src, value) in [(&pb, 1), (&pa, 4300), (&ps, 0), (&pc, 0)] {
+        returns_and_agrees(src, &both, value, 0..24);
+    }
+    for web in both {
         let (_, exit) = native_call(&lo, web);
         assert!(
             matches!(exit, Exit::RuntimeError { .. }),
             "web {web}: {exit:?}"
         );
-        let (_, exit) = native_call(&pb, web);
-        assert_eq!(exit, Exit::Returned(1), "web {web}");
-        let (_, exit) = native_call(&pa, web);
-        assert_eq!(exit, Exit::Returned(4300), "web {web}");
-        let (_, exit) = native_call(&ps, web);
-        assert_eq!(exit, Exit::Returned(0), "web {web}");
-        for src in [&lo, &pb, &pa, &ps, &pc] {
-            agree_at_every_budget(src, &[], web, 0..24);
-        }
+        agree_at_every_budget(&lo, &[], web, 0..24);
     }
 }
 
