@@ -1042,6 +1042,36 @@ fn a_deep_recursion_through_nested_inline_runs_agrees() {
     }
 }
 
+/// A recursion whose last level calls a chain of three callees that run
+/// inline, the innermost dividing by zero: compiled code leaves inside the
+/// chain and writes the frame-stack entries of all three. Over depths
+/// around the bound on compiled nesting (256 frames), one of them puts the
+/// chain's last frame on the bound: the outermost call must count all
+/// three frames in its room test (the machine checks that no leave wrote
+/// past the limit), and the engines agree on the error and its stack.
+#[test]
+fn a_leave_inside_nested_inline_runs_at_the_nesting_bound_agrees() {
+    for depth in 250..262 {
+        let src = format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+             function Main.f 0\npush constant {depth}\ncall Main.q 1\nreturn\n\
+             function Main.q 0\npush argument 0\nif-goto MORE\npush constant 0\ncall Main.c 1\n\
+             return\nlabel MORE\npush argument 0\npush constant 1\nsub\ncall Main.q 1\nreturn\n\
+             function Main.c 0\npush argument 0\ncall Main.d 1\nreturn\n\
+             function Main.d 0\npush argument 0\ncall Main.e 1\nreturn\n\
+             function Main.e 0\npush constant 1\npush argument 0\ncall Math.divide 2\nreturn\n"
+        );
+        for web in [false, true] {
+            let (_, exit) = native_call(&src, web);
+            assert!(
+                matches!(exit, Exit::SysError { .. } | Exit::RuntimeError { .. }),
+                "{exit:?}"
+            );
+            agree_at_every_budget(&src, &[], web, [0]);
+        }
+    }
+}
+
 /// Compiled calls nest at most 256 deep on the host's stack: in a
 /// recursion 1,000 deep, every 256th call is left to the interpreter, and
 /// compiled code is entered again above it, so that the host's stack holds

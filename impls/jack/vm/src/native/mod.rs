@@ -559,7 +559,16 @@ impl Machine {
         // reads and writes RAM words 5..RAM_SIZE only (all it checks), and
         // frame slots below `frames_cap`, setting `frames_len` to cover
         // exactly the slots it filled.
+        let entered_len = self.frames.len() as u64;
         let exit = unsafe { native.entries[self.cur as usize](&mut ctx, block as i32, 0, 0, 0, 0) };
+        // Compiled code pushes frames only below the limit its calls test
+        // (a broken test would write past the frame stack's capacity).
+        assert!(
+            ctx.frames_len <= ctx.frames_limit.max(entered_len),
+            "compiled code left {} frames, past its limit {}",
+            ctx.frames_len,
+            ctx.frames_limit
+        );
         // SAFETY: see above: slots 0..frames_len are initialised.
         unsafe { self.frames.set_len(ctx.frames_len as usize) };
         let w = self.ram.words_mut();
