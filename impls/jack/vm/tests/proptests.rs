@@ -810,7 +810,8 @@ fn an_inline_callee_that_writes_its_argument_reads_it_back() {
 /// `Main.set2` with one argument pushed and the other its saved THAT,
 /// which the callee's result then overwrites with 0, and `Main.pc`, after
 /// a nested call of two arguments, pops one word more than it holds (its
-/// saved THAT) and pushes 0 over it. Both engines agree, under
+/// saved THAT) and pushes 0 over it; `Main.po`'s nested `Main.wr` writes
+/// 1 over `Main.po`'s saved THAT by `pop constant`. Both engines agree, under
 /// both profiles, at every early budget: the inline runs may not assume
 /// the words they skip.
 #[test]
@@ -846,8 +847,13 @@ fn inline_callees_that_step_outside_their_words_agree() {
          pop temp 0\npop temp 1\npush constant 0\nreturn\n\
          function Main.add2 0\npush argument 0\npush argument 1\nadd\nreturn",
     );
+    let po = program(
+        "call Main.po 0\npop temp 2\npush pointer 1",
+        "function Main.po 0\ncall Main.wr 0\nreturn\n\
+         function Main.wr 0\npush constant 1\npop constant 266\npush constant 0\nreturn",
+    );
     let both = [false, true];
-    for (src, value) in [(&pb, 1), (&pa, 4300), (&ps, 0), (&pc, 0)] {
+    for (src, value) in [(&pb, 1), (&pa, 4300), (&ps, 0), (&pc, 0), (&po, 1)] {
         returns_and_agrees(src, &both, value, 0..24);
     }
     for web in both {
@@ -857,6 +863,21 @@ fn inline_callees_that_step_outside_their_words_agree() {
             "web {web}: {exit:?}"
         );
         agree_at_every_budget(&lo, &[], web, 0..24);
+    }
+}
+
+/// An inline run whose first instruction is a nested call (on the web,
+/// where the `function` line is no step): the budget test before the run
+/// counts the call, the nested run and the return, so that a stop on each
+/// step of it falls where the interpreter's does.
+#[test]
+fn budget_stops_in_a_run_that_opens_with_a_nested_call_agree() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\npush constant 1\npop temp 0\ncall Main.o 0\nreturn\n\
+               function Main.o 0\ncall Main.z 0\nreturn\n\
+               function Main.z 0\npush constant 5\nreturn\n";
+    for web in [false, true] {
+        agree_at_every_budget(src, &[], web, 0..10);
     }
 }
 
