@@ -810,7 +810,8 @@ fn an_inline_callee_that_writes_its_argument_reads_it_back() {
 /// `Main.set2` with one argument pushed and the other its saved THAT,
 /// which the callee's result then overwrites with 0, and `Main.pc`, after
 /// a nested call of two arguments, pops one word more than it holds (its
-/// saved THAT) and pushes 0 over it; `Main.po`'s nested `Main.wr` writes
+/// saved THAT) and pushes 0 over it, as `Main.pd` does after a nested
+/// call of none; `Main.po`'s nested `Main.wr` writes
 /// 1 over `Main.po`'s saved THAT by `pop constant`. Both engines agree, under
 /// both profiles, at every early budget: the inline runs may not assume
 /// the words they skip.
@@ -852,8 +853,19 @@ fn inline_callees_that_step_outside_their_words_agree() {
         "function Main.po 0\ncall Main.wr 0\nreturn\n\
          function Main.wr 0\npush constant 1\npop constant 266\npush constant 0\nreturn",
     );
+    let pd = program(
+        "call Main.pd 0\npop temp 2\npush pointer 1",
+        "function Main.pd 0\ncall Main.z 0\npop temp 0\npop temp 1\npush constant 0\nreturn",
+    );
     let both = [false, true];
-    for (src, value) in [(&pb, 1), (&pa, 4300), (&ps, 0), (&pc, 0), (&po, 1)] {
+    for (src, value) in [
+        (&pb, 1),
+        (&pa, 4300),
+        (&ps, 0),
+        (&pc, 0),
+        (&pd, 0),
+        (&po, 1),
+    ] {
         returns_and_agrees(src, &both, value, 0..24);
     }
     for web in both {
