@@ -893,6 +893,46 @@ fn budget_stops_in_a_run_that_opens_with_a_nested_call_agree() {
     }
 }
 
+/// `this`/`that` accesses whose pointer changes inside the block, so that
+/// one address test cannot cover them: a second `pop pointer 1` (to 24575,
+/// whose `that 5` lies past RAM), a nested inline run whose return brings
+/// back a THAT it wrote into its own frame (24575 again), and on the
+/// desktop a `that` access after a `pop pointer 0` tested only THIS (THAT
+/// left at 100, below the heap), and a `push this 0` after a `pop pointer
+/// 1` tested only THAT (THIS set to 100 by `pop constant 3`, which the
+/// desktop does not check). Both engines agree, at every early budget.
+#[test]
+fn pointer_accesses_after_the_pointer_changes_agree() {
+    let main = "function Main.main 0\npush constant 0\nreturn\n";
+    let repoint = format!(
+        "{main}function Main.f 0\npush constant 3000\npop pointer 1\npush that 0\npop temp 0\n\
+         push constant 24575\npop pointer 1\npush that 5\nreturn\n"
+    );
+    let nested = format!(
+        "{main}function Main.f 1\npush constant 2200\npop pointer 1\ncall Main.oc 0\nreturn\n\
+         function Main.oc 0\npush that 0\npop temp 0\ncall Main.wt 0\npop temp 1\npush that 3\nreturn\n\
+         function Main.wt 0\npush constant 24575\npop constant 271\npush constant 0\nreturn\n"
+    );
+    let this_only = format!(
+        "{main}function Main.f 0\npush constant 100\npop pointer 1\nlabel X\n\
+         push constant 3000\npop pointer 0\npush that 0\nreturn\n"
+    );
+    let that_only = format!(
+        "{main}function Main.f 0\npush constant 100\npop constant 3\nlabel X\n\
+         push constant 3000\npop pointer 1\npush this 0\nreturn\n"
+    );
+    for (src, webs) in [
+        (&repoint, &[false, true][..]),
+        (&nested, &[false, true][..]),
+        (&this_only, &[false][..]),
+        (&that_only, &[false][..]),
+    ] {
+        for &web in webs {
+            agree_at_every_budget(src, &[], web, 0..12);
+        }
+    }
+}
+
 /// A recursion without end that calls, at every level, a callee short
 /// enough to run inline whose run pushes ten words, adds them, and only
 /// then makes a nested call (of `Main.z`, inline too): on the desktop that
