@@ -555,11 +555,11 @@ impl Machine {
         };
         ctx.frames_limit = ctx.frames_cap.min(ctx.frames_len + u64::from(NATIVE_DEPTH));
         ctx.ram = w.as_mut_ptr();
+        let entered_len = ctx.frames_len;
         // SAFETY: the entry was compiled for this program and function; it
         // reads and writes RAM words 5..RAM_SIZE only (all it checks), and
         // frame slots below `frames_cap`, setting `frames_len` to cover
         // exactly the slots it filled.
-        let entered_len = self.frames.len() as u64;
         let exit = unsafe { native.entries[self.cur as usize](&mut ctx, block as i32, 0, 0, 0, 0) };
         // Compiled code pushes frames only below the limit its calls test
         // (a broken test would write past the frame stack's capacity).

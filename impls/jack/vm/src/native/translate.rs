@@ -616,8 +616,6 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
     let leave_held = leave_block(&mut b);
     let cl: Vec<ir::Block> = vm_blocks.iter().map(|_| b.create_block()).collect();
     let leave = leave_block(&mut b);
-    // A compiled call passes the registers; the dispatcher, the context.
-    let called = b.ins().icmp_imm_s(IntCC::SignedLessThan, which, 0);
     let slots = b.create_sized_stack_slot(ir::StackSlotData::new(
         ir::StackSlotKind::ExplicitSlot,
         16,
@@ -657,6 +655,8 @@ pub(crate) fn translate(mut b: FunctionBuilder<'_>, env: Env<'_>) {
         zero_extended: HashSet::new(),
     };
     t.range = t.static_range();
+    // A compiled call passes the registers; the dispatcher, the context.
+    let called = t.entered_by_call(which);
     let (from_call, from_ctx, join) = (t.b.create_block(), t.b.create_block(), t.b.create_block());
     t.b.ins().brif(called, from_call, NONE, from_ctx, NONE);
     t.b.switch_to_block(from_call);
@@ -2331,6 +2331,13 @@ impl Translator<'_, '_> {
         self.set_frames_len(len1);
     }
 
+    /// Whether the entry's `which` (a block index, or [`CALLED`] | RET
+    /// word) says a compiled call entered the function.
+    fn entered_by_call(&mut self, which: Value) -> Value {
+        self.b.ins().icmp_imm_s(IntCC::SignedLessThan, which, 0)
+    }
+
+    /// Store the frame stack's length `len` in the context.
     fn set_frames_len(&mut self, len: Value) {
         self.b.ins().store(
             self.mem.ctx,
@@ -2590,7 +2597,7 @@ impl Translator<'_, '_> {
         // does not return to the host and whose call was not watched (the
         // interpreter tells the watcher), its RET word the entry's.
         let which = self.b.ins().stack_load(T64, T32, self.slots, SLOT_WHICH);
-        let nested = self.b.ins().icmp_imm_s(IntCC::SignedLessThan, which, 0);
+        let nested = self.entered_by_call(which);
         let called_ret = self.exact(which);
         let (other, checked) = (self.b.create_block(), self.b.create_block());
         let expected = self.b.append_block_param(checked, T32);
