@@ -651,6 +651,28 @@ fn argument_words_on_the_held_stack_agree() {
     }
 }
 
+/// A block that pops below the depth it starts at holds that word too:
+/// Main.f moves ARG to LCL + 1, then its block L pops local 2 and pushes
+/// 5 in its place, which `argument 1` reads. A budget stop on L's first
+/// line enters L through the function's entry test with ARG moved, so
+/// the test must count the popped word among those held in registers;
+/// else compiled code reads the word's old value from RAM.
+#[test]
+fn a_block_that_pops_below_its_start_holds_the_word_it_pops() {
+    let body = format!(
+        "{}\nlabel L\npop temp 0\npush constant 5\npush argument 1\nadd\n\
+         pop local 0\npush local 0\nreturn",
+        arg_beside_stack(1)
+    );
+    agree_on(
+        &body,
+        0,
+        &[1, 2],
+        &[false, true],
+        &(0..40).collect::<Vec<_>>(),
+    );
+}
+
 /// An inline run reads its arguments from the caller's registers, not
 /// from RAM, until something may have written them: Main.a's `that`
 /// points at its own argument 1 (web), Main.b writes its argument 0, and
