@@ -651,6 +651,22 @@ fn argument_words_on_the_held_stack_agree() {
     }
 }
 
+/// An inline run holds the words it pushes after a nested call at their
+/// depth after the call's result (web): Main.y, run inline in Main.f,
+/// pushes 1 at 267, gets Main.z's 5 at 268, pushes 7 at 269 and pops it,
+/// then reads 269 through `that`. The interpreter reads the 7 it left
+/// there; compiled code must see that 269 is one of the run's words, not
+/// read the saved LCL that Main.z's frame wrote there (the sum is 13).
+#[test]
+fn a_that_read_of_a_word_pushed_after_a_nested_call_agrees() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\npush constant 269\ncall Main.y 1\nreturn\n\
+               function Main.y 0\npush argument 0\npop pointer 1\npush constant 1\n\
+               call Main.z 0\npush constant 7\npop temp 0\npush that 0\nadd\nadd\nreturn\n\
+               function Main.z 0\npush constant 5\nreturn\n";
+    returns_and_agrees(src, &[true], 13, 0..20);
+}
+
 /// A block that pops below the depth it starts at holds that word too:
 /// Main.f moves ARG to LCL + 1, then its block L pops local 2 and pushes
 /// 5 in its place, which `argument 1` reads. A budget stop on L's first
