@@ -651,6 +651,30 @@ fn argument_words_on_the_held_stack_agree() {
     }
 }
 
+/// A desktop built-in called from compiled code that moves SP out of the
+/// stack: Main.f unlinks the heap's first block (capacity 0, next block 0),
+/// so `Memory.alloc(n)` walks on to word 0, takes SP (261, the stack after
+/// its argument) for the capacity, and for n = 259..=261 writes 0 there and
+/// returns 2. The push of that 2 at SP = 0 writes SP itself and then fails
+/// with "Stack overflow", leaving RAM[0] = 2, on both engines.
+#[test]
+fn a_desktop_built_in_that_moves_sp_to_zero_overflows_on_its_push() {
+    for n in 259..=261 {
+        let src = format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+             function Main.f 0\npush constant 0\npop constant 2048\npush constant 0\n\
+             pop constant 2049\npush constant {n}\ncall Memory.alloc 1\nreturn\n"
+        );
+        let (m, exit) = native_call(&src, false);
+        assert!(
+            matches!(&exit, Exit::RuntimeError { message, .. } if message.starts_with("Stack overflow")),
+            "{exit:?}"
+        );
+        assert_eq!(m.ram().read(0), 2);
+        agree_at_every_budget(&src, &[], false, 0..10);
+    }
+}
+
 /// An inline run holds the words it pushes after a nested call at their
 /// depth after the call's result (web): Main.y, run inline in Main.f,
 /// pushes 1 at 267, gets Main.z's 5 at 268, pushes 7 at 269 and pops it,

@@ -109,8 +109,9 @@ fn push(ctx: &mut Ctx, w: &mut [i16], v: i16, timing: Timing) -> Result<(), Halt
         w[usize::from(at)] = v;
     } else {
         match at {
-            // SP itself: overwritten below, as the interpreter's push does.
-            0 => {}
+            // SP itself, as the interpreter's push writes it: the SP set
+            // below replaces it, unless the desktop's overflow stops first.
+            0 => ctx.sp = v as u16,
             1 => ctx.lcl = v as u16,
             2 => ctx.arg = v as u16,
             3 => ctx.this = v as u16,
