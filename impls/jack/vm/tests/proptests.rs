@@ -691,6 +691,51 @@ fn a_that_read_of_a_word_pushed_after_a_nested_call_agrees() {
     returns_and_agrees(src, &[true], 13, 0..20);
 }
 
+/// Code with static stack depths that pops into its own frame, so that a
+/// block's depth lies below LCL: Main.f (LCL 263) pops its three locals
+/// and the saved THAT (or more), and `pop constant 3`, which compiled
+/// code leaves to the interpreter, puts SP at 261 or below for the block
+/// of `call Main.z 0`, run inline. SP there is LCL plus a negative depth:
+/// compiled code once took the depth for an unsigned 16-bit offset, and
+/// wrote the call's frame and Main.z's result 128 KB past RAM.
+#[test]
+fn a_block_whose_depth_lies_below_lcl_calls_where_the_interpreter_does() {
+    for pops in 4..=6 {
+        let body = format!(
+            "{}pop constant 3\ncall Main.z 0",
+            "pop temp 0\n".repeat(pops)
+        );
+        agree_on(
+            &body,
+            0,
+            &[1, 2],
+            &[false, true],
+            &(0..12).collect::<Vec<_>>(),
+        );
+    }
+}
+
+/// The entry test that `argument` words lie below the stack words held in
+/// registers, where those lie below LCL: `pop constant 2` (left to the
+/// interpreter) moves ARG to 262, just under LCL, and the next block pops
+/// the locals and the saved THAT, pushes 5 at 262 and reads `argument 0`
+/// there. The test's bound, LCL - 1, must not wrap to LCL + 65,535, under
+/// which compiled code read the old word from RAM (5 + 0, not 5 + 5).
+#[test]
+fn argument_words_on_held_words_below_lcl_agree() {
+    let body = format!(
+        "push constant 262\npop constant 2\n{}push constant 5\npush argument 0\nadd\npop temp 1",
+        "pop temp 0\n".repeat(4)
+    );
+    agree_on(
+        &body,
+        0,
+        &[1, 2],
+        &[false, true],
+        &(0..12).collect::<Vec<_>>(),
+    );
+}
+
 /// A block that pops below the depth it starts at holds that word too:
 /// Main.f moves ARG to LCL + 1, then its block L pops local 2 and pushes
 /// 5 in its place, which `argument 1` reads. A budget stop on L's first

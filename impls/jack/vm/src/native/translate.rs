@@ -1133,8 +1133,7 @@ impl Translator<'_, '_> {
         let sp0 = self.b.use_var(self.v.sp);
         let mut ok = vec![self.fits(steps0, self.budgets[index].covers)];
         if let Some(Some(d)) = self.depth_at(blk) {
-            let lcl = self.b.use_var(self.v.lcl);
-            let sp = self.b.ins().iadd_imm_s(lcl, i64::from(d));
+            let sp = self.lcl_plus(d);
             ok.push(self.b.ins().icmp(IntCC::Equal, sp0, sp));
         }
         let at = Before {
@@ -1200,7 +1199,7 @@ impl Translator<'_, '_> {
                 .icmp_imm_u(IntCC::UnsignedLessThanOrEqual, d, last - first)
         };
         if let (Some(top), true) = (self.frame_tops[ARGUMENT], args_below < i32::MAX) {
-            let lo = self.seg_addr(self.v.lcl, args_below as u16);
+            let lo = self.lcl_plus(args_below);
             let c = self.b.ins().icmp(IntCC::UnsignedLessThan, top, lo);
             ok = self.b.ins().band(ok, c);
         }
@@ -1279,7 +1278,7 @@ impl Translator<'_, '_> {
         let depth = self.depth_at(blk).flatten();
         let sp0 = match depth {
             Some(d) => {
-                let sp = self.seg_addr(self.v.lcl, d as u16);
+                let sp = self.lcl_plus(d);
                 self.b.def_var(self.v.sp, sp);
                 sp
             }
@@ -1473,6 +1472,13 @@ impl Translator<'_, '_> {
         let ok = self.is_plain(a);
         self.guard(ok, before);
         self.store_word(a, x);
+    }
+
+    /// LCL + `d`, a stack depth relative to LCL (below it where code pops
+    /// into its frame), as a 32-bit sum: never wrapped to 16 bits.
+    fn lcl_plus(&mut self, d: i32) -> Value {
+        let lcl = self.b.use_var(self.v.lcl);
+        self.b.ins().iadd_imm_s(lcl, i64::from(d))
     }
 
     fn seg_addr(&mut self, var: Variable, i: u16) -> Value {
