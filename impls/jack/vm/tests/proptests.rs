@@ -736,6 +736,19 @@ fn argument_words_on_held_words_below_lcl_agree() {
     );
 }
 
+/// The web's record that THAT was set (its "not initialized" error) kept
+/// across blocks: Main.f sets THAT on one path only, so the loader keeps
+/// the test on the `push that 0` after the paths meet, and compiled code
+/// must carry the bit that its `pop pointer 1` set to that later block.
+#[test]
+fn a_pointer_set_in_one_block_counts_as_set_in_the_next() {
+    let body =
+        "push argument 0\nif-goto SET\ngoto B\nlabel SET\npush constant 3000\npop pointer 1\n\
+                label B\npush argument 0\nif-goto READ\npush constant 0\nreturn\n\
+                label READ\npush that 0\nreturn";
+    agree_on(body, 0, &[1, 2], &[true], &(0..20).collect::<Vec<_>>());
+}
+
 /// A block that pops below the depth it starts at holds that word too:
 /// Main.f moves ARG to LCL + 1, then its block L pops local 2 and pushes
 /// 5 in its place, which `argument 1` reads. A budget stop on L's first
