@@ -378,10 +378,12 @@ fn engine_case() -> impl Strategy<Value = EngineCase> {
                 prop_oneof![3 => Just(1791u16), 1 => 1788u16..1795],
             ),
         ),
+        prop::option::weighted(0.15, frame_dive()),
     )
         .prop_map(
-            |(mut body, labels, args, web, mut budgets, hold, watched, pad, skip, long)| {
+            |(mut body, labels, args, web, mut budgets, hold, watched, pad, skip, long, dive)| {
                 body.splice(0..0, skip);
+                body.splice(0..0, dive);
                 if let Some((sp, pushes)) = long {
                     body.insert(0, stack_long_block(sp, pushes));
                     // The first stop after the block: a stop inside it
@@ -400,6 +402,26 @@ fn engine_case() -> impl Strategy<Value = EngineCase> {
                 }
             },
         )
+}
+
+/// Pops into the function's own frame: Main.f's three locals and one to
+/// four of its saved words, then perhaps a `pop constant` into THIS or
+/// THAT, which compiled code leaves to the interpreter, and a call run
+/// inline. The code after it has static depths below LCL, and compiled
+/// code enters it through the dispatcher there.
+fn frame_dive() -> impl Strategy<Value = String> {
+    let call = prop_oneof![
+        Just(""),
+        Just("call Main.z 0\n"),
+        Just("push constant 1\npush constant 2\ncall Main.g 2\n"),
+    ];
+    (4usize..=7, prop::option::of(3u16..=4), call).prop_map(|(pops, register, call)| {
+        let mut code = "pop temp 0\n".repeat(pops);
+        if let Some(r) = register {
+            code += &format!("pop constant {r}\n");
+        }
+        code + call + "pop temp 1"
+    })
 }
 
 /// A budget of the random programs' runs: most end within 20 steps, so
