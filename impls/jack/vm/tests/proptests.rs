@@ -587,6 +587,18 @@ fn agree_on(body: &str, pad: u16, args: &[i16], webs: &[bool], budgets: &[u64]) 
     }
 }
 
+/// [`agree_on`] for `body` called with arguments 1 and 2, under both
+/// profiles, its first budget each of `0..budgets`.
+fn agree_at_each_stop(body: &str, budgets: u64) {
+    agree_on(
+        body,
+        0,
+        &[1, 2],
+        &[false, true],
+        &(0..budgets).collect::<Vec<_>>(),
+    );
+}
+
 /// Locals that compiled code holds in registers across blocks (desktop):
 /// RAM gets them wherever compiled code stops or leaves (every budget
 /// inside the loop; a callee whose `Sys.wait` the interpreter runs, after
@@ -727,13 +739,7 @@ fn a_block_whose_depth_lies_below_lcl_calls_where_the_interpreter_does() {
             "{}pop constant 3\ncall Main.z 0",
             "pop temp 0\n".repeat(pops)
         );
-        agree_on(
-            &body,
-            0,
-            &[1, 2],
-            &[false, true],
-            &(0..12).collect::<Vec<_>>(),
-        );
+        agree_at_each_stop(&body, 12);
     }
 }
 
@@ -749,13 +755,7 @@ fn argument_words_on_held_words_below_lcl_agree() {
         "push constant 262\npop constant 2\n{}push constant 5\npush argument 0\nadd\npop temp 1",
         "pop temp 0\n".repeat(4)
     );
-    agree_on(
-        &body,
-        0,
-        &[1, 2],
-        &[false, true],
-        &(0..12).collect::<Vec<_>>(),
-    );
+    agree_at_each_stop(&body, 12);
 }
 
 /// The web's record that THAT was set (its "not initialized" error) kept
@@ -764,10 +764,9 @@ fn argument_words_on_held_words_below_lcl_agree() {
 /// must carry the bit that its `pop pointer 1` set to that later block.
 #[test]
 fn a_pointer_set_in_one_block_counts_as_set_in_the_next() {
-    let body =
-        "push argument 0\nif-goto SET\ngoto B\nlabel SET\npush constant 3000\npop pointer 1\n\
-                label B\npush argument 0\nif-goto READ\npush constant 0\nreturn\n\
-                label READ\npush that 0\nreturn";
+    let body = "push argument 0\nif-goto SET\ngoto B\nlabel SET\npush constant 3000\n\
+                pop pointer 1\nlabel B\npush argument 0\nif-goto READ\npush constant 0\n\
+                return\nlabel READ\npush that 0\nreturn";
     agree_on(body, 0, &[1, 2], &[true], &(0..20).collect::<Vec<_>>());
 }
 
@@ -784,13 +783,7 @@ fn a_block_that_pops_below_its_start_holds_the_word_it_pops() {
          pop local 0\npush local 0\nreturn",
         arg_beside_stack(1)
     );
-    agree_on(
-        &body,
-        0,
-        &[1, 2],
-        &[false, true],
-        &(0..40).collect::<Vec<_>>(),
-    );
+    agree_at_each_stop(&body, 40);
 }
 
 /// An inline run reads its arguments from the caller's registers, not
