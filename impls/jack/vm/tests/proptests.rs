@@ -758,6 +758,18 @@ fn argument_words_on_held_words_below_lcl_agree() {
     agree_at_each_stop(&body, 12);
 }
 
+/// The same where the block starts at LCL itself (Main.f has no locals):
+/// its held words start at LCL - 1, where ARG now points.
+#[test]
+fn argument_words_on_held_words_below_lcl_from_lcl_agree() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\npush constant 262\npop constant 2\npop temp 0\n\
+               push constant 5\npush argument 0\nadd\npop temp 1\npush constant 0\nreturn\n";
+    for web in [false, true] {
+        agree_at_every_budget(src, &[1, 2], web, 0..12);
+    }
+}
+
 /// The web's record that THAT was set (its "not initialized" error) kept
 /// across blocks: Main.f sets THAT on one path only, so the loader keeps
 /// the test on the `push that 0` after the paths meet, and compiled code
@@ -1139,6 +1151,16 @@ fn a_block_as_long_as_the_stack_overflows_at_its_last_push() {
         );
         agree_on(&body, 0, &[0, 0], &[false], &[0]);
     }
+}
+
+/// Code with static depths whose stack range is longer than the desktop's
+/// stack (1,793 words from LCL with its three locals, against 1,792 from
+/// 256): the function's entry test cannot pass, so the pushes run
+/// interpreted and overflow at the stack's end.
+#[test]
+fn static_depths_deeper_than_the_stack_overflow_where_the_interpreter_does() {
+    let body = format!("{}pop temp 0", "push constant 1\n".repeat(1790));
+    agree_on(&body, 0, &[0, 0], &[false], &[0]);
 }
 
 /// Budget stops in a function that starts deep in the program, on every
