@@ -1163,6 +1163,25 @@ fn static_depths_deeper_than_the_stack_overflow_where_the_interpreter_does() {
     agree_on(&body, 0, &[0, 0], &[false], &[0]);
 }
 
+/// A compiled call at the stack's base into a function that pops one word
+/// past its frame: Main.f pops everything down to SP = 256 and calls
+/// Main.x (not inline: a jump), whose sixth pop would read word 255. The
+/// call's own entry test must see that Main.x reaches below its frame and
+/// make the whole test, so both engines stop at that pop.
+#[test]
+fn a_called_function_that_pops_below_its_frame_stops_where_the_interpreter_does() {
+    let src = format!(
+        "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 3\n{}call Main.x 0\nreturn\n\
+         function Main.x 0\ngoto A\nlabel A\n{}push constant 0\nreturn\n",
+        "pop temp 0\n".repeat(10),
+        "pop temp 0\n".repeat(6)
+    );
+    for web in [false, true] {
+        agree_at_every_budget(&src, &[1, 2], web, 0..24);
+    }
+}
+
 /// Budget stops in a function that starts deep in the program, on every
 /// step of a path that falls through into a block which does not test the
 /// budget (a forward jump's target), and of the code after a call, under
