@@ -570,9 +570,15 @@ impl Machine {
             }
             // Undo the fetch and let plain code run from here.
             macro_rules! deopt {
-                () => {{
-                    pc -= 1;
-                    steps -= 1;
+                () => {
+                    deopt!(0)
+                };
+                // After the fused instruction's first `$done` commands,
+                // whose effects it has made: plain code runs the rest.
+                ($done:expr) => {{
+                    let done: usize = $done;
+                    pc = pc - 1 + done;
+                    steps = steps - 1 + done as u64;
                     break 'run Some(Halt::Deopt);
                 }};
             }
@@ -624,7 +630,11 @@ impl Machine {
                 }};
             }
             // `push a; push b; op` on the stack words at top, top+1; leaves
-            // SP = top+1 and returns the result (also stored at top).
+            // SP = top+1 and returns the result (also stored at top). A
+            // division by zero leaves the two pushes made and the plain
+            // division to run: going back before `push a` would read `a`
+            // again, and `push b` may have overwritten it (ARG moved onto
+            // the stack).
             macro_rules! push_push_op {
                 ($op:expr, $a:expr, $b:expr) => {{
                     let top = sp;
@@ -634,8 +644,9 @@ impl Machine {
                     let y = src!($b);
                     w[top as usize + 1] = y;
                     let Some(r) = apply($op, x, y, divide) else {
-                        sp = top;
-                        deopt!()
+                        std::hint::cold_path();
+                        sp = top + 2;
+                        deopt!(2)
                     };
                     w[top as usize] = r;
                     r
