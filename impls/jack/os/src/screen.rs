@@ -78,6 +78,10 @@ impl Ctx<'_> {
                 .map_or(0, |&b| u32::from(b) << shift);
             let first = at.div_euclid(16);
             for (w, half) in [(first, 0), (first + 1, 16)] {
+                // A row reaches its second word only from bit 8.
+                if half == 16 && shift < 8 {
+                    continue;
+                }
                 if (0..SCREEN_WORDS).contains(&w) {
                     let word = &mut words[w as usize];
                     *word =
