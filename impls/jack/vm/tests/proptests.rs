@@ -372,7 +372,7 @@ fn engine_case() -> impl Strategy<Value = EngineCase> {
                 prop_oneof![3 => Just(1791u16), 1 => 1788u16..1795],
             ),
         ),
-        prop::option::weighted(0.15, frame_dive()),
+        prop::option::weighted(0.25, frame_dive()),
     )
         .prop_map(
             |(mut body, labels, args, web, mut budgets, hold, watched, pad, skip, long, dive)| {
@@ -398,24 +398,41 @@ fn engine_case() -> impl Strategy<Value = EngineCase> {
         )
 }
 
-/// Pops into the function's own frame: Main.f's three locals and one to
-/// four of its saved words, then perhaps a `pop constant` into THIS or
-/// THAT, which compiled code leaves to the interpreter, and a call run
-/// inline. The code after it has static depths below LCL, and compiled
-/// code enters it through the dispatcher there.
+/// Pops into the function's own frame. Either Main.f's three locals and
+/// one to four of its saved words, then perhaps a `pop constant` into THIS
+/// or THAT, which compiled code leaves to the interpreter, and a call run
+/// inline: the code after it has static depths below LCL, and compiled
+/// code enters it through the dispatcher there. Or one to three of its
+/// locals, then pushes onto their words and a `local` access that may
+/// reach a pushed word, which compiled code would hold in a register.
 fn frame_dive() -> impl Strategy<Value = String> {
     let call = prop_oneof![
         Just(""),
         Just("call Main.z 0\n"),
         Just("push constant 1\npush constant 2\ncall Main.g 2\n"),
     ];
-    (4usize..=7, prop::option::of(3u16..=4), call).prop_map(|(pops, register, call)| {
-        let mut code = "pop temp 0\n".repeat(pops);
-        if let Some(r) = register {
-            code += &format!("pop constant {r}\n");
-        }
-        code + call + "pop temp 1"
-    })
+    let saved =
+        (4usize..=7, prop::option::of(3u16..=4), call).prop_map(|(pops, register, call)| {
+            let mut code = "pop temp 0\n".repeat(pops);
+            if let Some(r) = register {
+                code += &format!("pop constant {r}\n");
+            }
+            code + call + "pop temp 1"
+        });
+    let locals =
+        (1usize..=3, 1usize..=3, 0u16..3, any::<bool>()).prop_map(|(pops, pushes, k, read)| {
+            let access = if read {
+                format!("push local {k}\nadd\n")
+            } else {
+                format!("pop local {k}\n")
+            };
+            format!(
+                "{}{}{access}pop temp 1",
+                "pop temp 0\n".repeat(pops),
+                "push constant 5\n".repeat(pushes)
+            )
+        });
+    prop_oneof![saved, locals]
 }
 
 /// A budget of the random programs' runs: most end within 20 steps, so
@@ -617,6 +634,21 @@ fn pointer_reads_of_held_stack_words_agree() {
         };
         engines_agree(&case, Engine::Native, None).expect("the engines agree");
     }
+}
+
+/// A block that pops one of Main.f's locals and pushes onto its word,
+/// which compiled code holds in a register, then reads that local: the
+/// word the read finds in RAM is the one the push left, so compiled code
+/// must leave such a block to the interpreter (the `local` words of a
+/// block with static depths lie below its held words only where the
+/// highest local index is below the lowest held word, strictly).
+#[test]
+fn a_local_read_of_a_word_pushed_over_it_agrees() {
+    agree_at_each_stop(
+        "push constant 9\npop local 2\npop temp 0\npush constant 5\npush local 2\nadd\n\
+         pop temp 1\npush temp 1\nreturn",
+        12,
+    );
 }
 
 /// `Main.f` of `body` after a function of `pad` statements, run on both
