@@ -1413,6 +1413,9 @@ impl Translator<'_, '_> {
             };
             self.op(op, s, &before, blk);
             if may_touch_stack {
+                // The word the access itself pushed (`push that i`) goes
+                // to RAM too: the words are read back from there.
+                s.flush(self);
                 s.forget();
             }
             if matches!(op, Op::Function { .. }) {
