@@ -666,15 +666,16 @@ fn a_pop_constant_onto_a_held_stack_word_agrees() {
 /// Web: a `that` index too large for the block's one span test
 /// (24,571) with THAT = 0 reaches the stack words at the top of RAM, which
 /// compiled code holds in registers (SP moved to 24,570 where depths are
-/// not static): the read finds the pushed 2, the write replaces the copy
-/// the read pushed, and that word is the one the next pop takes (compiled
-/// code once forgot the read's word, and popped the 0 under it from RAM).
+/// not static): the first read finds the pushed 2 and the second the word
+/// the first pushed (compiled code once forgot that word without writing
+/// it, so RAM still held the 0 under it), and the write replaces the word
+/// the second read pushed.
 #[test]
 fn a_far_that_access_of_held_stack_words_agrees() {
     let body = "push constant 0\nif-goto LONG\npush constant 1\nlabel LONG\n\
                 push constant 24570\npop constant 0\n\
                 push constant 1\npush constant 2\npush constant 0\npop pointer 1\n\
-                push that 24571\npush constant 9\npop that 24572\n\
+                push that 24571\npush that 24572\npush constant 9\npop that 24573\n\
                 pop temp 0\npop temp 1\npop temp 2\n\
                 push temp 0\npush temp 1\nadd\npush temp 2\nadd\nreturn";
     agree_on(body, 0, &[1, 2], &[true], &(0..24).collect::<Vec<_>>());
