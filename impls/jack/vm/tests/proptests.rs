@@ -681,6 +681,25 @@ fn a_far_that_access_of_held_stack_words_agrees() {
     agree_on(body, 0, &[1, 2], &[true], &(0..24).collect::<Vec<_>>());
 }
 
+/// Web: a `that` index past the span tests (24,572) whose address lies
+/// past RAM (THAT = 7): the interpreter reads -1 there, and compiled code,
+/// which tests such an access on its own, leaves it to the interpreter.
+#[test]
+fn a_far_that_read_past_ram_agrees() {
+    let body = "push constant 7\npop pointer 1\npush that 24572\npop temp 0\npush temp 0\nreturn";
+    agree_on(body, 0, &[1, 2], &[true], &(0..8).collect::<Vec<_>>());
+}
+
+/// Desktop: a `that` index whose span cannot fit the desktop's range for
+/// THAT (2048 to 24576) at any THAT: `that 22600` with THAT = 2048 stops
+/// where the interpreter stops, with nothing read past RAM.
+#[test]
+fn a_that_index_past_the_desktops_range_agrees() {
+    let body =
+        "push constant 2048\npop pointer 1\npush that 22600\npop temp 0\npush temp 0\nreturn";
+    agree_on(body, 0, &[1, 2], &[false], &(0..8).collect::<Vec<_>>());
+}
+
 /// `Main.f` of `body` after a function of `pad` statements, run on both
 /// engines under each profile in `profiles` from each first budget in
 /// `budgets` (then to the end): they agree.
