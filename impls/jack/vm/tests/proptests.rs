@@ -561,11 +561,10 @@ fn engines_agree(
     Ok(())
 }
 
-/// `Main.f` of `src` run by the interpreter with fused instructions, and
-/// one plain command at a time, under the desktop (`web` false) or web
-/// profile for up to 3,000 steps: the same steps, end and RAM.
-fn fused_agrees_with_plain(src: &str, args: &[i16], web: bool) -> Result<(), TestCaseError> {
-    let program = Program::from_sources(&[("Main.vm", src)]).expect("generated programs load");
+/// `src` loaded as `Main.vm`, and the configuration of `engine` under the
+/// web profile (`web`) or the desktop's.
+fn loaded(src: &str, web: bool, engine: Engine) -> (Arc<Program>, Config) {
+    let program = Program::from_sources(&[("Main.vm", src)]).expect("test programs load");
     let profile = if web {
         hack_vm::Profile::Web
     } else {
@@ -573,9 +572,17 @@ fn fused_agrees_with_plain(src: &str, args: &[i16], web: bool) -> Result<(), Tes
     };
     let config = Config {
         profile,
-        engine: Engine::Interp,
+        engine,
         ..Config::default()
     };
+    (program, config)
+}
+
+/// `Main.f` of `src` run by the interpreter with fused instructions, and
+/// one plain command at a time, under the desktop (`web` false) or web
+/// profile for up to 3,000 steps: the same steps, end and RAM.
+fn fused_agrees_with_plain(src: &str, args: &[i16], web: bool) -> Result<(), TestCaseError> {
+    let (program, config) = loaded(src, web, Engine::Interp);
     const BUDGET: u64 = 3000;
     let mut fused = enter(&program, config.clone(), args);
     let fused_end = fused.run(Some(BUDGET));
@@ -953,17 +960,7 @@ fn inline_runs_read_arguments_written_in_the_run() {
 /// called with no arguments on the compiled engine, under the web
 /// profile or the desktop's: the machine after it, and its exit.
 fn native_call(src: &str, web: bool) -> (Machine, Exit) {
-    let program = Program::from_sources(&[("Main.vm", src)]).expect("it loads");
-    let profile = if web {
-        hack_vm::Profile::Web
-    } else {
-        hack_vm::Profile::Desktop
-    };
-    let config = Config {
-        profile,
-        engine: Engine::Native,
-        ..Config::default()
-    };
+    let (program, config) = loaded(src, web, Engine::Native);
     let mut m = Machine::new(program, config);
     let exit = m.call("Main.f", &[], None).expect("Main.f exists");
     (m, exit)
