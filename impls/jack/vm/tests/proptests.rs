@@ -600,10 +600,10 @@ fn fused_agrees_with_plain(src: &str, args: &[i16], web: bool) -> Result<(), Tes
 }
 
 /// A fused `push a; push b; divide` whose `a` reads the word where `b`
-/// lands (ARG moved onto the stack) and whose divisor is 0: the plain
-/// commands it goes back to must read `a` before `b` is pushed, so that
-/// the word under the failed division holds `a`'s value (the long
-/// differential run found the fused path leaving `b`'s there).
+/// lands (ARG moved onto the stack) and whose divisor is 0: once `b` is
+/// pushed, plain code must not run `push a` again, so that the word under
+/// the failed division holds `a`'s value (the long differential run found
+/// the fused path leaving `b`'s there).
 #[test]
 fn a_fused_division_by_zero_leaves_the_stack_as_the_plain_commands_do() {
     // Main.f has 2 arguments and 3 locals: SP = 266; ARG becomes 266, and
