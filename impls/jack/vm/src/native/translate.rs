@@ -1412,13 +1412,10 @@ impl Translator<'_, '_> {
                 pending: s.pending(),
             };
             self.op(op, s, &before, blk);
-            if may_touch_stack {
-                // The word the access itself pushed (`push that i`) goes
-                // to RAM too: the words are read back from there.
-                s.flush(self);
-                s.forget();
-            }
-            if matches!(op, Op::Function { .. }) {
+            if may_touch_stack || matches!(op, Op::Function { .. }) {
+                // The words go to RAM, the one the instruction itself
+                // pushed (`push that i`, a local zeroed) included, and are
+                // read back from there.
                 s.flush(self);
                 s.forget();
             }
