@@ -495,23 +495,16 @@ fn engines_agree(
     engine: Engine,
     threshold: Option<u64>,
 ) -> Result<(), TestCaseError> {
-    let program =
-        Program::from_sources(&[("Main.vm", case.src.as_str())]).expect("generated programs load");
-    let profile = if case.web {
-        hack_vm::Profile::Web
-    } else {
-        hack_vm::Profile::Desktop
-    };
+    let (program, base) = loaded(&case.src, case.web, Engine::Interp);
     let keys = match case.hold {
         Some(hold) => KeyScript::parse("A,B,SPACE,ENTER,Z", hold).expect("a valid key script"),
         None => KeyScript::none(),
     };
     let config = |engine| Config {
-        profile,
         keys: keys.clone(),
         engine,
         auto_threshold: threshold,
-        ..Config::default()
+        ..base.clone()
     };
     let mut a = enter(&program, config(Engine::Interp), &case.args);
     let mut b = enter(&program, config(engine), &case.args);
