@@ -1905,3 +1905,28 @@ fn forward_skip() -> impl Strategy<Value = String> {
         )
     })
 }
+
+/// A compiled call of more arguments than compiled code takes (250) is
+/// left to the interpreter: with SP moved to 256 and 252 arguments, ARG is
+/// 4 (THAT's word), whose value the callee's `push argument 0` reads from
+/// the register (3000, set by compiled code just before), not from a RAM
+/// word compiled code does not keep; with 250 arguments ARG is 6, a plain
+/// word. The callee shows what it read in `temp 1`.
+#[test]
+fn a_call_whose_arguments_reach_the_registers_agrees() {
+    for n in [250, 251, 252, 255] {
+        let body = format!(
+            "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
+             push constant 256\npop constant 0\ngoto GO\nlabel GO\n\
+             push constant 3000\npop pointer 1\ncall Main.x {n}\npop temp 0"
+        );
+        let src = format!(
+            "{}function Main.x 0\npush argument 0\npush argument 1\nadd\npop temp 1\n\
+             push constant 0\npush constant 0\nif-goto NO\nreturn\nlabel NO\nreturn\n",
+            random_program(vec![body], vec![], 0)
+        );
+        for web in [false, true] {
+            agree_at_every_budget(&src, &[1, 2], web, 0..24);
+        }
+    }
+}
