@@ -1930,3 +1930,25 @@ fn a_call_whose_arguments_reach_the_registers_agrees() {
         }
     }
 }
+
+/// A web function of 250 locals entered by the dispatcher with LCL at 7
+/// (a call at SP = 2, whose frame words are the registers ARG, THIS, THAT
+/// and RAM[5..=6]): its blocks' stack words are plain, but its saved LCL
+/// and ARG are the registers THIS and THAT, which its return must read as
+/// the interpreter does, after THIS and THAT are restored (from RAM[5]
+/// and RAM[6]), not from RAM words compiled code does not keep: the return
+/// leaves to the interpreter. The callee puts the call's RET word (8,
+/// Main.f's command index after the call) back in ARG, so that a compiled
+/// return would find it, and writes 1234 over the saved THIS, which the
+/// interpreter then also takes as LCL.
+#[test]
+fn a_return_whose_saved_frame_is_the_registers_agrees() {
+    let body = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
+                push constant 2\npop constant 0\ncall Main.y 0\npop temp 0";
+    let src = format!(
+        "{}function Main.y 250\npush constant 7\npop constant 2\n\
+         push constant 1234\npop temp 0\npush constant 5\nreturn\n",
+        random_program(vec![body.to_string()], vec![], 0)
+    );
+    agree_at_every_budget(&src, &[1, 2], true, 0..20);
+}
