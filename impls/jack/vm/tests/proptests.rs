@@ -1952,3 +1952,52 @@ fn a_return_whose_saved_frame_is_the_registers_agrees() {
     );
     agree_at_every_budget(&src, &[1, 2], true, 0..20);
 }
+
+/// Web, an `argument` index too large for the entry test (24,571), which
+/// each access then tests on its own, with ARG moved to 0 so that the
+/// word is plain: Main.f has 2 arguments, and the interpreter stops with
+/// its error rather than read the word.
+#[test]
+fn an_argument_index_past_the_arguments_fails_as_the_interpreter_does() {
+    let body = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
+                push constant 0\npop constant 2\ngoto GO\nlabel GO\n\
+                push argument 24571\npop temp 0\npush temp 0\nreturn";
+    agree_on(body, 0, &[1, 2], &[true], &(0..12).collect::<Vec<_>>());
+}
+
+/// Web, `argument 24571` and `local 24571` (indices too large for the
+/// entry test, so each access tests its own address) of functions that
+/// have them, with SP moved to 24,571 and the segment's base to 0, so that
+/// the access reads the word the block has just pushed and holds in a
+/// register (7), where RAM still holds an older push (1). Main.a is called
+/// with 24,572 arguments at SP = 24,572 (so ARG = 0), and takes the new SP
+/// from its frame's saved THAT; Main.b has 24,572 locals, and a call at
+/// SP = 0 puts them in RAM[5..=24576] (the frame's words are the
+/// registers), whose last it takes as LCL (0).
+#[test]
+fn far_local_and_argument_reads_of_held_stack_words_agree() {
+    let read = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\npop temp 7\n\
+                goto GO\nlabel GO\npush constant 7\npush constant 8\npush SEG 24571\n\
+                pop temp 0\npop temp 1\npop temp 2\npush constant 0\nreturn\n";
+    let calls = [
+        (
+            "push constant 24571\npop pointer 1\npush constant 24572\npop constant 0\n\
+             call Main.a 24572",
+            "function Main.a 0\npop constant 0\n",
+            "argument",
+        ),
+        (
+            "push constant 0\npop constant 0\ncall Main.b 0",
+            "function Main.b 24572\npop constant 1\npush constant 24571\npop constant 0\n",
+            "local",
+        ),
+    ];
+    for (call, head, segment) in calls {
+        let src = format!(
+            "{}{head}{}",
+            random_program(vec![call.to_string()], vec![], 0),
+            read.replace("SEG", segment)
+        );
+        agree_at_every_budget(&src, &[1, 2], true, 0..24);
+    }
+}
