@@ -50,7 +50,7 @@ use crate::timing::{Timing, STACK_BASE};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{
     self, types, AbiParam, AliasRegionData, BlockArg, FuncRef, InstBuilder, JumpTableData,
-    MemFlagsData, Value,
+    MemFlagsData, TrapCode, Value,
 };
 use cranelift_frontend::{FunctionBuilder, Variable};
 use jack_os::{Profile, KBD, RAM_SIZE};
@@ -864,6 +864,7 @@ impl Translator<'_, '_> {
 
     /// Load the word at host address `p` + `offset`, zero-extended.
     fn load16(&mut self, flags: MemFlagsData, p: Value, offset: i32) -> Value {
+        self.plain_or_trap(flags, p, offset);
         let x = self.b.ins().uload16(T32, flags, p, offset);
         self.zero_extended.insert(x);
         x
@@ -871,7 +872,26 @@ impl Translator<'_, '_> {
 
     /// Store the low 16 bits of `x` at host address `p` + `offset`.
     fn store16(&mut self, flags: MemFlagsData, x: Value, p: Value, offset: i32) {
+        self.plain_or_trap(flags, p, offset);
         self.b.ins().istore16(flags, x, p, offset);
+    }
+
+    /// Debug builds (the tests): a RAM access at host address `p` +
+    /// `offset` traps unless it is a plain word, 5 to 24576. Every test
+    /// before an access is meant to show that, so a wrong one crashes the
+    /// test instead of reading a register's stale word or writing past the
+    /// RAM buffer, which no comparison of results might see.
+    fn plain_or_trap(&mut self, flags: MemFlagsData, p: Value, offset: i32) {
+        if !cfg!(debug_assertions) || flags != self.mem.ram {
+            return;
+        }
+        let a = self.b.ins().iadd_imm_s(p, i64::from(offset) - 10);
+        let d = self.b.ins().isub(a, self.ram);
+        let outside =
+            self.b
+                .ins()
+                .icmp_imm_u(IntCC::UnsignedGreaterThan, d, 2 * (RAM_SIZE as i64 - 1 - 5));
+        self.b.ins().trapnz(outside, TrapCode::unwrap_user(1));
     }
 
     fn c32(&mut self, v: i64) -> Value {
