@@ -2020,3 +2020,48 @@ fn a_call_whose_frame_would_pass_the_end_of_ram_agrees() {
         agree_at_every_budget(&src, &[1, 2], true, 0..16);
     }
 }
+
+/// An inline run's arguments taken from the caller's registers: the block
+/// pushed and popped six words above them first (10 to 15, still in its
+/// registers), so only the words at the call's own depth are its
+/// arguments (1 and 2: Main.g returns 3).
+#[test]
+fn an_inline_runs_arguments_are_the_words_under_the_call() {
+    let body = format!(
+        "{}{}push constant 1\npush constant 2\ncall Main.g 2\npop temp 1\npush temp 1\nreturn",
+        (10..16)
+            .map(|k| format!("push constant {k}\n"))
+            .collect::<String>(),
+        "pop temp 0\n".repeat(6)
+    );
+    agree_at_each_stop(&body, 12);
+}
+
+/// A compiled call that returns in compiled code where the caller's stack
+/// depths are not static (a branch leaves one more word on one path): SP
+/// after it is the word above the call's base less its arguments, which
+/// the next block's pushes and `add` then use.
+#[test]
+fn sp_after_a_compiled_call_with_unknown_depths_agrees() {
+    let body = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
+                push constant 7\npush constant 2\ncall Main.r 1\npush constant 5\nadd\nadd\n\
+                pop temp 0\npush temp 0\nreturn";
+    agree_at_each_stop(body, 24);
+}
+
+/// A called function (not run inline) that rewrites its caller's saved
+/// ARG (Main.f calls it with its frame at 263..=267, ARG's word at 265):
+/// the return gives Main.f that ARG, so compiled code leaves it to the
+/// interpreter from the instruction after the call, whose own return
+/// then writes its value at RAM[300].
+#[test]
+fn a_callee_that_rewrites_its_callers_saved_arg_agrees() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 1\npush constant 7\ncall Main.x 1\npop temp 1\n\
+               push constant 22\nreturn\n\
+               function Main.x 0\npush argument 0\nif-goto A\nlabel A\n\
+               push constant 300\npop constant 265\npush constant 0\nreturn\n";
+    for web in [false, true] {
+        agree_at_every_budget(src, &[], web, 0..16);
+    }
+}
