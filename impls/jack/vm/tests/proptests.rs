@@ -2002,20 +2002,22 @@ fn far_local_and_argument_reads_of_held_stack_words_agree() {
     }
 }
 
-/// Web, a compiled call made with SP at 24,573 (moved there, so each block
-/// tests its own stack), of a callee that zeroes no locals and of one that
-/// zeroes 2: the frame (and the locals) would reach past RAM, so the call's
-/// own test leaves it to the interpreter, which drops those writes.
-/// Compiled code writing them would go past the RAM buffer (which debug
-/// builds trap).
+/// Web, a compiled call made with SP moved near the end of RAM (so each
+/// block tests its own stack), of a callee that zeroes no locals and of one
+/// that zeroes 2: at SP = 24,573 the frame would reach past RAM, at 24,572
+/// the frame fits and the locals do not, so the call's own test leaves it
+/// to the interpreter, which drops those writes. Compiled code writing them
+/// would go past the RAM buffer (which debug builds trap).
 #[test]
 fn a_call_whose_frame_would_pass_the_end_of_ram_agrees() {
-    for locals in [0, 2] {
-        let body = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
-                    push constant 24573\npop constant 0\ngoto GO\nlabel GO\ncall Main.k 0\npop temp 0";
+    for (sp, locals) in [(24573, 0), (24573, 2), (24572, 2)] {
+        let body = format!(
+            "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
+             push constant {sp}\npop constant 0\ngoto GO\nlabel GO\ncall Main.k 0\npop temp 0"
+        );
         let src = format!(
             "{}function Main.k {locals}\npush constant 0\nif-goto NO\nlabel NO\npush constant 3\nreturn\n",
-            random_program(vec![body.to_string()], vec![], 0)
+            random_program(vec![body], vec![], 0)
         );
         agree_at_every_budget(&src, &[1, 2], true, 0..16);
     }
