@@ -705,9 +705,7 @@ fn a_that_index_past_the_desktops_range_agrees() {
 /// `budgets` (then to the end): they agree.
 fn agree_on(body: &str, pad: u16, args: &[i16], webs: &[bool], budgets: &[u64]) {
     let src = random_program(vec![body.to_string()], vec![], pad);
-    for &web in webs {
-        agree_at_every_budget(&src, args, web, budgets.iter().copied());
-    }
+    agree_at_every_budget(&src, args, webs, budgets.iter().copied());
 }
 
 /// [`agree_on`] for `body` called with arguments 1 and 2, under both
@@ -828,7 +826,7 @@ fn a_desktop_built_in_that_moves_sp_to_zero_overflows_on_its_push() {
             "{exit:?}"
         );
         assert_eq!(m.ram().read(0), 2);
-        agree_at_every_budget(&src, &[], false, 0..10);
+        agree_at_every_budget(&src, &[], &[false], 0..10);
     }
 }
 
@@ -888,9 +886,7 @@ fn argument_words_on_held_words_below_lcl_from_lcl_agree() {
     let src = "function Main.main 0\npush constant 0\nreturn\n\
                function Main.f 0\npush constant 262\npop constant 2\npop temp 0\n\
                push constant 5\npush argument 0\nadd\npop temp 1\npush constant 0\nreturn\n";
-    for web in [false, true] {
-        agree_at_every_budget(src, &[1, 2], web, 0..12);
-    }
+    agree_at_every_budget(src, &[1, 2], &[false, true], 0..12);
 }
 
 /// The web's record that THAT was set (its "not initialized" error) kept
@@ -946,7 +942,7 @@ fn inline_runs_read_arguments_written_in_the_run() {
     let (m, exit) = native_call(&src, true);
     assert_eq!(exit, Exit::Returned(99 + 62 + 99));
     assert_eq!(m.compiled_steps(), m.steps() - 1, "inline runs, compiled");
-    agree_at_every_budget(&src, &[], true, 0..60);
+    agree_at_every_budget(&src, &[], &[true], 0..60);
 }
 
 /// `Main.f` of `src` (a program of its own, not [`random_program`]'s)
@@ -959,25 +955,28 @@ fn native_call(src: &str, web: bool) -> (Machine, Exit) {
     (m, exit)
 }
 
-/// Both engines agree on `Main.f` of `src` called with `args`, its first
-/// budget each of `budgets`.
+/// Both engines agree on `Main.f` of `src` called with `args`, under the
+/// web profile where `webs` holds `true` and the desktop's where it holds
+/// `false`, its first budget each of `budgets`.
 fn agree_at_every_budget(
     src: &str,
     args: &[i16],
-    web: bool,
-    budgets: impl IntoIterator<Item = u64>,
+    webs: &[bool],
+    budgets: impl IntoIterator<Item = u64> + Clone,
 ) {
-    for budget in budgets {
-        let case = EngineCase {
-            src: src.to_string(),
-            args: args.to_vec(),
-            web,
-            budgets: vec![budget],
-            hold: None,
-            watched: None,
-        };
-        if let Err(e) = engines_agree(&case, Engine::Native, None) {
-            panic!("web {web}, first budget {budget}: {e}");
+    for &web in webs {
+        for budget in budgets.clone() {
+            let case = EngineCase {
+                src: src.to_string(),
+                args: args.to_vec(),
+                web,
+                budgets: vec![budget],
+                hold: None,
+                watched: None,
+            };
+            if let Err(e) = engines_agree(&case, Engine::Native, None) {
+                panic!("web {web}, first budget {budget}: {e}");
+            }
         }
     }
 }
@@ -1019,7 +1018,7 @@ fn returns_and_agrees(src: &str, webs: &[bool], value: i16, budgets: std::ops::R
     for &web in webs {
         let (_, exit) = native_call(src, web);
         assert_eq!(exit, Exit::Returned(value), "web {web}");
-        agree_at_every_budget(src, &[], web, budgets.clone());
+        agree_at_every_budget(src, &[], &[web], budgets.clone());
     }
 }
 
@@ -1038,9 +1037,7 @@ fn an_inline_callee_that_pops_into_its_own_frame_agrees() {
              push that 0\nreturn\n\
              function Main.y 0\npush constant 2200\npop constant {at}\npush argument 0\nreturn\n"
         );
-        for web in [false, true] {
-            agree_at_every_budget(&src, &[], web, 0..20);
-        }
+        agree_at_every_budget(&src, &[], &[false, true], 0..20);
     }
 }
 
@@ -1134,7 +1131,7 @@ fn inline_callees_that_step_outside_their_words_agree() {
             matches!(exit, Exit::RuntimeError { .. }),
             "web {web}: {exit:?}"
         );
-        agree_at_every_budget(&lo, &[], web, 0..24);
+        agree_at_every_budget(&lo, &[], &[web], 0..24);
     }
 }
 
@@ -1148,9 +1145,7 @@ fn budget_stops_in_a_run_that_opens_with_a_nested_call_agree() {
                function Main.f 0\npush constant 1\npop temp 0\ncall Main.o 0\nreturn\n\
                function Main.o 0\ncall Main.z 0\nreturn\n\
                function Main.z 0\npush constant 5\nreturn\n";
-    for web in [false, true] {
-        agree_at_every_budget(src, &[], web, 0..10);
-    }
+    agree_at_every_budget(src, &[], &[false, true], 0..10);
 }
 
 /// `this`/`that` accesses whose pointer changes inside the block, so that
@@ -1187,9 +1182,7 @@ fn pointer_accesses_after_the_pointer_changes_agree() {
         (&this_only, &[false][..]),
         (&that_only, &[false][..]),
     ] {
-        for &web in webs {
-            agree_at_every_budget(src, &[], web, 0..12);
-        }
+        agree_at_every_budget(src, &[], webs, 0..12);
     }
 }
 
@@ -1224,7 +1217,7 @@ fn an_inline_run_at_the_stack_end_overflows_where_the_interpreter_does() {
             "{exit:?}"
         );
         // (About 10,000 steps to the overflow.)
-        agree_at_every_budget(&src(pad), &[], false, [0, 9000, 10010]);
+        agree_at_every_budget(&src(pad), &[], &[false], [0, 9000, 10010]);
     }
 }
 
@@ -1246,9 +1239,7 @@ fn a_wide_tree_of_inline_calls_compiles_within_its_bound() {
         );
     }
     src += "function Main.t8 0\npush argument 0\nreturn\n";
-    for web in [false, true] {
-        agree_at_every_budget(&src, &[], web, [0, 100, 2000]);
-    }
+    agree_at_every_budget(&src, &[], &[false, true], [0, 100, 2000]);
 }
 
 /// A block of 1,791 pushes, the whole desktop stack less one word,
@@ -1290,9 +1281,7 @@ fn a_called_function_that_pops_below_its_frame_stops_where_the_interpreter_does(
         "pop temp 0\n".repeat(10),
         "pop temp 0\n".repeat(6)
     );
-    for web in [false, true] {
-        agree_at_every_budget(&src, &[1, 2], web, 0..24);
-    }
+    agree_at_every_budget(&src, &[1, 2], &[false, true], 0..24);
 }
 
 /// Budget stops in a function that starts deep in the program, on every
@@ -1429,7 +1418,7 @@ fn a_leave_inside_nested_inline_runs_at_the_nesting_bound_agrees() {
                 matches!(exit, Exit::SysError { .. } | Exit::RuntimeError { .. }),
                 "{exit:?}"
             );
-            agree_at_every_budget(&src, &[], web, [0]);
+            agree_at_every_budget(&src, &[], &[web], [0]);
         }
     }
 }
@@ -1925,9 +1914,7 @@ fn a_call_whose_arguments_reach_the_registers_agrees() {
              push constant 0\npush constant 0\nif-goto NO\nreturn\nlabel NO\nreturn\n",
             random_program(vec![body], vec![], 0)
         );
-        for web in [false, true] {
-            agree_at_every_budget(&src, &[1, 2], web, 0..24);
-        }
+        agree_at_every_budget(&src, &[1, 2], &[false, true], 0..24);
     }
 }
 
@@ -1950,7 +1937,7 @@ fn a_return_whose_saved_frame_is_the_registers_agrees() {
          push constant 1234\npop temp 0\npush constant 5\nreturn\n",
         random_program(vec![body.to_string()], vec![], 0)
     );
-    agree_at_every_budget(&src, &[1, 2], true, 0..20);
+    agree_at_every_budget(&src, &[1, 2], &[true], 0..20);
 }
 
 /// Web, an `argument` index too large for the entry test (24,571), which
@@ -1998,7 +1985,7 @@ fn far_local_and_argument_reads_of_held_stack_words_agree() {
             random_program(vec![call.to_string()], vec![], 0),
             read.replace("SEG", segment)
         );
-        agree_at_every_budget(&src, &[1, 2], true, 0..24);
+        agree_at_every_budget(&src, &[1, 2], &[true], 0..24);
     }
 }
 
@@ -2019,7 +2006,7 @@ fn a_call_whose_frame_would_pass_the_end_of_ram_agrees() {
             "{}function Main.k {locals}\npush constant 0\nif-goto NO\nlabel NO\npush constant 3\nreturn\n",
             random_program(vec![body], vec![], 0)
         );
-        agree_at_every_budget(&src, &[1, 2], true, 0..16);
+        agree_at_every_budget(&src, &[1, 2], &[true], 0..16);
     }
 }
 
@@ -2063,7 +2050,5 @@ fn a_callee_that_rewrites_its_callers_saved_arg_agrees() {
                push constant 22\nreturn\n\
                function Main.x 0\npush argument 0\nif-goto A\nlabel A\n\
                push constant 300\npop constant 265\npush constant 0\nreturn\n";
-    for web in [false, true] {
-        agree_at_every_budget(src, &[], web, 0..16);
-    }
+    agree_at_every_budget(src, &[], &[false, true], 0..16);
 }
