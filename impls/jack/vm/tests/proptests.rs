@@ -2052,3 +2052,18 @@ fn a_callee_that_rewrites_its_callers_saved_arg_agrees() {
                push constant 300\npop constant 265\npush constant 0\nreturn\n";
     agree_at_every_budget(src, &[], &[false, true], 0..16);
 }
+
+/// Desktop, a run inline (Main.r) that sets THAT in the heap, then runs
+/// Main.w inline, which rewrites the word where its frame saved THAT (at
+/// 271) to 5: after Main.w's return THAT is 5, outside the desktop's range,
+/// so Main.r's `push that 0` stops as the interpreter does; the range its
+/// own `pop pointer 1` showed holds no longer.
+#[test]
+fn a_nested_run_that_rewrites_the_saved_that_clears_what_its_caller_knew() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\ncall Main.r 0\nreturn\n\
+               function Main.r 0\npush constant 2100\npop pointer 1\npush constant 9\n\
+               call Main.w 1\npop temp 1\npush that 0\nreturn\n\
+               function Main.w 0\npush constant 5\npop constant 271\npush constant 0\nreturn\n";
+    agree_at_every_budget(src, &[], &[false], 0..16);
+}
