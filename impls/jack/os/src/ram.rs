@@ -17,8 +17,18 @@ pub(crate) const HEAP_END: i32 = 16383;
 /// outside are dropped, as in the web IDE; nothing here panics.
 #[derive(Clone, PartialEq, Eq)]
 pub struct Ram {
+    /// The words, then [`GUARD`] words of [`GUARD_WORD`].
     words: Box<[i16]>,
 }
+
+/// Debug builds (the tests): words past the end of RAM that nothing may
+/// touch. Code that addresses RAM through a raw pointer (the VM's compiled
+/// code) and read past its end would find [`GUARD_WORD`], not the -1 a read
+/// past RAM gives, and one that wrote there would leave two machines' RAM
+/// unequal: either shows in a comparison with the interpreter.
+const GUARD: usize = if cfg!(debug_assertions) { 64 } else { 0 };
+/// What the guard words hold.
+const GUARD_WORD: i16 = 0x5A5A;
 
 impl Default for Ram {
     fn default() -> Self {
@@ -32,7 +42,7 @@ impl std::fmt::Debug for Ram {
             .field("sp", &self.words[0])
             .field(
                 "nonzero_words",
-                &self.words.iter().filter(|w| **w != 0).count(),
+                &self.words().iter().filter(|w| **w != 0).count(),
             )
             .finish()
     }
@@ -41,8 +51,10 @@ impl std::fmt::Debug for Ram {
 impl Ram {
     /// All words zero.
     pub fn new() -> Ram {
+        let mut words = vec![0; RAM_SIZE + GUARD];
+        words[RAM_SIZE..].fill(GUARD_WORD);
         Ram {
-            words: vec![0; RAM_SIZE].into_boxed_slice(),
+            words: words.into_boxed_slice(),
         }
     }
 
@@ -66,12 +78,12 @@ impl Ram {
 
     /// All 24577 words.
     pub fn words(&self) -> &[i16] {
-        &self.words
+        &self.words[..RAM_SIZE]
     }
 
     /// All 24577 words, mutable.
     pub fn words_mut(&mut self) -> &mut [i16] {
-        &mut self.words
+        &mut self.words[..RAM_SIZE]
     }
 
     /// Screen pixel (x, y), true = black: bit `x % 16` of word

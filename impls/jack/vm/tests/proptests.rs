@@ -2067,3 +2067,22 @@ fn a_nested_run_that_rewrites_the_saved_that_clears_what_its_caller_knew() {
                function Main.w 0\npush constant 5\npop constant 271\npush constant 0\nreturn\n";
     agree_at_every_budget(src, &[], &[false], 0..16);
 }
+
+/// Web, a return whose frame ends past RAM: Main.k is called at SP =
+/// 24,573 (so its saved THAT would be word 24,577, which the call drops),
+/// takes SP from its saved THIS (24,570) and returns from a block compiled
+/// code runs. The interpreter restores THAT from past RAM (-1); compiled
+/// code, which would read the word past the RAM buffer, leaves the return
+/// to it.
+#[test]
+fn a_return_whose_frame_ends_past_ram_agrees() {
+    let body = "push constant 24570\npop pointer 0\npush constant 24573\npop constant 0\n\
+                call Main.k 0\npop temp 0";
+    let src = format!(
+        "{}function Main.k 0\npop temp 0\npop constant 0\n\
+         push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\ngoto GO\nlabel GO\n\
+         push constant 3\nreturn\n",
+        random_program(vec![body.to_string()], vec![], 0)
+    );
+    agree_at_every_budget(&src, &[1, 2], &[true], 0..20);
+}
