@@ -18,7 +18,7 @@ pub(crate) const HEAP_END: i32 = 16383;
 #[derive(Clone, PartialEq, Eq)]
 pub struct Ram {
     /// The words, then [`GUARD`] words of [`GUARD_WORD`].
-    words: Box<[i16]>,
+    words: Box<[i16; RAM_SIZE + GUARD]>,
 }
 
 /// Debug builds (the tests): words past the end of RAM that nothing may
@@ -54,7 +54,10 @@ impl Ram {
         let mut words = vec![0; RAM_SIZE + GUARD];
         words[RAM_SIZE..].fill(GUARD_WORD);
         Ram {
-            words: words.into_boxed_slice(),
+            words: words
+                .into_boxed_slice()
+                .try_into()
+                .expect("RAM_SIZE + GUARD words"),
         }
     }
 
