@@ -1924,10 +1924,10 @@ fn a_call_whose_arguments_reach_the_registers_agrees() {
 /// and ARG are the registers THIS and THAT, which its return must read as
 /// the interpreter does, after THIS and THAT are restored (from RAM[5]
 /// and RAM[6]), not from RAM words compiled code does not keep: the return
-/// leaves to the interpreter. The callee puts the call's RET word (8,
-/// Main.f's command index after the call) back in ARG, so that a compiled
-/// return would find it, and writes 1234 over the saved THIS, which the
-/// interpreter then also takes as LCL.
+/// leaves to the interpreter. The callee puts the call's RET word back in
+/// ARG (7: Main.f's command after the call, its `function` line 0 and its
+/// label not counted), so that a compiled return would find it, and writes
+/// 1234 over the saved THIS, which the interpreter then also takes as LCL.
 #[test]
 fn a_return_whose_saved_frame_is_the_registers_agrees() {
     let body = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
