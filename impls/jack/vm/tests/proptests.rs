@@ -442,14 +442,25 @@ fn budget() -> impl Strategy<Value = u64> {
     prop_oneof![3 => 0u64..24, 1 => 0u64..200]
 }
 
+/// The opening of a `Main.f` body after which its stack depths are not
+/// static (a branch leaves one more word on one path): each block then
+/// tests its own stack, so code that moves SP or the segment registers
+/// with `pop constant` still runs compiled from the next block.
+const UNKNOWN_DEPTH: &str = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n";
+
+/// [`UNKNOWN_DEPTH`], then SP moved to `sp`.
+fn sp_moved_to(sp: u16) -> String {
+    format!("{UNKNOWN_DEPTH}push constant {sp}\npop constant 0\n")
+}
+
 /// SP set to `sp`, then a block of `pushes` pushes (code whose depths are
 /// not static, where each block tests its stack range on entry: at 1,791
 /// pushes from 256 the desktop's range is one word), then SP set back to
 /// `sp` by its last push.
 fn stack_long_block(sp: u16, pushes: u16) -> String {
     format!(
-        "push constant 0\nif-goto LONG\npush constant 1\nlabel LONG\npush constant {sp}\npop constant 0\n\
-         {}push constant {sp}\npop constant 0",
+        "{}{}push constant {sp}\npop constant 0",
+        sp_moved_to(sp),
         "push constant 1\n".repeat(usize::from(pushes - 1))
     )
 }
@@ -672,13 +683,14 @@ fn a_pop_constant_onto_a_held_stack_word_agrees() {
 /// the second read pushed.
 #[test]
 fn a_far_that_access_of_held_stack_words_agrees() {
-    let body = "push constant 0\nif-goto LONG\npush constant 1\nlabel LONG\n\
-                push constant 24570\npop constant 0\n\
-                push constant 1\npush constant 2\npush constant 0\npop pointer 1\n\
-                push that 24571\npush that 24572\npush constant 9\npop that 24573\n\
-                pop temp 0\npop temp 1\npop temp 2\n\
-                push temp 0\npush temp 1\nadd\npush temp 2\nadd\nreturn";
-    agree_on(body, 0, &[1, 2], &[true], &(0..24).collect::<Vec<_>>());
+    let body = format!(
+        "{}push constant 1\npush constant 2\npush constant 0\npop pointer 1\n\
+         push that 24571\npush that 24572\npush constant 9\npop that 24573\n\
+         pop temp 0\npop temp 1\npop temp 2\n\
+         push temp 0\npush temp 1\nadd\npush temp 2\nadd\nreturn",
+        sp_moved_to(24570)
+    );
+    agree_on(&body, 0, &[1, 2], &[true], &(0..24).collect::<Vec<_>>());
 }
 
 /// Web: a `that` index past the span tests (24,572) whose address lies
@@ -1905,9 +1917,8 @@ fn forward_skip() -> impl Strategy<Value = String> {
 fn a_call_whose_arguments_reach_the_registers_agrees() {
     for n in [250, 251, 252, 255] {
         let body = format!(
-            "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
-             push constant 256\npop constant 0\ngoto GO\nlabel GO\n\
-             push constant 3000\npop pointer 1\ncall Main.x {n}\npop temp 0"
+            "{}goto GO\nlabel GO\npush constant 3000\npop pointer 1\ncall Main.x {n}\npop temp 0",
+            sp_moved_to(256)
         );
         let src = format!(
             "{}function Main.x 0\npush argument 0\npush argument 1\nadd\npop temp 1\n\
@@ -1930,12 +1941,11 @@ fn a_call_whose_arguments_reach_the_registers_agrees() {
 /// 1234 over the saved THIS, which the interpreter then also takes as LCL.
 #[test]
 fn a_return_whose_saved_frame_is_the_registers_agrees() {
-    let body = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
-                push constant 2\npop constant 0\ncall Main.y 0\npop temp 0";
+    let body = format!("{}call Main.y 0\npop temp 0", sp_moved_to(2));
     let src = format!(
         "{}function Main.y 250\npush constant 7\npop constant 2\n\
          push constant 1234\npop temp 0\npush constant 5\nreturn\n",
-        random_program(vec![body.to_string()], vec![], 0)
+        random_program(vec![body], vec![], 0)
     );
     agree_at_every_budget(&src, &[1, 2], &[true], 0..20);
 }
@@ -1946,10 +1956,11 @@ fn a_return_whose_saved_frame_is_the_registers_agrees() {
 /// its error rather than read the word.
 #[test]
 fn an_argument_index_past_the_arguments_fails_as_the_interpreter_does() {
-    let body = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
-                push constant 0\npop constant 2\ngoto GO\nlabel GO\n\
-                push argument 24571\npop temp 0\npush temp 0\nreturn";
-    agree_on(body, 0, &[1, 2], &[true], &(0..12).collect::<Vec<_>>());
+    let body = format!(
+        "{UNKNOWN_DEPTH}push constant 0\npop constant 2\ngoto GO\nlabel GO\n\
+         push argument 24571\npop temp 0\npush temp 0\nreturn"
+    );
+    agree_on(&body, 0, &[1, 2], &[true], &(0..12).collect::<Vec<_>>());
 }
 
 /// Web, `argument 24571` and `local 24571` (indices too large for the
@@ -1963,9 +1974,10 @@ fn an_argument_index_past_the_arguments_fails_as_the_interpreter_does() {
 /// registers), whose last it takes as LCL (0).
 #[test]
 fn far_local_and_argument_reads_of_held_stack_words_agree() {
-    let read = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\npop temp 7\n\
-                goto GO\nlabel GO\npush constant 7\npush constant 8\npush SEG 24571\n\
-                pop temp 0\npop temp 1\npop temp 2\npush constant 0\nreturn\n";
+    let read = format!(
+        "{UNKNOWN_DEPTH}pop temp 7\ngoto GO\nlabel GO\npush constant 7\npush constant 8\n\
+         push SEG 24571\npop temp 0\npop temp 1\npop temp 2\npush constant 0\nreturn\n"
+    );
     let calls = [
         (
             "push constant 24571\npop pointer 1\npush constant 24572\npop constant 0\n\
@@ -1999,8 +2011,8 @@ fn far_local_and_argument_reads_of_held_stack_words_agree() {
 fn a_call_whose_frame_would_pass_the_end_of_ram_agrees() {
     for (sp, locals) in [(24573, 0), (24573, 2), (24572, 2)] {
         let body = format!(
-            "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
-             push constant {sp}\npop constant 0\ngoto GO\nlabel GO\ncall Main.k 0\npop temp 0"
+            "{}goto GO\nlabel GO\ncall Main.k 0\npop temp 0",
+            sp_moved_to(sp)
         );
         let src = format!(
             "{}function Main.k {locals}\npush constant 0\nif-goto NO\nlabel NO\npush constant 3\nreturn\n",
@@ -2032,10 +2044,11 @@ fn an_inline_runs_arguments_are_the_words_under_the_call() {
 /// the next block's pushes and `add` then use.
 #[test]
 fn sp_after_a_compiled_call_with_unknown_depths_agrees() {
-    let body = "push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\n\
-                push constant 7\npush constant 2\ncall Main.r 1\npush constant 5\nadd\nadd\n\
-                pop temp 0\npush temp 0\nreturn";
-    agree_at_each_stop(body, 24);
+    let body = format!(
+        "{UNKNOWN_DEPTH}push constant 7\npush constant 2\ncall Main.r 1\npush constant 5\n\
+         add\nadd\npop temp 0\npush temp 0\nreturn"
+    );
+    agree_at_each_stop(&body, 24);
 }
 
 /// A called function (not run inline) that rewrites its caller's saved
@@ -2080,8 +2093,7 @@ fn a_return_whose_frame_ends_past_ram_agrees() {
                 call Main.k 0\npop temp 0";
     let src = format!(
         "{}function Main.k 0\npop temp 0\npop constant 0\n\
-         push constant 0\nif-goto MOVE\npush constant 1\nlabel MOVE\ngoto GO\nlabel GO\n\
-         push constant 3\nreturn\n",
+         {UNKNOWN_DEPTH}goto GO\nlabel GO\npush constant 3\nreturn\n",
         random_program(vec![body.to_string()], vec![], 0)
     );
     agree_at_every_budget(&src, &[1, 2], &[true], 0..20);
