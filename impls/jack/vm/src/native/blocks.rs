@@ -387,7 +387,7 @@ pub(crate) fn budgets(
 
 #[cfg(test)]
 mod tests {
-    use super::{kind, static_depths, Kind, MAX_INLINE_LOCALS};
+    use super::{blocks, depth_range_through_calls, kind, static_depths, Kind, MAX_INLINE_LOCALS};
     use crate::program::Op;
     use jack_os::Builtin;
 
@@ -456,5 +456,24 @@ mod tests {
             Some(depths(&[0, 1, 0, 1, 0, 1, 1, 0, -1, 0, 1, -1]))
         );
         assert_eq!(static_depths(&code, 0, 2, 0), Some(depths(&[0, 1])));
+    }
+
+    /// A block's stack range stops at its final call, as the stack stands
+    /// before it: the call's argument words and frame are tested with the
+    /// call, so arguments pushed by an earlier block do not lower it. Code
+    /// that goes on after a call sees its arguments popped and its result
+    /// pushed.
+    #[test]
+    fn a_blocks_range_leaves_its_final_calls_arguments_to_the_call() {
+        let call = Op::Call {
+            callee: 0,
+            nargs: 2,
+            ret: 0,
+            method: false,
+        };
+        let code = [Op::PushConst(1), call, Op::Return];
+        let (blocks, _) = blocks(&code, 0, code.len() as u32, &[]);
+        assert_eq!((blocks[0].min_depth, blocks[0].max_depth), (0, 1));
+        assert_eq!(depth_range_through_calls(&code[..2]), (-1, 1));
     }
 }
