@@ -56,9 +56,11 @@ proptest! {
         }
         let two = [("Main.vm", text.as_str()), ("Sys.vm", "function Sys.init 0\ncall Main.main 0\n")];
         if let Ok(p) = located(&text, Program::from_sources(&two)) {
-            // Whatever loads also runs without panicking.
-            let mut m = Machine::new(p, Config::default());
-            let _ = m.run(Some(10_000));
+            // Whatever loads also runs without panicking, on either engine.
+            for engine in [Engine::Interp, Engine::Native] {
+                let mut m = Machine::new(p.clone(), Config { engine, ..Config::default() });
+                let _ = m.run(Some(10_000));
+            }
         }
     }
 
