@@ -85,7 +85,7 @@ fn corpus_programs_run_almost_wholly_compiled() {
 fn pointer_accesses_at_the_top_of_ram_run_compiled() {
     let source = "function Main.main 0\nlabel LOOP\npush constant 24570\npop pointer 1\n\
                   push that 6\npush constant 24575\npop pointer 0\npop this 1\ngoto LOOP\n";
-    runs_compiled(source, &[Profile::Web], Some("Main.main"));
+    runs_compiled(&[("Main.vm", source)], &[Profile::Web], Some("Main.main"));
 }
 
 /// A block that touches no stack word runs compiled wherever SP is (no
@@ -94,7 +94,11 @@ fn pointer_accesses_at_the_top_of_ram_run_compiled() {
 #[test]
 fn blocks_without_stack_words_run_compiled_wherever_sp_is() {
     let source = "push constant 100\npop constant 0\nlabel LOOP\ngoto LOOP\n";
-    runs_compiled(source, &[Profile::Desktop, Profile::Web], None);
+    runs_compiled(
+        &[("Main.vm", source)],
+        &[Profile::Desktop, Profile::Web],
+        None,
+    );
 }
 
 /// Code before a program's first `function` line (its `__implicit`
@@ -104,14 +108,36 @@ fn blocks_without_stack_words_run_compiled_wherever_sp_is() {
 fn code_before_any_function_runs_compiled() {
     let source = "push constant 1\npop temp 0\n".repeat(200)
         + "label LOOP\npush temp 0\npush constant 1\nadd\npop temp 0\ngoto LOOP\n";
-    runs_compiled(&source, &[Profile::Desktop, Profile::Web], None);
+    runs_compiled(
+        &[("Main.vm", &source)],
+        &[Profile::Desktop, Profile::Web],
+        None,
+    );
 }
 
-/// `source` (from its start, or from a call of `entry`) runs 10,000 steps
-/// on the compiled engine under each of `profiles`, interpreting at most 8
-/// of them.
-fn runs_compiled(source: &str, profiles: &[Profile], entry: Option<&str>) {
-    let program = Program::from_sources(&[("Main.vm", source)]).expect("loads");
+/// The same where that code is the entry of a program whose first file
+/// holds a function (about 60 instructions) before it: compiled code starts
+/// at the code's own first instruction, not one of the first function's
+/// length further on.
+#[test]
+fn code_before_any_function_of_a_later_file_runs_compiled() {
+    let first = "function A.f 0\n".to_string()
+        + &"push constant 1\npop temp 1\n".repeat(30)
+        + "push constant 0\nreturn\n";
+    let source = "push constant 1\npop temp 0\n".repeat(200)
+        + "label LOOP\npush temp 0\npush constant 1\nadd\npop temp 0\ngoto LOOP\n";
+    runs_compiled(
+        &[("A.vm", &first), ("B.vm", &source)],
+        &[Profile::Desktop, Profile::Web],
+        None,
+    );
+}
+
+/// The program of `sources` (from its start, or from a call of `entry`)
+/// runs 10,000 steps on the compiled engine under each of `profiles`,
+/// interpreting at most 8 of them.
+fn runs_compiled(sources: &[(&str, &str)], profiles: &[Profile], entry: Option<&str>) {
+    let program = Program::from_sources(sources).expect("loads");
     for &profile in profiles {
         let config = Config {
             profile,
