@@ -1696,12 +1696,13 @@ fn builtins_that_move_registers_or_stop_agree() {
     }
     // A host-called built-in that moves SP out of the stack (the web's
     // `setCharAt` of a string whose characters lie at word 0 writes SP):
-    // its result is pushed at RAM[5000], over the 7 there, at RAM's last
-    // word, and past RAM (nowhere), and the web's stack runs on without an
-    // overflow.
-    for sp in [5000, 24576, 24577] {
+    // its result is pushed into LCL, ARG, THIS or THAT (set to other values
+    // first), at RAM[5000], over the 7 there, at RAM's last word, and past
+    // RAM (nowhere), and the web's stack runs on without an overflow.
+    for sp in [1, 2, 3, 4, 5000, 24576, 24577] {
         let body = format!(
-            "push constant 7\npop constant 5000\npush constant 5\npop constant 3001\n\
+            "push constant 77\npop pointer 0\npush constant 88\npop pointer 1\n\
+             push constant 7\npop constant 5000\npush constant 5\npop constant 3001\n\
              push constant 0\npop constant 3002\npush constant 3000\npush constant 0\n\
              push constant {sp}\ncall String.setCharAt 3\npop temp 0"
         );

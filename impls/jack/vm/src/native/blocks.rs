@@ -387,7 +387,10 @@ pub(crate) fn budgets(
 
 #[cfg(test)]
 mod tests {
-    use super::{blocks, depth_range_through_calls, kind, static_depths, Kind, MAX_INLINE_LOCALS};
+    use super::{
+        blocks, budgets, depth_range_through_calls, kind, static_depths, Budget, Kind,
+        MAX_INLINE_LOCALS,
+    };
     use crate::program::Op;
     use jack_os::Builtin;
 
@@ -475,5 +478,37 @@ mod tests {
         let (blocks, _) = blocks(&code, 0, code.len() as u32, &[]);
         assert_eq!((blocks[0].min_depth, blocks[0].max_depth), (0, 1));
         assert_eq!(depth_range_through_calls(&code[..2]), (-1, 1));
+    }
+
+    /// A block that ends in a return covers its own steps only: compiled
+    /// code leaves there, so the block laid out after it (here a forward
+    /// jump's target, which tests no budget) is not on its path. A budget
+    /// test that counted it would send the return's block to the
+    /// interpreter whenever fewer steps than both are left.
+    #[test]
+    fn a_return_covers_no_block_after_it() {
+        let code = [
+            Op::IfGoto(3),
+            Op::PushConst(0),
+            Op::Return,
+            Op::PushConst(1), // the forward jump's target
+            Op::PushConst(2),
+            Op::Return,
+            Op::Halt,
+        ];
+        let (blocks, index) = blocks(&code, 0, code.len() as u32, &[]);
+        let budgets = budgets(&code, 0, &blocks, &index);
+        let (second, target) = (index[1].unwrap() as usize, index[3].unwrap() as usize);
+        assert!(
+            !budgets[target].tested,
+            "the target is reached forward only"
+        );
+        assert_eq!(
+            budgets[second],
+            Budget {
+                tested: false,
+                covers: blocks[second].steps
+            }
+        );
     }
 }
