@@ -118,17 +118,11 @@ fn points_around(scene: &scene::Checked) -> Vec<[F316; 3]> {
         Camera::LookAt { target, .. } => *target,
         Camera::Direct { .. } => [0.0; 3],
     };
-    let mut state = 316u64;
-    let mut unit = || {
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = common::SplitMix64::new(316);
     (0..256)
         .map(|_| {
-            centre.map(|c| F316::from_f64_truncating(c + unit() * 10.0 - 5.0).expect("in range"))
+            centre
+                .map(|c| F316::from_f64_truncating(c + rng.unit() * 10.0 - 5.0).expect("in range"))
         })
         .collect()
 }

@@ -467,20 +467,13 @@ pub(super) fn bit_exact_pixels(
     c
 }
 
-/// Deterministic query points over the box [-4, 4]^3 (splitmix64).
+/// Deterministic query points over the box [-4, 4]^3 (SplitMix64).
 fn sdf_points() -> Vec<[F316; 3]> {
-    let mut state = 0x5eed_u64;
-    let mut unit = || {
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = common::SplitMix64::new(0x5eed);
     (0..SDF_POINTS)
         .map(|_| {
             [(); 3].map(|_| {
-                F316::from_f64_truncating(unit() * 8.0 - 4.0).expect("|x| <= 4 is in range")
+                F316::from_f64_truncating(rng.unit() * 8.0 - 4.0).expect("|x| <= 4 is in range")
             })
         })
         .collect()

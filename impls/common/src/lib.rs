@@ -1,6 +1,7 @@
 //! Types shared by every implementation and by the harness: the Float316
 //! triple, the outcome of a computation, Jack's 16-bit integer semantics,
-//! the names of the Float316 operations and the image constants.
+//! the names of the Float316 operations, the image constants and the
+//! deterministic generator of fixed point sets.
 //!
 //! Dependency direction: `harness -> impls/* -> common`. Nothing here knows
 //! about any particular implementation.
@@ -14,6 +15,7 @@ pub mod jack_int;
 pub mod op;
 pub mod outcome;
 pub mod shown;
+pub mod splitmix;
 pub mod trace;
 
 pub use adapter::AdapterDescription;
@@ -21,4 +23,5 @@ pub use f316::F316;
 pub use op::Op;
 pub use outcome::{Outcome, OutcomeKind};
 pub use shown::{shown, shown_f32, Shown};
+pub use splitmix::SplitMix64;
 pub use trace::{OpValue, TraceRecord};

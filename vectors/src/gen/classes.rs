@@ -91,14 +91,10 @@ pub fn class_of(op: Op, a: F316, b: F316) -> u64 {
     ((signs * gaps + g) * MANTISSAS + ma) * MANTISSAS + mb
 }
 
-/// Whether class `index` belongs to shard `k` of `n`: splitmix64 of the
-/// index, modulo `n` (a vector's shard depends only on its class).
+/// Whether class `index` belongs to shard `k` of `n`: the first SplitMix64
+/// output seeded with the index, modulo `n` (a vector's shard depends only on its class).
 pub fn in_shard(index: u64, k: u32, n: u32) -> bool {
-    let mut z = index.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^= z >> 31;
-    z % u64::from(n) == u64::from(k)
+    common::SplitMix64::new(index).below(u64::from(n)) == u64::from(k)
 }
 
 #[cfg(test)]

@@ -2,8 +2,8 @@
 //! (random values and a catalogue of hard cases) for every operation, and
 //! scene queries at generated points.
 
-use crate::support::{gpu, paired, Rng};
-use common::{Op, F316};
+use crate::support::{gpu, paired};
+use common::{Op, SplitMix64, F316};
 use reference::{Arith, RefImpl, Reference};
 
 /// Values that exercise the edges of every algorithm: signed zeros,
@@ -43,7 +43,7 @@ fn hard_values() -> Vec<F316> {
     v
 }
 
-fn random_value(rng: &mut Rng) -> F316 {
+fn random_value(rng: &mut SplitMix64) -> F316 {
     F316::new(
         rng.below(2) as i16,
         100 + rng.below(61) as i16,
@@ -53,7 +53,7 @@ fn random_value(rng: &mut Rng) -> F316 {
 
 /// Operand pairs for a binary op: every pair of hard values, random pairs,
 /// and near-cancelling pairs (same magnitude give or take a few units).
-fn pairs(rng: &mut Rng, random: usize) -> Vec<(F316, F316)> {
+fn pairs(rng: &mut SplitMix64, random: usize) -> Vec<(F316, F316)> {
     let hard = hard_values();
     let mut out: Vec<(F316, F316)> = hard
         .iter()
@@ -75,7 +75,7 @@ fn pairs(rng: &mut Rng, random: usize) -> Vec<(F316, F316)> {
 #[test]
 fn every_op_matches_the_reference_bit_for_bit() {
     let Some(gpu) = gpu() else { return };
-    let mut rng = Rng::new(316);
+    let mut rng = SplitMix64::new(316);
     let mut cases = Vec::new();
     for op in Op::ALL {
         for (a, b) in pairs(&mut rng, 1500) {
@@ -102,8 +102,8 @@ fn every_op_matches_the_reference_bit_for_bit() {
 
 /// Points near and away from the objects, and far enough out that floor
 /// leaves its domain.
-fn points(rng: &mut Rng, n: usize) -> Vec<[F316; 3]> {
-    let coord = |rng: &mut Rng, scale: f64| {
+fn points(rng: &mut SplitMix64, n: usize) -> Vec<[F316; 3]> {
+    let coord = |rng: &mut SplitMix64, scale: f64| {
         let x = (rng.unit() * 2.0 - 1.0) * scale;
         F316::from_f64_truncating(x).expect("encodable")
     };
@@ -128,7 +128,7 @@ fn points(rng: &mut Rng, n: usize) -> Vec<[F316; 3]> {
 #[test]
 fn scene_matches_the_reference_bit_for_bit() {
     let Some(gpu) = gpu() else { return };
-    let points = points(&mut Rng::new(1316), 3000);
+    let points = points(&mut SplitMix64::new(1316), 3000);
     let got = gpu.f316_sdf(&points).expect("sdf kernel runs");
     let reference = Reference::seed(RefImpl::F316);
     let mut mismatches = Vec::new();

@@ -2,8 +2,8 @@
 //! distances, snapshotted (not asserted zero). The figures belong to the
 //! adapter: the snapshot is lavapipe's; on other adapters they are printed.
 
-use crate::support::{gpu, Rng};
-use common::Outcome;
+use crate::support::{float_pixels, gpu};
+use common::{Outcome, SplitMix64};
 use reference::{RefImpl, Reference};
 use serde::Serialize;
 
@@ -57,28 +57,17 @@ struct Report {
     col_vs_f64: Figures,
 }
 
-fn values(r: &Reference) -> (Vec<f64>, Vec<bool>) {
-    r.render()
-        .pixels
-        .iter()
-        .map(|p| match p {
-            Outcome::Value(p) => (p.value.value, p.white),
-            other => panic!("a float pixel trapped: {other:?}"),
-        })
-        .unzip()
-}
-
 #[test]
 fn f32_error_figures() {
     let Some(gpu) = gpu() else { return };
     let (shade, white): (Vec<f32>, Vec<bool>) =
         gpu.render_f32().expect("render").into_iter().unzip();
-    let (ref32, white32) = values(&Reference::seed(RefImpl::F32));
-    let (ref64, white64) = values(&Reference::seed(RefImpl::F64));
+    let (ref32, white32) = float_pixels(&Reference::seed(RefImpl::F32));
+    let (ref64, white64) = float_pixels(&Reference::seed(RefImpl::F64));
     let ref32_f: Vec<f32> = ref32.iter().map(|&v| v as f32).collect();
     let flips = |w: &[bool]| white.iter().zip(w).filter(|(a, b)| a != b).count();
 
-    let mut rng = Rng::new(32);
+    let mut rng = SplitMix64::new(32);
     let points: Vec<[common::F316; 3]> = (0..4000)
         .map(|_| {
             std::array::from_fn(|_| {

@@ -4,8 +4,8 @@
 //! those derived from the scene (`vectors::gen::scene_derived`);
 //! the f32 kernel renders and is compared with ref-f64 by its error.
 
-use crate::support::{gpu, paired, Rng};
-use common::{Outcome, F316};
+use crate::support::{gpu, paired};
+use common::{Outcome, SplitMix64, F316};
 use gpu::GpuPixel;
 use reference::{Described, RefImpl, ScenePixel, Settings};
 
@@ -24,7 +24,7 @@ fn same(g: &Outcome<GpuPixel>, r: &Outcome<ScenePixel>) -> bool {
 /// [-32, 32]^3), and those derived from it: near every surface, seam,
 /// blend region and repetition cell boundary.
 fn points(scene: &scene::Checked) -> Vec<[F316; 3]> {
-    let mut rng = Rng::new(17);
+    let mut rng = SplitMix64::new(17);
     let mut points: Vec<[F316; 3]> = [(512, 4.0), (64, 32.0)]
         .into_iter()
         .flat_map(|(n, half)| vec![half; n])

@@ -1,6 +1,8 @@
 //! The shared device of the test binary.
 
+use common::Outcome;
 use gpu::Gpu;
+use reference::Reference;
 use std::sync::OnceLock;
 
 /// The device, opened once; `None` only when the GPU leg is explicitly
@@ -20,33 +22,17 @@ pub fn gpu() -> Option<&'static Gpu> {
     gpu
 }
 
-/// A small deterministic generator (SplitMix64) for test tables.
-pub struct Rng(u64);
-
-impl Rng {
-    /// A generator with a fixed seed.
-    pub fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-
-    /// The next 64 random bits.
-    pub fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in 0..n.
-    pub fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
+/// A float reference's seed image: each pixel's value and whether it is
+/// white; a trapped pixel fails the test.
+pub fn float_pixels(r: &Reference) -> (Vec<f64>, Vec<bool>) {
+    r.render()
+        .pixels
+        .iter()
+        .map(|p| match p {
+            Outcome::Value(p) => (p.value.value, p.white),
+            other => panic!("a float pixel trapped: {other:?}"),
+        })
+        .unzip()
 }
 
 /// `inputs` and `answers` side by side, once they are known to be as many:

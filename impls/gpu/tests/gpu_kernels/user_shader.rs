@@ -2,7 +2,7 @@
 //! port from `examples/shaders/` against the references and our gpu-f32
 //! kernel, and shaders that fail like real components.
 
-use crate::support::gpu;
+use crate::support::{float_pixels, gpu};
 use common::Outcome;
 use gpu::shader::{Language, Shade, ShaderNum, ShaderOptions, ShaderSource, UserShader};
 use gpu::GpuError;
@@ -45,18 +45,6 @@ fn f32_image(pixels: Vec<Outcome<(ShaderNum, bool)>>) -> (Vec<f32>, Vec<bool>) {
         .unzip()
 }
 
-fn ref_f64() -> (Vec<f64>, Vec<bool>) {
-    Reference::seed(RefImpl::F64)
-        .render()
-        .pixels
-        .iter()
-        .map(|p| match p {
-            Outcome::Value(p) => (p.value.value, p.white),
-            other => panic!("a float pixel trapped: {other:?}"),
-        })
-        .unzip()
-}
-
 /// Max and mean absolute difference, and dithered-pixel flips.
 fn compare(a: &[f32], a_white: &[bool], b: &[f64], b_white: &[bool]) -> (f64, f64, usize) {
     let errs: Vec<f64> = a
@@ -82,7 +70,7 @@ fn the_shadertoy_port_renders_the_seed_scene() {
     };
     assert!(shader.provides().sdf());
     let (shade, white) = f32_image(shader.render().expect("render"));
-    let (want, want_white) = ref_f64();
+    let (want, want_white) = float_pixels(&Reference::seed(RefImpl::F64));
     let (max, mean, flips) = compare(&shade, &white, &want, &want_white);
     eprintln!("seed.glsl against ref-f64: max {max:e}, mean {mean:e}, {flips} flips");
     assert!(max < 1e-3 && mean < 1e-5, "max {max:e}, mean {mean:e}");
