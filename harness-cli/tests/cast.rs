@@ -7,7 +7,7 @@
 
 mod binary;
 
-use binary::{harness_in, text};
+use binary::{assert_says, assert_status, harness_in, text};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
@@ -62,10 +62,9 @@ fn cast_lists_the_declared_implementations_with_their_group() {
     std::fs::write(&bad, "[impl.x]\nkind = \"reference\"\nnumbers = 64\n").unwrap();
     let o = harness_in(dir.path(), &["--cast", "bad.toml", "cast"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("bad.toml:3:11: impl.x.numbers: expected a string, found integer"),
-        "{}",
-        text(&o)
+    assert_says(
+        &o,
+        "bad.toml:3:11: impl.x.numbers: expected a string, found integer",
     );
     // Under check, an unreadable project file is undecidable.
     let o = harness_in(
@@ -101,8 +100,7 @@ fn diff_localize_and_check_use_a_declared_implementation() {
     );
     let args: Vec<&str> = command.split_whitespace().collect();
     let o = harness_in(d, &args);
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("origin: mul("), "{}", text(&o));
+    assert_status(&o, 1, &["origin: mul("]);
     let o = harness_in(
         d,
         &[
@@ -137,12 +135,7 @@ fn diff_localize_and_check_use_a_declared_implementation() {
         d,
         &["diff", "ref-f316", "my-f32+newton-3", "--level", "ops"],
     );
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("my-f32 has no variant or fault `newton-3`"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["my-f32 has no variant or fault `newton-3`"]);
 }
 
 #[test]
@@ -276,12 +269,9 @@ fn out_of_range_durations_are_refused_with_the_field_named() {
         .unwrap();
         let o = harness_in(dir.path(), &["--cast", file.to_str().unwrap(), "cast"]);
         assert_eq!(o.status.code(), Some(2), "{seconds}: {}", text(&o));
-        assert!(
-            text(&o).contains(
-                "impl.p.watchdog_s: expected a positive number of seconds, at most 86400"
-            ),
-            "{seconds}: {}",
-            text(&o)
+        assert_says(
+            &o,
+            "impl.p.watchdog_s: expected a positive number of seconds, at most 86400",
         );
     }
     let shader = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/shaders/seed.glsl");
@@ -295,11 +285,10 @@ fn out_of_range_durations_are_refused_with_the_field_named() {
     )
     .unwrap();
     let o = harness_in(dir.path(), &["--cast", file.to_str().unwrap(), "cast"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("impl.s.timeout_s: at most 86400 seconds (one day)"),
-        "{}",
-        text(&o)
+    assert_status(
+        &o,
+        2,
+        &["impl.s.timeout_s: at most 86400 seconds (one day)"],
     );
 }
 

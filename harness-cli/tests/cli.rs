@@ -3,7 +3,7 @@
 
 mod binary;
 
-use binary::{harness, text};
+use binary::{assert_says, assert_status, harness, text};
 use std::path::Path;
 use std::process::Output;
 
@@ -30,19 +30,9 @@ fn a_bad_vector_file_is_an_input_error_naming_the_field() {
         "--vectors",
         file.to_str().unwrap(),
     ]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("bad.json: vectors[0].a: expected [s,e,m]"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["bad.json: vectors[0].a: expected [s,e,m]"]);
     let o = harness(&["diff", "ref-f99", "ref-f316"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("unknown implementation `ref-f99`"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["unknown implementation `ref-f99`"]);
 }
 
 #[test]
@@ -101,24 +91,14 @@ fn localize_prints_the_first_divergent_operation() {
         "--a",
         "0,120,15576",
     ]);
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(
-        text(&o).contains("origin: sqrt((0,120,15576)"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 1, &["origin: sqrt((0,120,15576)"]);
     let same = harness(&["localize", "ref-f316", "ref-f316", "--pixel", "312,87"]);
     assert_eq!(same.status.code(), Some(0), "{}", text(&same));
     let bad = harness(&["localize", "ref-f316", "ref-f316", "--pixel", "600,1"]);
     assert_eq!(bad.status.code(), Some(2), "{}", text(&bad));
     // A float implementation has no Float316 operations to compare.
     let float = harness(&["localize", "ref-f316", "ref-f64", "--pixel", "312,87"]);
-    assert_eq!(float.status.code(), Some(2), "{}", text(&float));
-    assert!(
-        text(&float).contains("ref-f64 computes with f64"),
-        "{}",
-        text(&float)
-    );
+    assert_status(&float, 2, &["ref-f64 computes with f64"]);
 }
 
 #[test]
@@ -133,7 +113,7 @@ fn bench_prints_and_writes_the_speed_and_error_table() {
         json.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", text(&o));
-    assert!(text(&o).contains("ref-f32"), "{}", text(&o));
+    assert_says(&o, "ref-f32");
     let rows: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let rows = rows.as_array().unwrap();
@@ -192,8 +172,7 @@ fn jack_run_gives_the_same_run_on_every_engine_and_names_them() {
     assert!(runs[1].contains("compiled: 0 (0.00%)\n"), "{}", runs[1]);
     assert!(!runs[2].contains("compiled: 0 "), "{}", runs[2]);
     let o = jack("run", src.path(), &["--engine", "jit"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("auto, interp or native"), "{}", text(&o));
+    assert_status(&o, 2, &["auto, interp or native"]);
 }
 
 #[test]
@@ -247,19 +226,14 @@ fn jack_compile_errors_name_file_line_and_column() {
     };
     let (o, _) =
         compile("class Main {\n  function void main() {\n    let x = ;\n    return;\n  }\n}\n");
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("Main.jack:3:"), "{}", text(&o));
+    assert_status(&o, 2, &["Main.jack:3:"]);
     // Code the VM would not load is an error at its Jack position, and
     // nothing is written; a call into a class outside the folder is not.
     let (o, written) = compile(
         "class Main {\n  function void main() {\n    var int x;\n    let x = 40000;\n    do Other.f();\n    return;\n  }\n}\n",
     );
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("Main.jack:4:") && text(&o).contains("would not load"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["Main.jack:4:"]);
+    assert_says(&o, "would not load");
     assert!(!written);
     let (o, written) =
         compile("class Main {\n  function void main() {\n    do Other.f();\n    return;\n  }\n}\n");
@@ -290,11 +264,7 @@ fn jack_test_runs_a_course_script_and_compares_like_the_official_tools() {
     for profile in ["desktop", "web"] {
         let o = harness(&["jack", "test", &tst, "--profile", profile]);
         assert!(o.status.success(), "{}", text(&o));
-        assert!(
-            text(&o).contains("Comparison ended successfully"),
-            "{}",
-            text(&o)
-        );
+        assert_says(&o, "Comparison ended successfully");
     }
     let out = std::fs::read_to_string(dir.path().join("FibonacciElement.out")).unwrap();
     assert_eq!(out, "| RAM[0] |RAM[261]|\n|    262 |      3 |\n");
@@ -305,12 +275,7 @@ fn jack_test_runs_a_course_script_and_compares_like_the_official_tools() {
     )
     .unwrap();
     let o = harness(&["jack", "test", &tst]);
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(
-        text(&o).contains("comparison failure at line 2"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 1, &["comparison failure at line 2"]);
     // A breakpoint stops it before the comparison fails: exit 0, saying so.
     std::fs::write(
         &tst,
@@ -320,17 +285,11 @@ fn jack_test_runs_a_course_script_and_compares_like_the_official_tools() {
     )
     .unwrap();
     let o = harness(&["jack", "test", &tst]);
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    assert!(text(&o).contains("Breakpoint reached"), "{}", text(&o));
+    assert_status(&o, 0, &["Breakpoint reached"]);
     // A script that cannot run: exit 2, with its line and column.
     std::fs::write(&tst, "load,\nvmstep;\nfrobnicate;\n").unwrap();
     let o = harness(&["jack", "test", &tst]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("FibonacciElementVME.tst:3:1: unknown"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["FibonacciElementVME.tst:3:1: unknown"]);
 }
 
 #[test]
@@ -359,11 +318,9 @@ fn jack_run_sets_words_before_and_prints_ram_ranges_after() {
     );
     assert!(t.contains("RAM[272..272]: "), "{t}");
     let o = jack("run", dir.path(), &["--ram", "10..5"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("the range is empty"), "{}", text(&o));
+    assert_status(&o, 2, &["the range is empty"]);
     let o = jack("run", dir.path(), &["--set", "24577=1"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("outside RAM"), "{}", text(&o));
+    assert_status(&o, 2, &["outside RAM"]);
 }
 
 #[test]
@@ -373,7 +330,7 @@ fn jack_run_honours_a_preset_stack_pointer_under_both_profiles() {
     // so SP is 315 at the halt (the desktop VM emulator's figure).
     let o = jack("run", src.path(), &["--set", "0=300", "--ram", "0..0"]);
     assert!(o.status.success(), "{}", text(&o));
-    assert!(text(&o).contains("RAM[0..0]: 315\n"), "{}", text(&o));
+    assert_says(&o, "RAM[0..0]: 315\n");
     // Web: seven 0s and Main.main's frame from 300, then Sys.halt's 0.
     let o = jack(
         "run",
@@ -381,7 +338,7 @@ fn jack_run_honours_a_preset_stack_pointer_under_both_profiles() {
         &["--set", "0=300", "--ram", "0..0", "--profile", "web"],
     );
     assert!(o.status.success(), "{}", text(&o));
-    assert!(text(&o).contains("RAM[0..0]: 313\n"), "{}", text(&o));
+    assert_says(&o, "RAM[0..0]: 313\n");
 }
 
 #[test]
@@ -406,8 +363,7 @@ fn jack_run_takes_a_vm_file_and_stops_an_unbudgeted_run_in_an_idle_loop() {
         &file,
         &["--max-instructions", "100", "--profile", "web"],
     );
-    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("instructions: 100\n"), "{}", text(&o));
+    assert_status(&o, 1, &["instructions: 100\n"]);
 }
 
 #[test]
@@ -424,13 +380,13 @@ fn jack_run_loads_files_in_a_stated_order_for_the_statics() {
     )
     .unwrap();
     let o = jack("run", dir.path(), &["--ram", "16..17"]);
-    assert!(text(&o).contains("RAM[16..17]: 11 22\n"), "{}", text(&o));
+    assert_says(&o, "RAM[16..17]: 11 22\n");
     let o = jack(
         "run",
         dir.path(),
         &["--ram", "16..17", "--static-order", "Main,A"],
     );
-    assert!(text(&o).contains("RAM[16..17]: 22 11\n"), "{}", text(&o));
+    assert_says(&o, "RAM[16..17]: 22 11\n");
     let o = jack("run", dir.path(), &["--static-order", "B"]);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
 }
@@ -451,7 +407,7 @@ fn jack_run_stops_a_runaway_program_at_its_budget_with_the_call_stack() {
         src.path(),
         &["--max-instructions", "1000", "--engine", "auto"],
     );
-    assert!(text(&o).contains("compiled: 0 (0.00%)\n"), "{}", text(&o));
+    assert_says(&o, "compiled: 0 (0.00%)\n");
     let o = jack(
         "run",
         src.path(),

@@ -5,7 +5,7 @@
 
 mod binary;
 
-use binary::{harness_in, text};
+use binary::{assert_says, assert_status, harness_in, text};
 use std::path::Path;
 use std::process::Output;
 
@@ -42,15 +42,6 @@ fn run(dir: &Path, args: &[&str]) -> Output {
     harness_in(dir, args)
 }
 
-fn assert_status(o: &Output, code: i32, names: &[&str]) {
-    let t = text(o);
-    assert_eq!(o.status.code(), Some(code), "{t}");
-    assert!(!t.contains("panicked"), "{t}");
-    for name in names {
-        assert!(t.contains(name), "`{name}` is not named: {t}");
-    }
-}
-
 #[test]
 fn diff_says_what_diverged_and_what_was_not_compared() {
     let p = project();
@@ -58,11 +49,7 @@ fn diff_says_what_diverged_and_what_was_not_compared() {
     assert_status(&o, 1, &["diverged: hang vs ref-f64 on sdf-small"]);
     let o = run(p.path(), &["diff", "ref-f316", "crash", "--level", "ops"]);
     assert_status(&o, 3, &["failed: crash on ops-small", "ZeroDivisionError"]);
-    assert!(
-        text(&o).contains("no divergence on 100 vectors"),
-        "{}",
-        text(&o)
-    );
+    assert_says(&o, "no divergence on 100 vectors");
     let o = run(
         p.path(),
         &["diff", "ref-f316", "no-start", "--level", "ops"],
@@ -80,11 +67,7 @@ fn diff_with_several_implementations_runs_every_one_that_opens() {
         &["diff", "ref-f316", "no-start", "jack", "--level", "ops"],
     );
     assert_status(&o, 3, &["failed: no-start (open)", "ref-f316 vs jack"]);
-    assert!(
-        text(&o).contains("no divergence on 435 vectors"),
-        "{}",
-        text(&o)
-    );
+    assert_says(&o, "no divergence on 435 vectors");
     let o = run(
         p.path(),
         &[
@@ -270,7 +253,7 @@ fn merge_carries_every_shards_failure_and_counts_what_was_compared() {
             "crash on ops-nightly (shard 1/2)",
         ],
     );
-    assert!(text(&o).contains("on 200 cases"), "{}", text(&o));
+    assert_says(&o, "on 200 cases");
     let o = run(p.path(), &["merge", "shards/0"]);
     assert_status(&o, 3, &["missing: shard 1/2"]);
     let o = run(
@@ -489,7 +472,7 @@ fn a_jack_port_that_loops_fails_with_its_call_stack() {
     let p = jack_port_looping_in("mod2");
     let o = run(p.path(), &["diff", "ref-f316", "port", "--level", "ops"]);
     assert_status(&o, 1, &["diverged: ref-f316 vs port on ops-small"]);
-    assert!(text(&o).contains("port: hang"), "{}", text(&o));
+    assert_says(&o, "port: hang");
     let p = jack_port_looping_in("add");
     for args in [
         &[

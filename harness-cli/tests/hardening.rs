@@ -1,6 +1,9 @@
 //! Reproducers of hostile runs (issue 20): each once panicked, hung, left a
 //! partial file or gave a misleading message.
 
+mod binary;
+
+use binary::{assert_says, assert_status, text};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -27,14 +30,6 @@ fn harness_within(args: &[&str], limit: Duration) -> Output {
 
 fn harness(args: &[&str]) -> Output {
     harness_within(args, Duration::from_secs(300))
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
 }
 
 fn s(p: &Path) -> &str {
@@ -85,8 +80,7 @@ fn jack_run_refuses_a_screen_it_cannot_write_before_running() {
     let prev = src.path().join("prev.jpg");
     std::fs::write(&prev, b"an earlier screen").unwrap();
     let o = harness(&["jack", "run", s(src.path()), "--screen", s(&prev)]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("does not end in .png"), "{}", text(&o));
+    assert_status(&o, 2, &["does not end in .png"]);
     assert!(!text(&o).contains("instructions:"), "it ran: {}", text(&o));
     assert_eq!(std::fs::read(&prev).unwrap(), b"an earlier screen");
     let png = src.path().join("screen.png");
@@ -108,12 +102,7 @@ fn jack_compile_writes_every_class_or_none() {
     let out = tempfile::tempdir().unwrap();
     std::fs::create_dir(out.path().join("Main.vm")).unwrap();
     let o = harness(&["jack", "compile", s(src.path()), "--out", s(out.path())]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("Main.vm exists and is not a file"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["Main.vm exists and is not a file"]);
     assert_eq!(entries(out.path()), vec!["Main.vm"], "no partial output");
     std::fs::remove_dir(out.path().join("Main.vm")).unwrap();
     let o = harness(&["jack", "compile", s(src.path()), "--out", s(out.path())]);
@@ -167,8 +156,7 @@ fn diff_report_leaves_no_stale_repro_files() {
     let file = report.path().join("file");
     std::fs::write(&file, "x").unwrap();
     let o = harness(&["diff", "ref-f316", "ref-f316", "--report", s(&file)]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("is not a directory"), "{}", text(&o));
+    assert_status(&o, 2, &["is not a directory"]);
 }
 
 #[test]
@@ -177,12 +165,7 @@ fn nightly_refuses_an_existing_file_as_out_before_the_run() {
     let file = dir.path().join("report");
     std::fs::write(&file, "x").unwrap();
     let o = harness_within(&["nightly", "--out", s(&file)], Duration::from_secs(30));
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("exists and is not a directory"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["exists and is not a directory"]);
     assert!(!text(&o).contains("nightly: "), "a step ran: {}", text(&o));
 }
 
@@ -194,12 +177,7 @@ fn non_utf8_jack_source_is_located() {
     )]);
     let out = tempfile::tempdir().unwrap();
     let o = harness(&["jack", "compile", s(src.path()), "--out", s(out.path())]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("Main.jack:2:9: not valid UTF-8 text"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["Main.jack:2:9: not valid UTF-8 text"]);
 }
 
 #[test]
@@ -221,18 +199,13 @@ fn an_error_source_is_printed_once() {
 #[test]
 fn an_out_of_range_pixel_is_named() {
     let o = harness(&["localize", "ref-f316", "ref-f316", "--pixel", "99999,99999"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("--pixel: (99999,99999) is outside the 512x256 image"),
-        "{}",
-        text(&o)
+    assert_status(
+        &o,
+        2,
+        &["--pixel: (99999,99999) is outside the 512x256 image"],
     );
     let o = harness(&["localize", "ref-f316", "ref-f316", "--pixel", "1,x"]);
-    assert!(
-        text(&o).contains("`x` in `1,x` is not a number"),
-        "{}",
-        text(&o)
-    );
+    assert_says(&o, "`x` in `1,x` is not a number");
     let o = harness(&[
         "localize",
         "ref-f316",
@@ -242,11 +215,7 @@ fn an_out_of_range_pixel_is_named() {
         "--a",
         "0,99999,1",
     ]);
-    assert!(
-        text(&o).contains("--a: `99999` is out of range"),
-        "{}",
-        text(&o)
-    );
+    assert_says(&o, "--a: `99999` is out of range");
 }
 
 /// Jack that the official compiler accepts but the VM refuses to load: the
@@ -266,8 +235,7 @@ fn load_errors_of_compiled_jack_point_at_the_jack_source() {
     for (source, expected) in cases {
         let src = dir_with(&[("Main.jack", source)]);
         let o = harness(&["jack", "run", s(src.path())]);
-        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-        assert!(text(&o).contains(expected), "{expected}: {}", text(&o));
+        assert_status(&o, 2, &[expected]);
     }
 }
 
@@ -282,8 +250,7 @@ fn fifos_and_devices_are_refused_as_inputs() {
     let limit = Duration::from_secs(30);
     for path in [s(&fifo), "/dev/zero"] {
         let o = harness_within(&["diff", "ref-f316", "ref-f316", "--vectors", path], limit);
-        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-        assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
+        assert_status(&o, 2, &["is not a regular file"]);
         let png = dir.path().join("x.png");
         let o = harness_within(
             &[
@@ -297,8 +264,7 @@ fn fifos_and_devices_are_refused_as_inputs() {
             ],
             limit,
         );
-        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-        assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
+        assert_status(&o, 2, &["is not a regular file"]);
     }
 }
 
@@ -314,8 +280,7 @@ fn fifos_and_devices_are_refused_as_project_files_and_the_files_they_name() {
     let limit = Duration::from_secs(30);
     for path in [s(&fifo), "/dev/zero"] {
         let o = harness_within(&["cast", "--cast", path], limit);
-        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-        assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
+        assert_status(&o, 2, &["is not a regular file"]);
         let bindings =
             format!("[impl.port]\nkind = \"jack\"\nprogram = \".\"\nbindings = \"{path}\"\n");
         let shader =
@@ -324,7 +289,7 @@ fn fifos_and_devices_are_refused_as_project_files_and_the_files_they_name() {
             let file = dir.path().join(name);
             std::fs::write(&file, project).unwrap();
             let o = harness_within(&["cast", "--cast", s(&file)], limit);
-            assert!(text(&o).contains("is not a regular file"), "{}", text(&o));
+            assert_says(&o, "is not a regular file");
         }
     }
 }
@@ -408,11 +373,10 @@ fn a_report_never_replaces_a_folder_of_other_files_or_of_its_inputs() {
     let one = shards.join("1");
     for out in [&shards, &root.path().to_path_buf()] {
         let o = harness(&["merge", s(&zero), s(&one), "--out", s(out)]);
-        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-        assert!(
-            text(&o).contains(&format!("--out {} holds the shard report", s(out))),
-            "{}",
-            text(&o)
+        assert_status(
+            &o,
+            2,
+            &[&format!("--out {} holds the shard report", s(out))],
         );
         assert_eq!(entries(&shards), vec!["0", "1"]);
         assert_eq!(entries(&zero), vec!["report.json", "repro"]);
@@ -431,12 +395,7 @@ fn a_report_never_replaces_a_folder_of_other_files_or_of_its_inputs() {
         "--report",
         s(mine.path()),
     ]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("notes.txt, which no report writes"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["notes.txt, which no report writes"]);
     assert_eq!(entries(mine.path()), vec!["notes.txt"]);
     // An earlier report's folder is replaced as before.
     let o = harness(&["merge", s(&zero), s(&one), "--out", s(&merged)]);
@@ -448,11 +407,6 @@ fn a_report_never_replaces_a_folder_of_other_files_or_of_its_inputs() {
 #[test]
 fn a_point_beyond_the_float316_range_is_shown_compactly() {
     let o = harness(&["localize", "ref-f316", "ref-f64", "--point", "1e-300,0,0"]);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("--point: 1e-300 is not a Float316 value"),
-        "{}",
-        text(&o)
-    );
+    assert_status(&o, 2, &["--point: 1e-300 is not a Float316 value"]);
     assert!(!text(&o).contains("000000"), "{}", text(&o));
 }

@@ -7,7 +7,7 @@
 
 mod binary;
 
-use binary::{harness, text};
+use binary::{assert_says, harness, text};
 use std::path::Path;
 use std::process::Output;
 
@@ -223,7 +223,7 @@ fn a_bad_scene_file_fails_the_night_naming_the_field() {
     let out = dir.path().join("nightly");
     let o = night(&out, file.to_str().unwrap());
     assert_eq!(o.status.code(), Some(3), "not compared: {}", text(&o));
-    assert!(text(&o).contains("failed: scene "), "{}", text(&o));
+    assert_says(&o, "failed: scene ");
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     let problems = report["problems"].to_string();
@@ -238,10 +238,9 @@ fn an_unknown_scene_is_refused_before_the_run() {
     let dir = tempfile::tempdir().unwrap();
     let o = night(&dir.path().join("nightly"), "no-such-scene");
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(
-        text(&o).contains("neither a shipped scene (rtdemo, sdf-engine, seed, toon) nor a file"),
-        "{}",
-        text(&o)
+    assert_says(
+        &o,
+        "neither a shipped scene (rtdemo, sdf-engine, seed, toon) nor a file",
     );
     assert!(!text(&o).contains("nightly: open"), "{}", text(&o));
 }

@@ -6,7 +6,7 @@
 
 mod binary;
 
-use binary::{harness_in, text};
+use binary::{assert_status, harness_in, text};
 use std::path::{Path, PathBuf};
 
 fn small() -> PathBuf {
@@ -93,8 +93,7 @@ fn bad_input_exits_2_naming_the_file_or_the_field() {
     let dir = tempfile::tempdir().unwrap();
     let missing = dir.path().join("missing.json");
     let out = harness_in(dir.path(), &["tune", "--scene", missing.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
-    assert!(text(&out).contains("missing.json"), "{}", text(&out));
+    assert_status(&out, 2, &["missing.json"]);
 
     let mut v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(small()).unwrap()).unwrap();
@@ -102,24 +101,21 @@ fn bad_input_exits_2_naming_the_file_or_the_field() {
     let bad = dir.path().join("bad.json");
     std::fs::write(&bad, v.to_string()).unwrap();
     let out = harness_in(dir.path(), &["tune", "--scene", bad.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
-    assert!(text(&out).contains("variants[0].variant"), "{}", text(&out));
+    assert_status(&out, 2, &["variants[0].variant"]);
 
     let scene = small();
     let out = harness_in(
         dir.path(),
         &["tune", "--scene", scene.to_str().unwrap(), "--max-error=-1"],
     );
-    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
-    assert!(text(&out).contains("--max-error"), "{}", text(&out));
+    assert_status(&out, 2, &["--max-error"]);
 
     let seed = Path::new(env!("CARGO_MANIFEST_DIR")).join("../vectors/scenes/seed.json");
     let out = harness_in(
         dir.path(),
         &["tune", "--scene", seed.to_str().unwrap(), "--exhaustive"],
     );
-    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
-    assert!(text(&out).contains("--exhaustive: "), "{}", text(&out));
+    assert_status(&out, 2, &["--exhaustive: "]);
 
     std::fs::write(dir.path().join("state.json"), "{}").unwrap();
     let out = harness_in(
@@ -132,6 +128,5 @@ fn bad_input_exits_2_naming_the_file_or_the_field() {
             "state.json",
         ],
     );
-    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
-    assert!(text(&out).contains("--state"), "{}", text(&out));
+    assert_status(&out, 2, &["--state"]);
 }

@@ -22,6 +22,30 @@ pub fn harness_in(dir: &Path, args: &[&str]) -> Output {
         .expect("the binary runs")
 }
 
+/// Fail the test, showing the whole run, unless its output says `needle`.
+#[track_caller]
+#[allow(dead_code)] // not every test crate that includes this module checks output so
+pub fn assert_says(o: &Output, needle: &str) {
+    let t = text(o);
+    assert!(
+        t.contains(needle),
+        "expected {needle:?} in the output:\n{t}"
+    );
+}
+
+/// Fail the test, showing the whole run, unless it exited with `code`,
+/// without a panic, and its output says every one of `names`.
+#[track_caller]
+#[allow(dead_code)] // not every test crate that includes this module checks output so
+pub fn assert_status(o: &Output, code: i32, names: &[&str]) {
+    let t = text(o);
+    assert_eq!(o.status.code(), Some(code), "{t}");
+    assert!(!t.contains("panicked"), "{t}");
+    for name in names {
+        assert!(t.contains(name), "`{name}` is not named: {t}");
+    }
+}
+
 /// A run's standard output and error, as text.
 pub fn text(o: &Output) -> String {
     format!(

@@ -3,18 +3,14 @@
 //! that ends the run, the stack after `Main.main` returns, and registers a
 //! user preset before the run.
 
+#[path = "support/jack_main.rs"]
+mod jack_main;
+
 use hack_vm::{Config, Exit, Machine, Profile, Program};
 use std::sync::Arc;
 
 fn compile(main: &str) -> Arc<Program> {
-    let classes =
-        jack_compiler::compile_sources(&[("Main.jack", main)], jack_compiler::Profile::Desktop)
-            .unwrap_or_else(|e| panic!("compiles: {e}"));
-    let files: Vec<(String, String)> = classes
-        .into_iter()
-        .map(jack_compiler::VmClass::into_file)
-        .collect();
-    Program::from_sources(&files).expect("loads")
+    jack_main::compile_main(main, Profile::Desktop)
 }
 
 fn desktop(program: Arc<Program>) -> Machine {

@@ -3,22 +3,12 @@
 //! text, their step counts and screens pinned under both profiles; the
 //! desktop's stack overflow and the bounded web locals.
 
-use hack_vm::{Config, Exit, KeyScript, Machine, Profile, Program, Ram};
-use std::sync::Arc;
+#[path = "support/jack_main.rs"]
+mod jack_main;
 
-fn compile(main: &str, profile: Profile) -> Arc<Program> {
-    let compiler = match profile {
-        Profile::Desktop => jack_compiler::Profile::Desktop,
-        Profile::Web => jack_compiler::Profile::Web,
-    };
-    let classes = jack_compiler::compile_sources(&[("Main.jack", main)], compiler)
-        .unwrap_or_else(|e| panic!("compiles: {e}"));
-    let files: Vec<(String, String)> = classes
-        .into_iter()
-        .map(jack_compiler::VmClass::into_file)
-        .collect();
-    Program::from_sources(&files).expect("loads")
-}
+use hack_vm::{Config, Exit, KeyScript, Machine, Profile, Program, Ram};
+use jack_main::compile_main;
+use std::sync::Arc;
 
 fn run(program: Arc<Program>, profile: Profile, keys: KeyScript) -> Machine {
     let mut m = Machine::new(
@@ -37,7 +27,7 @@ fn run(program: Arc<Program>, profile: Profile, keys: KeyScript) -> Machine {
 fn both(main: &str, keys: &str, hold: u64) -> (Machine, Machine) {
     let keys = KeyScript::parse(keys, hold).unwrap();
     let [web, desktop] =
-        [Profile::Web, Profile::Desktop].map(|p| run(compile(main, p), p, keys.clone()));
+        [Profile::Web, Profile::Desktop].map(|p| run(compile_main(main, p), p, keys.clone()));
     (web, desktop)
 }
 
@@ -265,7 +255,7 @@ fn thirty_thousand_web_locals_zero_what_ram_holds_and_drop_the_rest() {
 
 fn web_machine(main: &str, keys: &str, hold: u64) -> Machine {
     Machine::new(
-        compile(main, Profile::Web),
+        compile_main(main, Profile::Web),
         Config {
             profile: Profile::Web,
             keys: KeyScript::parse(keys, hold).unwrap(),
