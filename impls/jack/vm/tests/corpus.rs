@@ -133,6 +133,48 @@ fn code_before_any_function_of_a_later_file_runs_compiled() {
     );
 }
 
+/// Calls at the limits of compiled calls run compiled: a callee of 64
+/// locals (on the web the call zeroes them) and a call of 250 arguments,
+/// each callee branching, so that it is called, not run inline. Over
+/// 100,000 steps only the block the budget ends in (at most the 250
+/// pushes and the call) is interpreted; a call sent to the interpreter
+/// would cost steps in each of the hundreds of rounds.
+#[test]
+fn calls_at_the_compiled_limits_run_compiled() {
+    let callee = |locals: usize| {
+        format!(
+            "function Main.f {locals}\npush argument 0\nif-goto ONE\npush constant 0\nreturn\n\
+             label ONE\npush constant 1\nreturn\n"
+        )
+    };
+    let call = |args: usize| {
+        format!(
+            "function Main.main 0\nlabel LOOP\n{}call Main.f {args}\npop temp 0\ngoto LOOP\n",
+            "push constant 1\n".repeat(args)
+        )
+    };
+    for (args, locals) in [(1, 64), (250, 0)] {
+        let program =
+            Program::from_sources(&[("Main.vm", &(call(args) + &callee(locals)))]).expect("loads");
+        for profile in [Profile::Desktop, Profile::Web] {
+            let config = Config {
+                profile,
+                engine: Engine::Native,
+                ..Config::default()
+            };
+            let mut m = Machine::new(program.clone(), config);
+            m.call("Main.main", &[], Some(0)).expect("Main.main exists");
+            let exit = m.run(Some(100_000));
+            assert!(matches!(exit, Exit::Budget { .. }), "{profile:?}: {exit}");
+            let interpreted = m.steps() - m.compiled_steps();
+            assert!(
+                interpreted <= 260,
+                "{profile:?}, {args} arguments, {locals} locals: {interpreted} steps interpreted"
+            );
+        }
+    }
+}
+
 /// The program of `sources` (from its start, or from a call of `entry`)
 /// runs 10,000 steps on the compiled engine under each of `profiles`,
 /// interpreting at most 8 of them.

@@ -187,4 +187,68 @@ mod tests {
         assert!(inline_return, "{map}");
         assert_eq!(super::kind(crate::program::Op::PushConst(7)), "PushConst");
     }
+
+    /// Whether `Main.main`'s code holds the return of `callee`, that is,
+    /// whether `callee` runs inline there (on the desktop).
+    fn runs_inline_in_main(source: &str, callee: &str) -> bool {
+        let (program, map) = map_of(source, Profile::Desktop);
+        let f = &program.functions[program.function_id(callee).expect("the callee") as usize];
+        let end = program.functions[program.function_id(callee).unwrap() as usize + 1..]
+            .first()
+            .map_or(u32::MAX, |next| next.start);
+        map.lines().any(|l| {
+            let cols: Vec<&str> = l.split('\t').collect();
+            let pc: u32 = cols[3].parse().unwrap();
+            cols[0] == "Main.main" && cols[5] == "Return" && (f.start..end).contains(&pc)
+        })
+    }
+
+    /// Inline runs go exactly as far as their limits: a chain of one-line
+    /// callees 8 deep, a callee of 250 arguments, one of 64 locals and a
+    /// run of 96 instructions with its nested runs all run inline; one
+    /// level, argument, local or instruction more is called.
+    #[test]
+    fn inline_runs_reach_their_limits_exactly() {
+        let chain = |depth: usize| {
+            let mut s =
+                String::from("function Main.main 0\npush constant 5\ncall Main.c1 1\nreturn\n");
+            for i in 1..depth {
+                s += &format!(
+                    "function Main.c{i} 0\npush argument 0\ncall Main.c{} 1\nreturn\n",
+                    i + 1
+                );
+            }
+            s + &format!("function Main.c{depth} 0\npush argument 0\nreturn\n")
+        };
+        assert!(runs_inline_in_main(&chain(8), "Main.c8"));
+        assert!(!runs_inline_in_main(&chain(9), "Main.c9"));
+        let args = |n: usize| {
+            "function Main.main 0\n".to_string()
+                + &"push constant 1\n".repeat(n)
+                + &format!("call Main.f {n}\nreturn\nfunction Main.f 0\npush argument 0\nreturn\n")
+        };
+        assert!(runs_inline_in_main(&args(250), "Main.f"));
+        assert!(!runs_inline_in_main(&args(251), "Main.f"));
+        let locals = |n: usize| {
+            format!(
+                "function Main.main 0\ncall Main.f 0\nreturn\n\
+                 function Main.f {n}\npush constant 1\nreturn\n"
+            )
+        };
+        assert!(runs_inline_in_main(&locals(64), "Main.f"));
+        assert!(!runs_inline_in_main(&locals(65), "Main.f"));
+        // Main.t's run: its own 6 instructions (its `function` line
+        // included) and three runs of Main.l, 30 each: 96 in all.
+        let total = |extra: usize| {
+            format!(
+                "function Main.main 0\npush constant 5\ncall Main.t 1\nreturn\n\
+                 function Main.t 0\npush argument 0\n{}call Main.l 1\ncall Main.l 1\n\
+                 call Main.l 1\nreturn\nfunction Main.l 0\npush argument 0\n{}return\n",
+                "neg\n".repeat(extra),
+                "neg\n".repeat(27)
+            )
+        };
+        assert!(runs_inline_in_main(&total(0), "Main.t"));
+        assert!(!runs_inline_in_main(&total(1), "Main.t"));
+    }
 }
