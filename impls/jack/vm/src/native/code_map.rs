@@ -251,4 +251,62 @@ mod tests {
         assert!(runs_inline_in_main(&total(0), "Main.t"));
         assert!(!runs_inline_in_main(&total(1), "Main.t"));
     }
+
+    /// The host code bytes of each `kind` instruction of `Main.f`, by
+    /// instruction, in program order.
+    fn code_bytes(map: &str, kind: &str) -> Vec<u32> {
+        let mut bytes = std::collections::BTreeMap::<u32, u32>::new();
+        for cols in map.lines().map(|l| l.split('\t').collect::<Vec<_>>()) {
+            if cols[0] == "Main.f" && cols[4] == "op" && cols[5] == kind {
+                let (start, end): (u32, u32) = (cols[1].parse().unwrap(), cols[2].parse().unwrap());
+                *bytes.entry(cols[3].parse().unwrap()).or_default() += end - start;
+            }
+        }
+        bytes.into_values().collect()
+    }
+
+    /// The `this` (`that`) accesses of a run after one `pop pointer` share
+    /// one address test, made at the first: the later ones are shorter.
+    #[test]
+    fn accesses_after_the_first_of_a_pointer_share_its_test() {
+        for (segment, kind) in [("this", "PushThis"), ("that", "PushThat")] {
+            let pointer = if segment == "this" { 0 } else { 1 };
+            let source = format!(
+                "function Main.main 0\npush constant 3000\ncall Main.f 1\nreturn\n\
+                 function Main.f 0\npush argument 0\npop pointer {pointer}\n\
+                 push {segment} 1\npush {segment} 2\npush {segment} 3\nadd\nadd\nreturn\n"
+            );
+            let (_, map) = map_of(&source, Profile::Web);
+            let bytes = code_bytes(&map, kind);
+            assert_eq!(bytes.len(), 3, "{map}");
+            assert!(
+                bytes[1] < bytes[0] && bytes[2] < bytes[0],
+                "{segment}: {bytes:?}"
+            );
+        }
+    }
+
+    /// On the desktop a `pop pointer` tests the pointer's range, which
+    /// vouches for word 0 of its segment: `push this 0` (`that 0`) after it
+    /// has no test of its own, and is shorter than `push this 1`, whose
+    /// word the range does not cover.
+    #[test]
+    fn word_0_after_a_desktop_pop_pointer_needs_no_test() {
+        for (segment, kind) in [("this", "PushThisChk"), ("that", "PushThatChk")] {
+            let pointer = if segment == "this" { 0 } else { 1 };
+            let access = |index: u16| {
+                let source = format!(
+                    "function Main.main 0\npush constant 3000\ncall Main.f 1\nreturn\n\
+                     function Main.f 0\npush argument 0\npop pointer {pointer}\n\
+                     push {segment} {index}\nreturn\n"
+                );
+                let (_, map) = map_of(&source, Profile::Desktop);
+                let bytes = code_bytes(&map, kind);
+                assert_eq!(bytes.len(), 1, "{map}");
+                bytes[0]
+            };
+            let (word_0, word_1) = (access(0), access(1));
+            assert!(word_0 < word_1, "{segment}: {word_0}, {word_1}");
+        }
+    }
 }
