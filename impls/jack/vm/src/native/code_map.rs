@@ -266,23 +266,30 @@ mod tests {
     }
 
     /// The `this` (`that`) accesses of a run after one `pop pointer` share
-    /// one address test, made at the first: the later ones are shorter.
+    /// one address test, made at the first: the later ones are shorter,
+    /// at small indices and at large ones (4,100 on; the test covers any
+    /// index that leaves 6 words below the end of RAM).
     #[test]
     fn accesses_after_the_first_of_a_pointer_share_its_test() {
         for (segment, kind) in [("this", "PushThis"), ("that", "PushThat")] {
-            let pointer = if segment == "this" { 0 } else { 1 };
-            let source = format!(
-                "function Main.main 0\npush constant 3000\ncall Main.f 1\nreturn\n\
-                 function Main.f 0\npush argument 0\npop pointer {pointer}\n\
-                 push {segment} 1\npush {segment} 2\npush {segment} 3\nadd\nadd\nreturn\n"
-            );
-            let (_, map) = map_of(&source, Profile::Web);
-            let bytes = code_bytes(&map, kind);
-            assert_eq!(bytes.len(), 3, "{map}");
-            assert!(
-                bytes[1] < bytes[0] && bytes[2] < bytes[0],
-                "{segment}: {bytes:?}"
-            );
+            for i in [1, 4100] {
+                let pointer = if segment == "this" { 0 } else { 1 };
+                let source = format!(
+                    "function Main.main 0\npush constant 3000\ncall Main.f 1\nreturn\n\
+                     function Main.f 0\npush argument 0\npop pointer {pointer}\n\
+                     push {segment} {i}\npush {segment} {}\npush {segment} {}\n\
+                     add\nadd\nreturn\n",
+                    i + 1,
+                    i + 2
+                );
+                let (_, map) = map_of(&source, Profile::Web);
+                let bytes = code_bytes(&map, kind);
+                assert_eq!(bytes.len(), 3, "{map}");
+                assert!(
+                    bytes[1] < bytes[0] && bytes[2] < bytes[0],
+                    "{segment} {i}: {bytes:?}"
+                );
+            }
         }
     }
 
@@ -308,5 +315,25 @@ mod tests {
             let (word_0, word_1) = (access(0), access(1));
             assert!(word_0 < word_1, "{segment}: {word_0}, {word_1}");
         }
+    }
+
+    /// The function's entry tests LCL and ARG once for every `local` and
+    /// `argument` index it uses, up to large ones (5,000 here): the access
+    /// itself carries no test, under twice as long as one of `argument 2`
+    /// (a longer displacement).
+    #[test]
+    fn large_segment_indices_are_tested_at_the_entry() {
+        let access = |index: u16| {
+            let source = format!(
+                "function Main.main 0\npush constant 1\ncall Main.f 1\nreturn\n\
+                 function Main.f 0\nlabel L\npush argument {index}\npop temp 0\ngoto L\n"
+            );
+            let (_, map) = map_of(&source, Profile::Web);
+            let bytes = code_bytes(&map, "PushArg");
+            assert_eq!(bytes.len(), 1, "{map}");
+            bytes[0]
+        };
+        let (small, large) = (access(2), access(5000));
+        assert!(large < 2 * small, "{small}, {large}");
     }
 }
