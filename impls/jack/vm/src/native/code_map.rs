@@ -268,27 +268,41 @@ mod tests {
     /// The `this` (`that`) accesses of a run after one `pop pointer` share
     /// one address test, made at the first: the later ones are shorter,
     /// at small indices and at large ones (4,100 on; the test covers any
-    /// index that leaves 6 words below the end of RAM).
+    /// index that leaves 6 words below the end of RAM). Without the `pop
+    /// pointer`, the web's test that the pointer was set is made once too.
     #[test]
     fn accesses_after_the_first_of_a_pointer_share_its_test() {
-        for (segment, kind) in [("this", "PushThis"), ("that", "PushThat")] {
-            for i in [1, 4100] {
-                let pointer = if segment == "this" { 0 } else { 1 };
-                let source = format!(
-                    "function Main.main 0\npush constant 3000\ncall Main.f 1\nreturn\n\
-                     function Main.f 0\npush argument 0\npop pointer {pointer}\n\
-                     push {segment} {i}\npush {segment} {}\npush {segment} {}\n\
-                     add\nadd\nreturn\n",
-                    i + 1,
-                    i + 2
-                );
-                let (_, map) = map_of(&source, Profile::Web);
-                let bytes = code_bytes(&map, kind);
-                assert_eq!(bytes.len(), 3, "{map}");
-                assert!(
-                    bytes[1] < bytes[0] && bytes[2] < bytes[0],
-                    "{segment} {i}: {bytes:?}"
-                );
+        for (segment, pointer) in [("this", 0), ("that", 1)] {
+            let popped = format!("push argument 0\npop pointer {pointer}\n");
+            let kind = |checked: bool| {
+                let kind = if segment == "this" {
+                    "PushThis"
+                } else {
+                    "PushThat"
+                };
+                if checked {
+                    format!("{kind}Chk")
+                } else {
+                    kind.to_string()
+                }
+            };
+            for (prelude, kind) in [(popped.as_str(), kind(false)), ("", kind(true))] {
+                for i in [1, 4100] {
+                    let source = format!(
+                        "function Main.main 0\npush constant 3000\ncall Main.f 1\nreturn\n\
+                         function Main.f 0\n{prelude}push {segment} {i}\npush {segment} {}\n\
+                         push {segment} {}\nadd\nadd\nreturn\n",
+                        i + 1,
+                        i + 2
+                    );
+                    let (_, map) = map_of(&source, Profile::Web);
+                    let bytes = code_bytes(&map, &kind);
+                    assert_eq!(bytes.len(), 3, "{map}");
+                    assert!(
+                        bytes[1] < bytes[0] && bytes[2] < bytes[0],
+                        "{kind} {i}: {bytes:?}"
+                    );
+                }
             }
         }
     }
