@@ -8,6 +8,7 @@ mod corpus;
 
 use corpus::{Work, CORPUS};
 use hack_vm::{Config, Engine, Exit, Machine, Profile, Program};
+use std::sync::Arc;
 
 /// Small runs: a round of each program, the jack-port's start and its
 /// first rows.
@@ -157,16 +158,7 @@ fn calls_at_the_compiled_limits_run_compiled() {
         let program =
             Program::from_sources(&[("Main.vm", &(call(args) + &callee(locals)))]).expect("loads");
         for profile in [Profile::Desktop, Profile::Web] {
-            let config = Config {
-                profile,
-                engine: Engine::Native,
-                ..Config::default()
-            };
-            let mut m = Machine::new(program.clone(), config);
-            m.call("Main.main", &[], Some(0)).expect("Main.main exists");
-            let exit = m.run(Some(100_000));
-            assert!(matches!(exit, Exit::Budget { .. }), "{profile:?}: {exit}");
-            let interpreted = m.steps() - m.compiled_steps();
+            let interpreted = interpreted_steps(&program, profile, Some("Main.main"), 100_000);
             assert!(
                 interpreted <= 260,
                 "{profile:?}, {args} arguments, {locals} locals: {interpreted} steps interpreted"
@@ -181,21 +173,33 @@ fn calls_at_the_compiled_limits_run_compiled() {
 fn runs_compiled(sources: &[(&str, &str)], profiles: &[Profile], entry: Option<&str>) {
     let program = Program::from_sources(sources).expect("loads");
     for &profile in profiles {
-        let config = Config {
-            profile,
-            engine: Engine::Native,
-            ..Config::default()
-        };
-        let mut m = Machine::new(program.clone(), config);
-        if let Some(f) = entry {
-            m.call(f, &[], Some(0)).expect("the entry exists");
-        }
-        let exit = m.run(Some(10_000));
-        assert!(matches!(exit, Exit::Budget { .. }), "{profile:?}: {exit}");
-        let interpreted = m.steps() - m.compiled_steps();
+        let interpreted = interpreted_steps(&program, profile, entry, 10_000);
         assert!(
             interpreted <= 8,
             "{profile:?}: {interpreted} steps interpreted"
         );
     }
+}
+
+/// How many of `budget` steps of `program` (from its start, or from a call
+/// of `entry`) the compiled engine leaves to the interpreter under
+/// `profile`; the run must end at the budget.
+fn interpreted_steps(
+    program: &Arc<Program>,
+    profile: Profile,
+    entry: Option<&str>,
+    budget: u64,
+) -> u64 {
+    let config = Config {
+        profile,
+        engine: Engine::Native,
+        ..Config::default()
+    };
+    let mut m = Machine::new(program.clone(), config);
+    if let Some(f) = entry {
+        m.call(f, &[], Some(0)).expect("the entry exists");
+    }
+    let exit = m.run(Some(budget));
+    assert!(matches!(exit, Exit::Budget { .. }), "{profile:?}: {exit}");
+    m.steps() - m.compiled_steps()
 }
