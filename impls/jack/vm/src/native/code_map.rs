@@ -192,14 +192,16 @@ mod tests {
     /// whether `callee` runs inline there (on the desktop).
     fn runs_inline_in_main(source: &str, callee: &str) -> bool {
         let (program, map) = map_of(source, Profile::Desktop);
-        let f = &program.functions[program.function_id(callee).expect("the callee") as usize];
-        let end = program.functions[program.function_id(callee).unwrap() as usize + 1..]
-            .first()
+        let id = program.function_id(callee).expect("the callee") as usize;
+        let start = program.functions[id].start;
+        let end = program
+            .functions
+            .get(id + 1)
             .map_or(u32::MAX, |next| next.start);
         map.lines().any(|l| {
             let cols: Vec<&str> = l.split('\t').collect();
             let pc: u32 = cols[3].parse().unwrap();
-            cols[0] == "Main.main" && cols[5] == "Return" && (f.start..end).contains(&pc)
+            cols[0] == "Main.main" && cols[5] == "Return" && (start..end).contains(&pc)
         })
     }
 
@@ -274,19 +276,15 @@ mod tests {
     fn accesses_after_the_first_of_a_pointer_share_its_test() {
         for (segment, pointer) in [("this", 0), ("that", 1)] {
             let popped = format!("push argument 0\npop pointer {pointer}\n");
-            let kind = |checked: bool| {
-                let kind = if segment == "this" {
-                    "PushThis"
-                } else {
-                    "PushThat"
-                };
-                if checked {
-                    format!("{kind}Chk")
-                } else {
-                    kind.to_string()
-                }
+            let push = if segment == "this" {
+                "PushThis"
+            } else {
+                "PushThat"
             };
-            for (prelude, kind) in [(popped.as_str(), kind(false)), ("", kind(true))] {
+            for (prelude, kind) in [
+                (popped.as_str(), push.to_string()),
+                ("", format!("{push}Chk")),
+            ] {
                 for i in [1, 4100] {
                     let source = format!(
                         "function Main.main 0\npush constant 3000\ncall Main.f 1\nreturn\n\
