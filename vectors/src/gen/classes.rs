@@ -92,7 +92,8 @@ pub fn class_of(op: Op, a: F316, b: F316) -> u64 {
 }
 
 /// Whether class `index` belongs to shard `k` of `n`: the first SplitMix64
-/// output seeded with the index, modulo `n` (a vector's shard depends only on its class).
+/// output seeded with the index, modulo `n` (a vector's shard depends only
+/// on its class).
 pub fn in_shard(index: u64, k: u32, n: u32) -> bool {
     common::SplitMix64::new(index).below(u64::from(n)) == u64::from(k)
 }

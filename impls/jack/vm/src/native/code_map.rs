@@ -254,17 +254,34 @@ mod tests {
         assert!(!runs_inline_in_main(&total(1), "Main.t"));
     }
 
+    /// The host code bytes of the map's instruction stretches (part `op`),
+    /// summed by the key `key` gives a stretch's columns (function, start,
+    /// end, instruction, part, kind; None: left out).
+    fn op_bytes<'m, K: Ord>(
+        map: &'m str,
+        key: impl Fn(&[&'m str]) -> Option<K>,
+    ) -> std::collections::BTreeMap<K, u32> {
+        let mut bytes = std::collections::BTreeMap::new();
+        for cols in map.lines().map(|l| l.split('\t').collect::<Vec<_>>()) {
+            if cols[4] != "op" {
+                continue;
+            }
+            if let Some(k) = key(&cols) {
+                let (start, end): (u32, u32) = (cols[1].parse().unwrap(), cols[2].parse().unwrap());
+                *bytes.entry(k).or_default() += end - start;
+            }
+        }
+        bytes
+    }
+
     /// The host code bytes of each `kind` instruction of `Main.f`, by
     /// instruction, in program order.
     fn code_bytes(map: &str, kind: &str) -> Vec<u32> {
-        let mut bytes = std::collections::BTreeMap::<u32, u32>::new();
-        for cols in map.lines().map(|l| l.split('\t').collect::<Vec<_>>()) {
-            if cols[0] == "Main.f" && cols[4] == "op" && cols[5] == kind {
-                let (start, end): (u32, u32) = (cols[1].parse().unwrap(), cols[2].parse().unwrap());
-                *bytes.entry(cols[3].parse().unwrap()).or_default() += end - start;
-            }
-        }
-        bytes.into_values().collect()
+        op_bytes(map, |cols| {
+            (cols[0] == "Main.f" && cols[5] == kind).then(|| cols[3].parse::<u32>().unwrap())
+        })
+        .into_values()
+        .collect()
     }
 
     /// The `this` (`that`) accesses of a run after one `pop pointer` share
@@ -359,14 +376,10 @@ mod tests {
                       return\nfunction Main.f 0\npush argument 0\npush argument 1\nadd\nreturn\n";
         let (program, map) = map_of(source, Profile::Web);
         let f = program.functions[program.function_id("Main.f").expect("Main.f") as usize].start;
-        let mut inline = std::collections::BTreeMap::<&str, u32>::new();
-        for cols in map.lines().map(|l| l.split('\t').collect::<Vec<_>>()) {
+        let inline = op_bytes(&map, |cols| {
             let pc: u32 = cols[3].parse().unwrap();
-            if cols[0] == "Main.main" && cols[4] == "op" && pc >= f {
-                let (start, end): (u32, u32) = (cols[1].parse().unwrap(), cols[2].parse().unwrap());
-                *inline.entry(cols[5]).or_default() += end - start;
-            }
-        }
+            (cols[0] == "Main.main" && pc >= f).then_some(cols[5])
+        });
         assert!(!inline.contains_key("PushArg"), "{inline:?}");
         let own = code_bytes(&map, "Return");
         assert_eq!(own.len(), 1, "{map}");
