@@ -167,6 +167,128 @@ fn calls_at_the_compiled_limits_run_compiled() {
     }
 }
 
+/// On the desktop `this` and `that` spans run compiled up to the last word
+/// of the range the desktop allows them: `this 14335` from THIS = 2048 is
+/// the heap's last word, 16383, and `that 22528` from THAT = 2048 is word
+/// 24576.
+#[test]
+fn desktop_spans_that_end_at_their_segments_last_word_run_compiled() {
+    for (segment, pointer, index) in [("this", 0, 14335), ("that", 1, 22528)] {
+        let source = format!(
+            "function Main.main 0\npush constant 2048\npop pointer {pointer}\nlabel LOOP\n\
+             push {segment} 0\npush {segment} {index}\nadd\npop temp 0\ngoto LOOP\n"
+        );
+        runs_compiled(
+            &[("Main.vm", &source)],
+            &[Profile::Desktop],
+            Some("Main.main"),
+        );
+    }
+}
+
+/// Stack ranges that fill the desktop stack exactly (its 1,791 words,
+/// SP from 256 to 2047) run compiled: code before any function, at SP =
+/// 256, pushing 1,791 words (each block tests its own range), and a
+/// function whose loop first pops the words below its LCL down to 256,
+/// then pushes to the end (its entry tests the whole range). Only the
+/// round the budget ends in is interpreted.
+#[test]
+fn stack_ranges_that_fill_the_desktop_stack_run_compiled() {
+    let round = |below: usize| {
+        let above = 1791 - below;
+        "pop temp 0\n".repeat(below)
+            + &"push constant 1\n".repeat(1791)
+            + &"pop temp 0\n".repeat(above)
+            + "goto LOOP\n"
+    };
+    let implicit =
+        Program::from_sources(&[("Main.vm", &format!("label LOOP\n{}", round(0)))]).expect("loads");
+    let interpreted = interpreted_steps(&implicit, Profile::Desktop, None, 100_000);
+    // (A round is 3,583 steps: 1,791 pops, 1,791 pushes and the goto.)
+    assert!(interpreted <= 3583, "{interpreted} steps interpreted");
+    // Main.main's LCL lies a few words above 256 (Sys.init's frame and its
+    // own): of the dips below it, one fits the stack and runs to the
+    // budget; the others stop at the stack's ends.
+    let mut fits = Vec::new();
+    for below in 0..16 {
+        let source = format!("function Main.main 0\nlabel LOOP\n{}", round(below));
+        let program = Program::from_sources(&[("Main.vm", &source)]).expect("loads");
+        let mut m = compiled_machine(program, Profile::Desktop);
+        match m.run(Some(100_000)) {
+            Exit::Budget { .. } => fits.push((below, m.steps() - m.compiled_steps())),
+            Exit::RuntimeError { message, .. } => {
+                assert!(message.starts_with("Stack overflow"), "{below}: {message}")
+            }
+            exit => panic!("{below}: {exit}"),
+        }
+    }
+    assert!(
+        matches!(fits[..], [(_, interpreted)] if interpreted <= 3583),
+        "{fits:?}"
+    );
+}
+
+/// On the web a function may move ARG into its own locals (here to local
+/// 1, with `pop constant 2`), so that its `argument` words lie at or above
+/// LCL. With no locals held in registers (the web holds none) nothing
+/// compiled depends on their order, and its loop runs compiled.
+#[test]
+fn an_arg_moved_into_the_locals_runs_compiled_on_the_web() {
+    let source = "function Main.main 0\npush constant 7\ncall Main.f 1\nreturn\n\
+                  function Main.f 2\npush constant 1\npop pointer 1\npush that 0\n\
+                  push constant 1\nadd\npop constant 2\nlabel LOOP\npush argument 0\n\
+                  push constant 1\nadd\npop local 0\ngoto LOOP\n";
+    runs_compiled(&[("Main.vm", source)], &[Profile::Web], Some("Main.main"));
+}
+
+/// Returns run compiled from frames high in RAM: on the web, 700 calls
+/// deep (LCL above 4,000), a loop calls a function without static depths,
+/// whose return tests its saved frame itself.
+#[test]
+fn returns_from_frames_high_in_ram_run_compiled() {
+    let source = "function Main.main 0\npush constant 700\ncall Main.g 1\nreturn\n\
+                  function Main.g 0\npush argument 0\nif-goto DEEPER\nlabel LOOP\n\
+                  push constant 1\ncall Main.f 1\npop temp 0\ngoto LOOP\nlabel DEEPER\n\
+                  push argument 0\npush constant 1\nsub\ncall Main.g 1\nreturn\n\
+                  function Main.f 0\npush constant 5\npush argument 0\nif-goto ONE\n\
+                  push constant 1\nlabel ONE\nreturn\n";
+    let program = Program::from_sources(&[("Main.vm", source)]).expect("loads");
+    let interpreted = interpreted_steps(&program, Profile::Web, Some("Main.main"), 100_000);
+    assert!(interpreted <= 8, "{interpreted} steps interpreted");
+}
+
+/// On the desktop a call's frame test does not count a called callee's
+/// locals (its `function` line tests them): a loop at the bottom of a
+/// recursion near the stack's end, with a call it never makes of a
+/// function of 60 locals, runs compiled until the recursive call's own
+/// frame no longer fits, one depth before the stack overflows.
+#[test]
+fn desktop_calls_leave_a_called_callees_locals_to_its_function_line() {
+    let mut loop_interpreted = Vec::new();
+    for depth in 250.. {
+        let source = format!(
+            "function Main.main 0\npush constant {depth}\ncall Main.g 1\nreturn\n\
+             function Main.g 0\npush argument 0\nif-goto DEEPER\nlabel LOOP\n\
+             push constant 0\nif-goto NEVER\ngoto LOOP\nlabel NEVER\ncall Main.big 0\n\
+             pop temp 0\ngoto LOOP\nlabel DEEPER\npush argument 0\npush constant 1\nsub\n\
+             call Main.g 1\nreturn\nfunction Main.big 60\npush constant 0\nif-goto ONE\n\
+             push constant 5\nreturn\nlabel ONE\npush constant 6\nreturn\n"
+        );
+        let program = Program::from_sources(&[("Main.vm", &source)]).expect("loads");
+        let mut m = compiled_machine(program, Profile::Desktop);
+        m.call("Main.main", &[], Some(0)).expect("the entry exists");
+        match m.run(Some(100_000)) {
+            Exit::Budget { .. } if m.steps() - m.compiled_steps() > 1000 => {
+                loop_interpreted.push(depth)
+            }
+            Exit::Budget { .. } => {}
+            Exit::RuntimeError { message, .. } if message.starts_with("Stack overflow") => break,
+            exit => panic!("{depth}: {exit}"),
+        }
+    }
+    assert!(loop_interpreted.len() <= 1, "{loop_interpreted:?}");
+}
+
 /// The program of `sources` (from its start, or from a call of `entry`)
 /// runs 10,000 steps on the compiled engine under each of `profiles`,
 /// interpreting at most 8 of them.
@@ -190,16 +312,21 @@ fn interpreted_steps(
     entry: Option<&str>,
     budget: u64,
 ) -> u64 {
-    let config = Config {
-        profile,
-        engine: Engine::Native,
-        ..Config::default()
-    };
-    let mut m = Machine::new(program.clone(), config);
+    let mut m = compiled_machine(program.clone(), profile);
     if let Some(f) = entry {
         m.call(f, &[], Some(0)).expect("the entry exists");
     }
     let exit = m.run(Some(budget));
     assert!(matches!(exit, Exit::Budget { .. }), "{profile:?}: {exit}");
     m.steps() - m.compiled_steps()
+}
+
+/// A machine on the compiled engine from the first step.
+fn compiled_machine(program: Arc<Program>, profile: Profile) -> Machine {
+    let config = Config {
+        profile,
+        engine: Engine::Native,
+        ..Config::default()
+    };
+    Machine::new(program, config)
 }

@@ -385,4 +385,29 @@ mod tests {
         assert_eq!(own.len(), 1, "{map}");
         assert!(3 * inline["Return"] < own[0], "{inline:?}, own {own:?}");
     }
+
+    /// Where depths are static, the function's entry tests LCL against
+    /// its stack range, from 256 less the lowest stack word up. While that
+    /// bound is at least 10 it shows the return its saved frame (LCL - 5 ..
+    /// LCL - 1 plain words), and the return makes no test of its own: with
+    /// 246 locals, whose stack starts 246 words above LCL, the return is
+    /// shorter than with 247.
+    #[test]
+    fn returns_rely_on_the_entrys_range_test_while_it_shows_the_frame() {
+        for profile in [Profile::Desktop, Profile::Web] {
+            let return_bytes = |locals: usize| {
+                let source = format!(
+                    "function Main.main 0\npush constant 1\ncall Main.f 1\nreturn\n\
+                     function Main.f {locals}\npush constant 5\npush argument 0\nif-goto ONE\n\
+                     push constant 1\nadd\nlabel ONE\nreturn\n"
+                );
+                let (_, map) = map_of(&source, profile);
+                let bytes = code_bytes(&map, "Return");
+                assert_eq!(bytes.len(), 1, "{map}");
+                bytes[0]
+            };
+            let (shown, tested) = (return_bytes(246), return_bytes(247));
+            assert!(shown < tested, "{profile:?}: {shown}, {tested}");
+        }
+    }
 }
