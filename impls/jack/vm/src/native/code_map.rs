@@ -410,4 +410,34 @@ mod tests {
             assert!(shown < tested, "{profile:?}: {shown}, {tested}");
         }
     }
+
+    /// A desktop return leaves R13 and R14 holding its frame and RET word,
+    /// as the desktop tool's return does. A run nested in an inline run
+    /// leaves those two stores to the next return or leave, which
+    /// overwrites them: its return is shorter than the same function's
+    /// return where it is the outermost run.
+    #[test]
+    fn nested_inline_returns_leave_r13_and_r14_to_the_next_return() {
+        let g = "function Main.g 0\npush argument 0\npush argument 1\nsub\nreturn\n";
+        let nested = format!(
+            "function Main.main 0\npush constant 2\ncall Main.f 1\nreturn\n\
+             function Main.f 0\npush argument 0\npush constant 3\nadd\n\
+             push argument 0\ncall Main.g 2\nreturn\n{g}"
+        );
+        let outermost = format!(
+            "function Main.main 0\npush constant 2\npush constant 3\ncall Main.g 2\nreturn\n{g}"
+        );
+        let g_return = |source: &str| {
+            let (program, map) = map_of(source, Profile::Desktop);
+            let g =
+                program.functions[program.function_id("Main.g").expect("Main.g") as usize].start;
+            let bytes = op_bytes(&map, |cols| {
+                let pc: u32 = cols[3].parse().unwrap();
+                (cols[0] == "Main.main" && cols[5] == "Return" && pc >= g).then_some(())
+            });
+            bytes[&()]
+        };
+        let (nested, outermost) = (g_return(&nested), g_return(&outermost));
+        assert!(nested < outermost, "{nested}, {outermost}");
+    }
 }
