@@ -289,6 +289,22 @@ fn desktop_calls_leave_a_called_callees_locals_to_its_function_line() {
     assert!(loop_interpreted.len() <= 1, "{loop_interpreted:?}");
 }
 
+/// A block's stack test covers the words the block pops and pushes, not
+/// its final call's arguments, which the call's own test covers: a loop
+/// of code before any function pops the word at 256, then calls with one
+/// argument, the word at 255 under the stack, and runs compiled.
+#[test]
+fn a_call_whose_argument_lies_under_the_stack_runs_compiled() {
+    let source = "push constant 0\nlabel LOOP\npop temp 0\ncall Main.f 1\npush constant 0\n\
+                  goto LOOP\nfunction Main.f 0\npush argument 0\nif-goto ONE\npush constant 3\n\
+                  return\nlabel ONE\npush constant 4\nreturn\n";
+    runs_compiled(
+        &[("Main.vm", source)],
+        &[Profile::Desktop, Profile::Web],
+        None,
+    );
+}
+
 /// The program of `sources` (from its start, or from a call of `entry`)
 /// runs 10,000 steps on the compiled engine under each of `profiles`,
 /// interpreting at most 8 of them.
