@@ -284,6 +284,15 @@ mod tests {
         .collect()
     }
 
+    /// The host code bytes of `Main.f`'s one `kind` instruction in the
+    /// program of VM code `source` under `profile`.
+    fn only_code_bytes(source: &str, profile: Profile, kind: &str) -> u32 {
+        let (_, map) = map_of(source, profile);
+        let bytes = code_bytes(&map, kind);
+        assert_eq!(bytes.len(), 1, "{map}");
+        bytes[0]
+    }
+
     /// The `this` (`that`) accesses of a run after one `pop pointer` share
     /// one address test, made at the first: the later ones are shorter,
     /// at small indices and at large ones (4,100 on; the test covers any
@@ -336,10 +345,7 @@ mod tests {
                      function Main.f 0\npush argument 0\npop pointer {pointer}\n\
                      push {segment} {index}\nreturn\n"
                 );
-                let (_, map) = map_of(&source, Profile::Desktop);
-                let bytes = code_bytes(&map, kind);
-                assert_eq!(bytes.len(), 1, "{map}");
-                bytes[0]
+                only_code_bytes(&source, Profile::Desktop, kind)
             };
             let (word_0, word_1) = (access(0), access(1));
             assert!(word_0 < word_1, "{segment}: {word_0}, {word_1}");
@@ -357,10 +363,7 @@ mod tests {
                 "function Main.main 0\npush constant 1\ncall Main.f 1\nreturn\n\
                  function Main.f 0\nlabel L\npush argument {index}\npop temp 0\ngoto L\n"
             );
-            let (_, map) = map_of(&source, Profile::Web);
-            let bytes = code_bytes(&map, "PushArg");
-            assert_eq!(bytes.len(), 1, "{map}");
-            bytes[0]
+            only_code_bytes(&source, Profile::Web, "PushArg")
         };
         let (small, large) = (access(2), access(5000));
         assert!(large < 2 * small, "{small}, {large}");
@@ -401,10 +404,7 @@ mod tests {
                      function Main.f {locals}\npush constant 5\npush argument 0\nif-goto ONE\n\
                      push constant 1\nadd\nlabel ONE\nreturn\n"
                 );
-                let (_, map) = map_of(&source, profile);
-                let bytes = code_bytes(&map, "Return");
-                assert_eq!(bytes.len(), 1, "{map}");
-                bytes[0]
+                only_code_bytes(&source, profile, "Return")
             };
             let (shown, tested) = (return_bytes(246), return_bytes(247));
             assert!(shown < tested, "{profile:?}: {shown}, {tested}");
