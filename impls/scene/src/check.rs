@@ -487,25 +487,21 @@ impl Walk<'_> {
         let kind = node_kind(node);
         let p = format!("nodes.{name}.{kind}");
         self.shapes.insert(kind);
-        let (transform, material) = match node {
+        match node {
             Node::Plane(s) => {
                 finite(&format!("{p}.height"), &[s.height])?;
-                (&s.transform, &s.material)
             }
             Node::Sphere(s) => {
                 positive(&format!("{p}.radius"), s.radius)?;
-                (&s.transform, &s.material)
             }
             Node::Torus(s) => {
                 positive(&format!("{p}.ring"), s.ring)?;
                 positive(&format!("{p}.tube"), s.tube)?;
-                (&s.transform, &s.material)
             }
             Node::Box(s) => {
                 for (i, &c) in s.size.iter().enumerate() {
                     positive(&format!("{p}.size[{i}]"), c)?;
                 }
-                (&s.transform, &s.material)
             }
             Node::RoundBox(s) => {
                 positive(&format!("{p}.radius"), s.radius)?;
@@ -518,7 +514,6 @@ impl Walk<'_> {
                         ));
                     }
                 }
-                (&s.transform, &s.material)
             }
             Node::Capsule(s) => {
                 finite(&format!("{p}.a"), &s.a)?;
@@ -527,15 +522,14 @@ impl Walk<'_> {
                 if s.a == s.b {
                     return Err(err(format!("{p}.b"), "equals a: the segment is empty"));
                 }
-                (&s.transform, &s.material)
             }
             Node::Cylinder(s) => {
                 positive(&format!("{p}.radius"), s.radius)?;
                 positive(&format!("{p}.height"), s.height)?;
-                (&s.transform, &s.material)
             }
             _ => unreachable!("a leaf"),
-        };
+        }
+        let (transform, material) = node.shape_parts().expect("a leaf is a shape");
         if transform.len() > MAX_TRANSFORMS {
             return Err(err(
                 format!("nodes.{name}.transform"),
@@ -568,8 +562,8 @@ impl Walk<'_> {
                 format!("no material named `{material}`"),
             ));
         }
-        if !self.materials.contains(material) {
-            self.materials.push(material.clone());
+        if !self.materials.iter().any(|m| m == material) {
+            self.materials.push(material.to_string());
         }
         if let Node::Sphere(s) = node {
             if matches!(self.d.method, Method::AnalyticSpheres { .. }) {

@@ -274,6 +274,27 @@ pub enum Node {
     Repeat(Repeat),
 }
 
+impl Node {
+    /// A shape's placement (its transforms, applied first listed first) and
+    /// its material's name; None for a combination or a repeat.
+    pub fn shape_parts(&self) -> Option<(&[Transform], &str)> {
+        Some(match self {
+            Node::Plane(s) => (&s.transform, &s.material),
+            Node::Sphere(s) => (&s.transform, &s.material),
+            Node::Torus(s) => (&s.transform, &s.material),
+            Node::Box(s) => (&s.transform, &s.material),
+            Node::RoundBox(s) => (&s.transform, &s.material),
+            Node::Capsule(s) => (&s.transform, &s.material),
+            Node::Cylinder(s) => (&s.transform, &s.material),
+            Node::Union(_)
+            | Node::SmoothUnion(_)
+            | Node::Subtraction(_)
+            | Node::Intersection(_)
+            | Node::Repeat(_) => return None,
+        })
+    }
+}
+
 /// A placement step.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields, rename_all = "snake_case")]

@@ -229,7 +229,7 @@ impl Lower<'_> {
     /// A shape with its placement and colour.
     fn leaf(&mut self, name: &str, node: &Node, p: Reg) -> Surf {
         let origin = format!("nodes.{name}");
-        let (transform, material) = leaf_parts(node);
+        let (transform, material) = node.shape_parts().expect("a leaf is a shape");
         let (q, scale) = self.place(p, transform, &origin);
         let sd = self.shape(node, q, &origin);
         let sd = match scale {
@@ -1254,20 +1254,6 @@ impl Lower<'_> {
         });
         let level = b.select(white, one, zero);
         (v, level, dither)
-    }
-}
-
-/// A leaf's transforms and material name.
-fn leaf_parts(node: &Node) -> (&[Transform], &str) {
-    match node {
-        Node::Plane(s) => (&s.transform, &s.material),
-        Node::Sphere(s) => (&s.transform, &s.material),
-        Node::Torus(s) => (&s.transform, &s.material),
-        Node::Box(s) => (&s.transform, &s.material),
-        Node::RoundBox(s) => (&s.transform, &s.material),
-        Node::Capsule(s) => (&s.transform, &s.material),
-        Node::Cylinder(s) => (&s.transform, &s.material),
-        _ => unreachable!("only leaves have a material"),
     }
 }
 

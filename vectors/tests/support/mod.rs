@@ -121,16 +121,9 @@ impl<'a> Oracle<'a> {
     /// A shape: the point taken into the shape's own space (its transforms
     /// undone, the last first), the distance scaled back.
     fn shape(&self, node: &Node, p: V) -> Surface {
-        let (transform, material) = match node {
-            Node::Plane(s) => (&s.transform, &s.material),
-            Node::Sphere(s) => (&s.transform, &s.material),
-            Node::Torus(s) => (&s.transform, &s.material),
-            Node::Box(s) => (&s.transform, &s.material),
-            Node::RoundBox(s) => (&s.transform, &s.material),
-            Node::Capsule(s) => (&s.transform, &s.material),
-            Node::Cylinder(s) => (&s.transform, &s.material),
-            _ => unreachable!("combinations are evaluated by `at`"),
-        };
+        let (transform, material) = node
+            .shape_parts()
+            .expect("combinations are evaluated by `at`");
         let mut q = p;
         let mut scale = 1.0;
         for t in transform.iter().rev() {
@@ -144,7 +137,7 @@ impl<'a> Oracle<'a> {
             }
         }
         let sd = scale * local_distance(node, q);
-        let (col, col_certain) = match self.0.materials.get(material.as_str()) {
+        let (col, col_certain) = match self.0.materials.get(material) {
             Some(m) => colour(m, q),
             None => (None, true),
         };
