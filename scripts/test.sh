@@ -21,11 +21,13 @@ cargo test --workspace --locked "$@"
 # cargo is asked for their paths with the same package selection, so
 # nothing is built again (a narrower selection would resolve features
 # differently and rebuild much of the workspace).
+# An entry is "PACKAGE BINARY", then, after a "|", the test filters that
+# pick its share of a binary (the command line's integration tests are one
+# binary, a module per file; `check::` would also match `gpu_check::`).
 native=(
     "hack-vm *" "jack *" "jack-compiler *"
     "harness lib" "harness jack" "harness selftest"
-    "harness-cli bindings" "harness-cli check" "harness-cli cli" "harness-cli containment"
-    "harness-cli hardening"
+    "harness-cli integration|bindings:: check:: cli:: containment:: hardening:: --skip gpu_check::"
 )
 binaries=$(cargo test --workspace --locked --no-run --message-format=json "$@" 2>/dev/null |
     python3 -c '
@@ -52,10 +54,13 @@ while IFS=$'\t' read -r package name dir exe; do
     # draw more cases at the price of the first (70 s).
     [[ "$package $name" == "hack-vm proptests" ]] && continue
     for wanted in "${native[@]}"; do
+        pattern=${wanted%%|*}
+        filters=()
+        [[ "$wanted" == *"|"* ]] && read -ra filters <<<"${wanted#*|}"
         # shellcheck disable=SC2053  # the pattern's * is meant
-        if [[ "$package $name" == $wanted ]]; then
-            echo "     Running $exe (HACK_VM_ENGINE=native)"
-            (cd "$dir" && HACK_VM_ENGINE=native "$exe")
+        if [[ "$package $name" == $pattern ]]; then
+            echo "     Running $exe ${filters[*]} (HACK_VM_ENGINE=native)"
+            (cd "$dir" && HACK_VM_ENGINE=native "$exe" "${filters[@]}")
             found[$wanted]=1
             break
         fi

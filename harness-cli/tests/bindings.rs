@@ -4,8 +4,7 @@
 //! localized to the operation and its Jack call path, bad bindings refused
 //! with the field named.
 
-#[path = "../../harness/tests/support/mod.rs"]
-mod support;
+use crate::support;
 
 use common::Outcome;
 use harness::cast::Cast;
@@ -13,7 +12,7 @@ use harness::implementation::{Answer, Implementation};
 use harness::localize::{localize, Localization};
 use std::path::{Path, PathBuf};
 
-mod binary;
+use crate::binary;
 use vectors::{Level, PixelVector, Vector};
 
 fn root() -> PathBuf {

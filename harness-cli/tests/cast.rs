@@ -5,7 +5,7 @@
 //! f32 one (`my-f32`); each is found by cast, diff, localize, check, bench
 //! and nightly, in the group its number type decides.
 
-mod binary;
+use crate::binary;
 
 use binary::{assert_says, assert_status, harness_in, text};
 use std::path::{Path, PathBuf};

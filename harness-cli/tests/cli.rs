@@ -1,7 +1,7 @@
 //! The command-line contract of diff, localize, selftest, bench and jack: exit codes,
 //! repro files that reproduce, errors that name the field.
 
-mod binary;
+use crate::binary;
 
 use binary::{assert_says, assert_status, harness, text};
 use std::path::Path;

@@ -19,8 +19,7 @@ use vectors::{Level, OpVector, Vector, VectorSet};
 
 // This file uses the agreement check only.
 #[allow(dead_code)]
-#[path = "../../harness/tests/support/mod.rs"]
-mod support;
+use crate::support;
 
 const ADAPTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/adapters/misbehaving.py");
 

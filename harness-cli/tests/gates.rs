@@ -3,7 +3,7 @@
 //! compares, with the status the verdict table gives (1 beyond policy, 3
 //! not compared) and a message that names them.
 
-mod binary;
+use crate::binary;
 
 use binary::{assert_says, assert_status, harness_in, text};
 use std::path::Path;

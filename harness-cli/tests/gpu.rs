@@ -6,8 +6,7 @@
 //! wgpu adapter (lavapipe will do); set F316_SKIP_GPU to skip where there
 //! is none.
 
-#[path = "../../harness/tests/support/mod.rs"]
-mod support;
+use crate::support;
 
 use common::{Op, F316};
 use harness::cast::{Cast, OpenError};

@@ -1,7 +1,7 @@
 //! Reproducers of hostile runs (issue 20): each once panicked, hung, left a
 //! partial file or gave a misleading message.
 
-mod binary;
+use crate::binary;
 
 use binary::{assert_says, assert_status, text};
 use std::path::{Path, PathBuf};

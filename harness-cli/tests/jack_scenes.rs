@@ -3,10 +3,9 @@
 //! binds, a `scene = FILE` entry generates one itself, and
 //! `harness jack cost` measures one.
 
-#[path = "../../harness/tests/support/mod.rs"]
-mod support;
+use crate::support;
 
-mod binary;
+use crate::binary;
 
 use binary::{harness_in, text};
 use common::Outcome;

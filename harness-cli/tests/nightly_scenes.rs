@@ -5,7 +5,7 @@
 //! do; F316_SKIP_GPU skips it); a bad scene file fails the night with its
 //! field named; an unknown scene name is refused before the run.
 
-mod binary;
+use crate::binary;
 
 use binary::{assert_says, harness, text};
 use std::path::Path;

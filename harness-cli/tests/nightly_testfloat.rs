@@ -3,7 +3,7 @@
 //! with ref-f316; the counts per operation and level are in the report
 //! (JSON and HTML), and a fault only level 2 catches fails the night.
 
-mod binary;
+use crate::binary;
 
 use binary::text;
 use std::path::Path;

@@ -9,7 +9,7 @@
 
 #![cfg(target_os = "linux")]
 
-mod binary;
+use crate::binary;
 
 use std::os::unix::fs::{MetadataExt, PermissionsExt};
 use std::path::{Path, PathBuf};

@@ -7,7 +7,7 @@
 //! traps reached (gpu-f316 needs a wgpu adapter: lavapipe will do;
 //! F316_SKIP_GPU skips it).
 
-mod binary;
+use crate::binary;
 
 use binary::{harness, text};
 use serde_json::Value;

@@ -4,7 +4,7 @@
 //! tuned description that loads, and a rerun on its state renders nothing;
 //! bad input exits 2 naming the file or field.
 
-mod binary;
+use crate::binary;
 
 use binary::{assert_status, harness_in, text};
 use std::path::{Path, PathBuf};

@@ -4,7 +4,6 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 /// The harness run with `args` in the test's working directory.
-#[allow(dead_code)] // not every test crate that includes this module runs it so
 pub fn harness(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_harness"))
         .args(args)
@@ -13,7 +12,6 @@ pub fn harness(args: &[&str]) -> Output {
 }
 
 /// The harness run with `args` in `dir`, where a project file lies.
-#[allow(dead_code)] // not every test crate that includes this module runs it so
 pub fn harness_in(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_harness"))
         .args(args)
@@ -24,7 +22,6 @@ pub fn harness_in(dir: &Path, args: &[&str]) -> Output {
 
 /// Fail the test, showing the whole run, unless its output says `needle`.
 #[track_caller]
-#[allow(dead_code)] // not every test crate that includes this module checks output so
 pub fn assert_says(o: &Output, needle: &str) {
     let t = text(o);
     assert!(
@@ -36,7 +33,6 @@ pub fn assert_says(o: &Output, needle: &str) {
 /// Fail the test, showing the whole run, unless it exited with `code`,
 /// without a panic, and its output says every one of `names`.
 #[track_caller]
-#[allow(dead_code)] // not every test crate that includes this module checks output so
 pub fn assert_status(o: &Output, code: i32, names: &[&str]) {
     let t = text(o);
     assert_eq!(o.status.code(), Some(code), "{t}");
