@@ -22,10 +22,14 @@ cargo test --workspace --locked "$@"
 # nothing is built again (a narrower selection would resolve features
 # differently and rebuild much of the workspace).
 # An entry is "PACKAGE BINARY", then, after a "|", the test filters that
-# pick its share of a binary (the command line's integration tests are one
-# binary, a module per file; `check::` would also match `gpu_check::`).
+# pick its share of a binary (the emulator's and the command line's
+# integration tests are one binary each, a module per file; `check::` would
+# also match `gpu_check::`); a binary runs under the first entry it
+# matches. Not the emulator's proptests: they give every machine its engine
+# themselves and run each case on both, so a second pass would only draw
+# more cases at the price of the first (70 s).
 native=(
-    "hack-vm *" "jack *" "jack-compiler *"
+    "hack-vm integration|--skip proptests::" "hack-vm *" "jack *" "jack-compiler *"
     "harness lib" "harness jack" "harness selftest"
     "harness-cli integration|bindings:: check:: cli:: containment:: hardening:: --skip gpu_check::"
 )
@@ -49,10 +53,6 @@ for line in sys.stdin:
 ')
 declare -A found=()
 while IFS=$'\t' read -r package name dir exe; do
-    # Not the emulator's proptests: they give every machine its engine
-    # themselves and run each case on both, so a second pass would only
-    # draw more cases at the price of the first (70 s).
-    [[ "$package $name" == "hack-vm proptests" ]] && continue
     for wanted in "${native[@]}"; do
         pattern=${wanted%%|*}
         filters=()

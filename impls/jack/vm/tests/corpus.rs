@@ -3,10 +3,7 @@
 //! budget stop of a run cut into slices, and at its end; and the share of
 //! each run that compiled code runs.
 
-#[path = "support/corpus.rs"]
-mod corpus;
-
-use corpus::{Work, CORPUS};
+use crate::corpus_programs::{Work, CORPUS};
 use hack_vm::{Config, Engine, Exit, Machine, Profile, Program};
 use std::sync::Arc;
 

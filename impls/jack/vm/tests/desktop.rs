@@ -3,8 +3,7 @@
 //! that ends the run, the stack after `Main.main` returns, and registers a
 //! user preset before the run.
 
-#[path = "support/jack_main.rs"]
-mod jack_main;
+use crate::jack_main;
 
 use hack_vm::{Config, Exit, Machine, Profile, Program};
 use std::sync::Arc;

@@ -2,9 +2,7 @@
 //! with jack-compiler, initialised once and then asked for pixels from
 //! clones of the snapshot. Fused and plain execution must agree on it.
 
-#[path = "support/raymarcher.rs"]
-mod support;
-
+use crate::raymarcher_support as support;
 use hack_vm::{Engine, Exit};
 use support::raymarcher;
 

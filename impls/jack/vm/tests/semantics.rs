@@ -1,9 +1,5 @@
 //! Edge cases of every VM command and of the machine (spec §1, §2).
 
-#[macro_use]
-#[path = "support/fib.rs"]
-mod fib;
-
 use hack_vm::{Config, Exit, FnId, KeyScript, Machine, Profile, Program, Ram, Register, Watcher};
 
 fn load(sources: &[(&str, &str)]) -> Machine {

@@ -3,11 +3,8 @@
 //! text, their step counts and screens pinned under both profiles; the
 //! desktop's stack overflow and the bounded web locals.
 
-#[path = "support/jack_main.rs"]
-mod jack_main;
-
+use crate::jack_main::compile_main;
 use hack_vm::{Config, Exit, KeyScript, Machine, Profile, Program, Ram};
-use jack_main::compile_main;
 use std::sync::Arc;
 
 fn run(program: Arc<Program>, profile: Profile, keys: KeyScript) -> Machine {

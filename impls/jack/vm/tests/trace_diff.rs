@@ -1,9 +1,5 @@
 //! Two runs compared by their call traces (`compare_call_traces`).
 
-#[macro_use]
-#[path = "support/fib.rs"]
-mod fib;
-
 use hack_vm::{
     compare_call_traces, CallEvent, Config, Exit, Machine, Profile, Program, TraceDivergence,
 };
