@@ -17,8 +17,6 @@ use harness_cli::commands::check::{no_divergence_between, Bisect};
 use std::time::Duration;
 use vectors::{Level, OpVector, Vector, VectorSet};
 
-// This file uses the agreement check only.
-#[allow(dead_code)]
 use crate::support;
 
 const ADAPTER: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/adapters/misbehaving.py");
