@@ -255,8 +255,9 @@ fn returns_from_frames_high_in_ram_run_compiled() {
 /// On the desktop a call's frame test does not count a called callee's
 /// locals (its `function` line tests them): a loop at the bottom of a
 /// recursion near the stack's end, with a call it never makes of a
-/// function of 60 locals, runs compiled until the recursive call's own
-/// frame no longer fits, one depth before the stack overflows.
+/// function of 60 locals (called, not run inline: its opening writes a
+/// static), runs compiled until the recursive call's own frame no longer
+/// fits, one depth before the stack overflows.
 #[test]
 fn desktop_calls_leave_a_called_callees_locals_to_its_function_line() {
     // (About 300 calls of Main.g, 6 words each, fill the desktop stack.)
@@ -267,8 +268,9 @@ fn desktop_calls_leave_a_called_callees_locals_to_its_function_line() {
              function Main.g 0\npush argument 0\nif-goto DEEPER\nlabel LOOP\n\
              push constant 0\nif-goto NEVER\ngoto LOOP\nlabel NEVER\ncall Main.big 0\n\
              pop temp 0\ngoto LOOP\nlabel DEEPER\npush argument 0\npush constant 1\nsub\n\
-             call Main.g 1\nreturn\nfunction Main.big 60\npush constant 0\nif-goto ONE\n\
-             push constant 5\nreturn\nlabel ONE\npush constant 6\nreturn\n"
+             call Main.g 1\nreturn\nfunction Main.big 60\npush constant 0\npop static 0\n\
+             push constant 0\nif-goto ONE\npush constant 5\nreturn\nlabel ONE\npush constant 6\n\
+             return\n"
         );
         let program = Program::from_sources(&[("Main.vm", &source)]).expect("loads");
         let mut m = compiled_machine(program, Profile::Desktop);

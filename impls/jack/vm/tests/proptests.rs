@@ -319,6 +319,12 @@ fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
         // Main.c -> Main.d -> Main.g with Main.z (no arguments) on the
         // way, and Main.v, whose nested Main.w can write into either
         // frame. Main.q recurses, running Main.c's chain at every level.
+        // Main.r, Main.q, Main.ga and Main.gb open with a test whose
+        // branch reaches a `return` (one way, or both for Main.ga with
+        // two arguments), which compiled callers run inline, calling
+        // through the host the other way: Main.ga reads a local, Main.gb
+        // sets THAT and reads through it, and its inline way writes a
+        // static.
         "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n\
          function Main.m 1\npush argument 0\npop pointer 0\npush this 0\npush argument 1\nadd\nreturn\n\
          function Main.r 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
@@ -335,7 +341,14 @@ fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
          push argument 1\nreturn\n\
          function Main.q 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
          push argument 0\ncall Main.c 1\npop temp 0\npush argument 0\npush constant 1\nsub\n\
-         call Main.q 1\nreturn\n"
+         call Main.q 1\nreturn\n\
+         function Main.ga 1\npush argument 0\npush local 0\nlt\nif-goto NEG\npush argument 0\n\
+         push argument 1\nadd\nreturn\nlabel NEG\npush argument 0\nneg\npop local 0\npush local 0\n\
+         return\n\
+         function Main.gb 0\npush argument 0\npop pointer 1\npush that 0\npush argument 0\neq\n\
+         if-goto DONE\npush argument 0\n\
+         push constant 1\nsub\ncall Main.gb 1\nreturn\nlabel DONE\npush argument 0\npop static 3\n\
+         push constant 7\nreturn\n"
     )
 }
 
@@ -957,6 +970,45 @@ fn inline_runs_read_arguments_written_in_the_run() {
     assert_eq!(exit, Exit::Returned(99 + 62 + 99));
     assert_eq!(m.compiled_steps(), m.steps() - 1, "inline runs, compiled");
     agree_at_every_budget(&src, &[], &[true], 0..60);
+}
+
+/// A guarded run (Main.h opens with a test and a branch to a `return`)
+/// whose inline way reads, through THAT (web), a word its opening pushed
+/// above SP: compiled code holds that word in a register, so its span
+/// test must cover the opening's words too. Main.f's stack starts at 261:
+/// the argument there, the frame at 262..=266, Main.h's LCL 267, where
+/// its opening pushes 1 and then 2 (at 268), and `lt` leaves the
+/// condition at 267; its inline way sets THAT to 268 and `push that 0`
+/// reads the 2.
+#[test]
+fn a_guarded_runs_inline_way_reads_a_word_its_opening_pushed() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 0\npush constant 1\ncall Main.h 1\nreturn\n\
+         function Main.h 0\npush argument 0\npush constant 2\nlt\nif-goto LEAF\npush constant 0\n\
+         return\nlabel LEAF\npush constant 268\npop pointer 1\npush that 0\nreturn\n"
+        .to_string();
+    let (_, exit) = native_call(&src, true);
+    assert_eq!(exit, Exit::Returned(2));
+    agree_at_every_budget(&src, &[], &[true], 0..12);
+}
+
+/// A guarded run whose opening sets THAT (Main.h: `pop pointer 1`), and
+/// whose branch goes the host's way: the call through the host passes
+/// the caller's THAT, and the caller reads through it after the return
+/// (desktop, where a compiled call keeps the caller's registers): 5, not
+/// the callee's word at 4000.
+#[test]
+fn a_guarded_run_that_goes_to_the_host_keeps_the_callers_pointers() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 0\npush constant 3000\npop pointer 1\npush constant 5\npop that 0\n\
+         push constant 4000\ncall Main.h 1\npop temp 0\npush that 0\nreturn\n\
+         function Main.h 0\npush argument 0\npop pointer 1\npush that 0\nif-goto ONE\n\
+         push constant 2\ncall Main.z 0\nadd\nreturn\nlabel ONE\npush constant 1\nreturn\n\
+         function Main.z 0\npush constant 7\nreturn\n"
+        .to_string();
+    let (_, exit) = native_call(&src, false);
+    assert_eq!(exit, Exit::Returned(5));
+    agree_at_every_budget(&src, &[], &[false, true], 0..24);
 }
 
 /// `Main.f` of `src` (a program of its own, not [`random_program`]'s)
@@ -1823,7 +1875,7 @@ fn command() -> impl Strategy<Value = String> {
         2 => (0u16..2).prop_map(|p| format!("pop pointer {p}")),
         1 => value.clone().prop_map(|v| format!("pop constant {}", v % 6)),
         4 => prop::sample::select(vec!["add", "sub", "neg", "eq", "gt", "lt", "and", "or", "not"]).prop_map(String::from),
-        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1", "call Main.s 2", "call Main.w 2", "call Main.n 2", "call Main.n 1", "call Main.c 1", "call Main.v 2"]).prop_map(String::from),
+        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1", "call Main.s 2", "call Main.w 2", "call Main.n 2", "call Main.n 1", "call Main.c 1", "call Main.v 2", "call Main.ga 1", "call Main.ga 2", "call Main.gb 1"]).prop_map(String::from),
         // Built-ins, which compiled code calls through the host: reads and
         // writes of any word, the heap, strings, the screen, an error.
         2 => prop::sample::select(vec![

@@ -286,6 +286,19 @@ struct Inline {
     /// [`keeps_frames`]), so that its return finds the frame as the call
     /// wrote it.
     keeps_frame: bool,
+    /// A run that ends in an `if-goto` (`end` is past it) and goes on
+    /// inline only where the branch leads straight to a `return`
+    /// ([`guarded_run`]).
+    branch: Option<Branch>,
+}
+
+/// The two ways out of a guarded run's `if-goto` (not taken, taken): the
+/// instructions up to and including a `return` that run inline (`start`,
+/// `end` past the `return`), or None where the call goes through the
+/// host instead.
+#[derive(Clone, Copy, Debug)]
+struct Branch {
+    leaves: [Option<(u32, u32)>; 2],
 }
 
 /// Whether no instruction of `ops` (the body of an inline run) can write
@@ -366,7 +379,125 @@ fn nested_callees(env: &Env<'_>, run: Inline, out: &mut Vec<FnId>) {
 /// Whether a call of `callee` with `nargs` arguments runs it inline (see
 /// [`Inline`]).
 fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
-    inline_run(env, callee, nargs, 1)
+    inline_run(env, callee, nargs, 1).or_else(|| guarded_run(env, callee, nargs))
+}
+
+/// Whether instruction `op` of a callee called with `nargs` arguments
+/// may run inline (a `local` index is always below the callee's local
+/// count).
+fn fits_inline(op: Op, nargs: u16) -> bool {
+    match op {
+        Op::PushArg(i) | Op::PopArg(i) => i < nargs,
+        op => blocks::kind(op) == Kind::Straight,
+    }
+}
+
+/// Whether running `op` again changes nothing: it writes only stack
+/// words (with the same values) and the pointer registers (a method's
+/// `push argument 0; pop pointer 0`). Where a guarded run's branch goes
+/// to the host, the callee runs its opening again.
+fn repeatable(op: Op) -> bool {
+    matches!(
+        op,
+        Op::Function { .. }
+            | Op::PopPtr(_)
+            | Op::PushConst(_)
+            | Op::PushLocal(_)
+            | Op::PushArg(_)
+            | Op::PushThis(_)
+            | Op::PushThisChk(_)
+            | Op::PushThat(_)
+            | Op::PushThatChk(_)
+            | Op::PushAbs(_)
+            | Op::PushPtr(_)
+            | Op::Add
+            | Op::Sub
+            | Op::Neg
+            | Op::Eq
+            | Op::Gt
+            | Op::Lt
+            | Op::And
+            | Op::Or
+            | Op::Not
+    )
+}
+
+/// A callee whose code opens with a test and a branch to a `return` (the
+/// base case of a recursion, a guard clause): `if (k < 2) { return k; }`.
+/// The opening instructions up to the `if-goto` are [`repeatable`], and
+/// leave nothing on the stack but the condition; each way out of the branch
+/// that reaches a `return` within [`MAX_INLINE_OPS`] straight
+/// instructions runs inline, and the other (if any) makes the call
+/// through the host, whose callee runs the opening again.
+fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
+    let f = &env.program.functions[callee as usize];
+    if !f.headed || nargs > MAX_COMPILED_ARGS || f.n_vars > MAX_INLINE_LOCALS {
+        return None;
+    }
+    let start = f.start - u32::from(env.timing.function_step);
+    let code = env.code;
+    let ops = &code[start as usize..];
+    let at = ops
+        .iter()
+        .take(MAX_INLINE_OPS)
+        .position(|&op| !(repeatable(op) && fits_inline(op, nargs)))?;
+    let Op::IfGoto(target) = ops[at] else {
+        return None;
+    };
+    let prefix = &ops[..=at];
+    let (low, high) = blocks::depth_range(prefix);
+    // The function line's locals (desktop) stay below the condition.
+    let locals_pushed = match ops[0] {
+        Op::Function { n_vars, .. } => i32::from(n_vars),
+        _ => 0,
+    };
+    if low < 0 || blocks::net_depth(prefix) != locals_pushed {
+        return None;
+    }
+    let leaf = |from: u32| -> Option<(u32, u32)> {
+        let rest = code.get(from as usize..)?;
+        let len = rest
+            .iter()
+            .take(MAX_INLINE_OPS)
+            .position(|&op| op == Op::Return)?;
+        let body = &rest[..=len];
+        if !body[..len].iter().all(|&op| fits_inline(op, nargs)) {
+            return None;
+        }
+        let (low, _) = blocks::depth_range(body);
+        (locals_pushed + low >= 0).then_some((from, from + len as u32 + 1))
+    };
+    let branch_at = start + at as u32;
+    let leaves = [leaf(branch_at + 1), leaf(target)];
+    if leaves.iter().all(Option::is_none) {
+        return None;
+    }
+    let locals = if env.timing.function_step {
+        0
+    } else {
+        i32::from(f.n_vars)
+    };
+    let steps_of = |ops: &[Op]| ops.iter().map(|op| op.steps()).sum::<u64>();
+    let (mut steps, mut size, mut top) = (0u64, prefix.len(), high);
+    let mut keeps_frame = keeps_frames(prefix, env.profile);
+    for &(from, end) in leaves.iter().flatten() {
+        let body = &code[from as usize..end as usize];
+        let (_, leaf_high) = blocks::depth_range(body);
+        top = top.max(locals_pushed + leaf_high);
+        steps = steps.max(steps_of(prefix) + steps_of(body));
+        size += body.len();
+        keeps_frame &= keeps_frames(body, env.profile);
+    }
+    Some(Inline {
+        start,
+        end: branch_at + 1,
+        steps,
+        top: locals + top,
+        size,
+        frames: 1,
+        keeps_frame,
+        branch: Some(Branch { leaves }),
+    })
 }
 
 /// [`inline_callee`] for a run nested `level` deep (1: called from the
@@ -397,11 +528,9 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
     let mut from = 0;
     // The stretches between nested calls, each call's run, the return.
     for (k, op) in ops[..=len].iter().enumerate() {
-        // (A `local` index is always below the callee's local count.)
         let fits = match *op {
-            Op::PushArg(i) | Op::PopArg(i) => i < nargs,
             Op::Call { .. } | Op::Return => true,
-            op => blocks::kind(op) == Kind::Straight,
+            op => fits_inline(op, nargs),
         };
         if !fits {
             return None;
@@ -447,6 +576,7 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
         size,
         frames,
         keeps_frame,
+        branch: None,
     })
 }
 
@@ -2193,12 +2323,16 @@ impl Translator<'_, '_> {
                 .map(|i| s.known(s.depth - i32::from(n) + i))
                 .collect();
             self.inline_args.push(args);
-            self.run_inline(call, inline, base, p, steps, n_vars, blk);
+            let goes_on = self.run_inline(call, inline, base, p, steps, n_vars, blk);
             self.inline_args.pop();
             if nested.is_some() {
                 s.depth += 1 - i32::from(n);
             }
-            return;
+            if !goes_on {
+                return;
+            }
+            // A guarded run's branch that goes through the host: the
+            // call as below, its frame already written.
         }
         assert!(nested.is_none(), "inline_run runs every nested call inline");
         // The frame stack grows by the call's entry, which is written only
@@ -2415,7 +2549,9 @@ impl Translator<'_, '_> {
     /// instructions translated as a block of its own (leaving compiled code
     /// anywhere in it pushes its frame stack entry first), then its return.
     /// The outermost run tests the budget for its whole run, nested runs
-    /// included.
+    /// included. Returns whether the caller's code goes on with the call
+    /// through the host (a guarded run's other branch), the registers its
+    /// own again.
     #[allow(clippy::too_many_arguments)]
     fn run_inline(
         &mut self,
@@ -2426,7 +2562,14 @@ impl Translator<'_, '_> {
         steps: Value,
         zeroed: u16,
         blk: &Block,
-    ) {
+    ) -> bool {
+        let v = &self.v;
+        let vars = [
+            v.sp, v.lcl, v.arg, v.this, v.that, v.nargs, v.flags, v.steps,
+        ];
+        let callers = inline
+            .branch
+            .map(|_| vars.map(|var| (var, self.b.use_var(var))));
         let f = &self.env.program.functions[call.callee as usize];
         let n = call.n;
         let nargs = self.c16(i64::from(n));
@@ -2485,7 +2628,20 @@ impl Translator<'_, '_> {
         };
         let (from, steps0) = self.ops(&mut s, inline.start, inline.end - 1, steps, blk);
         self.b.set_srcloc(source_loc(inline.end - 1, Part::Op));
-        self.return_inline(&mut s, inline.end - 1, from, steps0, inline.keeps_frame);
+        let goes_on = match (inline.branch, callers) {
+            (Some(branch), Some(callers)) => {
+                // The steps to here, the `if-goto` included.
+                let steps = self
+                    .b
+                    .ins()
+                    .iadd_imm_s(steps0, i64::from(inline.end - from));
+                self.branch_inline(inline, branch, s, steps, blk, &callers)
+            }
+            _ => {
+                self.return_inline(&mut s, inline.end - 1, from, steps0, inline.keeps_frame);
+                false
+            }
+        };
         (
             self.reach,
             self.ptr_tests,
@@ -2496,6 +2652,73 @@ impl Translator<'_, '_> {
         // The registers come back from the frame, which the run may have
         // written: no `pop pointer` test of the caller's holds for them.
         self.flags_known &= !(in_range(true) | in_range(false));
+        goes_on
+    }
+
+    /// The `if-goto` that ends the opening of guarded run `inline` (with
+    /// the stack `s` before it, and the step count `steps` after it): each
+    /// way to a `return` of `branch` runs inline, as
+    /// [`Translator::run_inline`] runs a callee; the other way (if any)
+    /// sets the registers back to the caller's (`callers`) and returns
+    /// true with the builder there, for the call through the host.
+    fn branch_inline(
+        &mut self,
+        inline: Inline,
+        branch: Branch,
+        mut s: Stack,
+        steps: Value,
+        blk: &Block,
+        callers: &[(Variable, Value)],
+    ) -> bool {
+        let x = s.pop(self);
+        let x = self.exact(x);
+        // Each way pushes the run's frame again, and its return pops it.
+        let call = self.inlined.pop().expect("an inline run");
+        let host = self.b.create_block();
+        let ways = branch.leaves.map(|leaf| match leaf {
+            Some(_) => self.b.create_block(),
+            None => host,
+        });
+        self.b.ins().brif(x, ways[1], NONE, ways[0], NONE);
+        let flags_known = self.flags_known;
+        let opening_code = &self.env.code[inline.start as usize..inline.end as usize];
+        for (leaf, way) in branch.leaves.into_iter().zip(ways) {
+            let Some((from, end)) = leaf else { continue };
+            self.b.switch_to_block(way);
+            self.inlined.push(call);
+            let code = &self.env.code[from as usize..end as usize];
+            // The opening and this way as one stretch of code: the words
+            // the opening pushed stay in registers too (those above SP
+            // included, which RAM gets later).
+            let stretch: Vec<Op> = opening_code.iter().chain(code).copied().collect();
+            self.reach = reach(&stretch);
+            self.ptr_tests = ptr_tests(code);
+            self.block_start = from;
+            self.flags_known = flags_known;
+            let (span, _) = held_span(&stretch);
+            self.stack_span = span.map(|(lo, hi)| {
+                let lo = self.b.ins().iadd_imm_s(s.sp0, i64::from(lo));
+                let hi = self.b.ins().iadd_imm_s(s.sp0, i64::from(hi));
+                (lo, hi)
+            });
+            let mut leaf_stack = Stack {
+                sp0: s.sp0,
+                base: s.base,
+                depth: s.depth,
+                slots: s.slots.clone(),
+            };
+            let (from, steps0) = self.ops(&mut leaf_stack, from, end - 1, steps, blk);
+            self.b.set_srcloc(source_loc(end - 1, Part::Op));
+            self.return_inline(&mut leaf_stack, end - 1, from, steps0, inline.keeps_frame);
+        }
+        if !branch.leaves.contains(&None) {
+            return false;
+        }
+        self.b.switch_to_block(host);
+        for &(var, x) in callers {
+            self.b.def_var(var, x);
+        }
+        true
     }
 
     /// The `return` (at `pc`) of the innermost callee run inline, which
