@@ -191,7 +191,12 @@ mod tests {
     /// Whether `Main.main`'s code holds the return of `callee`, that is,
     /// whether `callee` runs inline there (on the desktop).
     fn runs_inline_in_main(source: &str, callee: &str) -> bool {
-        let (program, map) = map_of(source, Profile::Desktop);
+        runs_inline_under(source, callee, Profile::Desktop)
+    }
+
+    /// [`runs_inline_in_main`] under `profile`.
+    fn runs_inline_under(source: &str, callee: &str, profile: Profile) -> bool {
+        let (program, map) = map_of(source, profile);
         let id = program.function_id(callee).expect("the callee") as usize;
         let start = program.functions[id].start;
         let end = program
@@ -252,6 +257,67 @@ mod tests {
         };
         assert!(runs_inline_in_main(&total(0), "Main.t"));
         assert!(!runs_inline_in_main(&total(1), "Main.t"));
+    }
+
+    /// Guarded runs: a callee that opens with a test and a branch to a
+    /// `return` runs that way inline in its caller (either way of the
+    /// branch, a method's opening too, under both profiles); not where its
+    /// opening writes a word, leaves one under the condition or reaches
+    /// below its own words, nor where the returning way is longer than an
+    /// inline run; and up to the argument and local limits of inline runs.
+    #[test]
+    fn guarded_runs_inline_the_way_that_returns() {
+        let taken = |opening: &str, n_vars: usize, base: &str| {
+            format!(
+                "function Main.main 0\npush static 0\ncall Main.g 1\nreturn\n\
+                 function Main.g {n_vars}\n{opening}if-goto BASE\npush argument 0\n\
+                 push constant 1\nsub\ncall Main.g 1\nreturn\nlabel BASE\npush argument 0\n\
+                 {base}return\n"
+            )
+        };
+        let test = "push argument 0\npush constant 2\nlt\n";
+        let fall = "function Main.main 0\npush constant 5\ncall Main.g 1\nreturn\n\
+                    function Main.g 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\n\
+                    label MORE\npush argument 0\npush constant 1\nsub\ncall Main.g 1\nreturn\n";
+        let method = "push argument 0\npop pointer 0\npush this 0\n";
+        for profile in [Profile::Desktop, Profile::Web] {
+            assert!(runs_inline_under(&taken(test, 0, ""), "Main.g", profile));
+            assert!(runs_inline_under(fall, "Main.g", profile));
+            assert!(runs_inline_under(&taken(method, 0, ""), "Main.g", profile));
+        }
+        let write = "push constant 1\npop static 0\npush argument 0\n";
+        let left = "push argument 0\npush argument 0\n";
+        let below = "add\npush constant 1\npush constant 1\n";
+        for opening in [write, left, below] {
+            assert!(!runs_inline_in_main(&taken(opening, 0, ""), "Main.g"));
+        }
+        // The returning way: `push argument 0`, the negations, `return`.
+        assert!(runs_inline_in_main(
+            &taken(test, 0, &"neg\n".repeat(30)),
+            "Main.g"
+        ));
+        assert!(!runs_inline_in_main(
+            &taken(test, 0, &"neg\n".repeat(31)),
+            "Main.g"
+        ));
+        assert!(runs_inline_in_main(&taken(test, 64, ""), "Main.g"));
+        assert!(!runs_inline_in_main(&taken(test, 65, ""), "Main.g"));
+        let args = |n: usize| {
+            "function Main.main 0\n".to_string()
+                + &"push constant 1\n".repeat(n)
+                + &format!(
+                    "call Main.g {n}\nreturn\nfunction Main.g 0\npush argument 0\nif-goto BASE\n\
+                     push constant 0\ncall Main.g 1\nreturn\nlabel BASE\npush constant 1\nreturn\n"
+                )
+        };
+        assert!(runs_inline_in_main(&args(250), "Main.g"));
+        assert!(!runs_inline_in_main(&args(251), "Main.g"));
+        // Code before any `function` line has no opening to run inline.
+        let implicit = "push constant 1\nif-goto ONE\npush constant 2\nreturn\nlabel ONE\n\
+                        push constant 3\nreturn\nfunction Main.main 0\ncall __implicit 0\nreturn\n";
+        for profile in [Profile::Desktop, Profile::Web] {
+            assert!(!runs_inline_under(implicit, "__implicit", profile));
+        }
     }
 
     /// The host code bytes of the map's instruction stretches (part `op`),
