@@ -1287,6 +1287,51 @@ fn an_inline_run_at_the_stack_end_overflows_where_the_interpreter_does() {
     }
 }
 
+/// [`an_inline_run_at_the_stack_end_overflows_where_the_interpreter_does`]
+/// with a guarded run: Main.deep opens with a test whose taken way pushes
+/// ten words and returns, run inline; the call's stack test must count
+/// that way's words above the opening's.
+#[test]
+fn a_guarded_run_at_the_stack_end_overflows_where_the_interpreter_does() {
+    let src = |pad: usize| {
+        format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 0\n{}push constant 400\ncall Main.r 1\nreturn\n\
+         function Main.r 0\npush argument 0\ncall Main.deep 1\npop temp 0\n\
+         push argument 0\npush constant 1\nsub\ncall Main.r 1\nreturn\n\
+         function Main.deep 0\npush argument 0\nif-goto MANY\npush constant 0\ncall Main.z 0\n\
+         return\nlabel MANY\npush argument 0\n{}{}return\n\
+         function Main.z 0\npush constant 5\nreturn\n",
+            "push constant 0\n".repeat(pad),
+            "push constant 1\n".repeat(9),
+            "add\n".repeat(9)
+        )
+    };
+    for pad in 0..6 {
+        let (_, exit) = native_call(&src(pad), false);
+        assert!(
+            matches!(&exit, Exit::RuntimeError { message, .. } if message.contains("Stack overflow")),
+            "{exit:?}"
+        );
+        agree_at_every_budget(&src(pad), &[], &[false], [0, 9000, 10010]);
+    }
+}
+
+/// A guarded run whose returning way is a lone `return` (of the desktop
+/// callee's local): the budget test counts the opening's three steps and
+/// the return's, and a stop at each step of the run agrees.
+#[test]
+fn budget_stops_in_a_guarded_run_agree() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+         function Main.f 0\npush constant 1\ncall Main.h 1\npush constant 1\ncall Main.h 1\nadd\n\
+         return\n\
+         function Main.h 1\npush argument 0\nif-goto BASE\npush constant 0\ncall Main.h 1\n\
+         return\nlabel BASE\nreturn\n";
+    let (_, exit) = native_call(src, false);
+    assert_eq!(exit, Exit::Returned(0));
+    agree_at_every_budget(src, &[], &[false], 0..16);
+}
+
 /// Callees that each call the next one eight times, nine levels deep, all
 /// short enough to run inline: inlining them all would translate 8^8
 /// copies of the last; the bound on an inline run's size keeps the
