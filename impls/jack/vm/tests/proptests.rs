@@ -1317,6 +1317,28 @@ fn a_guarded_run_at_the_stack_end_overflows_where_the_interpreter_does() {
     }
 }
 
+/// Web: a guarded run near the end of RAM, where the web's stack runs
+/// out: the call's stack test must count the run's words (the opening's
+/// and the ten of its returning way), or compiled code would push past
+/// RAM, where the interpreter drops its writes and reads -1.
+#[test]
+fn a_guarded_run_at_the_end_of_ram_agrees() {
+    let callee = format!(
+        "function Main.gh 0\npush argument 0\nif-goto MANY\npush constant 0\ncall Main.z 0\n\
+         return\nlabel MANY\npush argument 0\n{}{}return\n",
+        "push constant 1\n".repeat(9),
+        "add\n".repeat(9)
+    );
+    for sp in 24556..24578 {
+        let body = format!(
+            "{}push constant 1\ncall Main.gh 1\npop temp 0\npush temp 0\nreturn",
+            sp_moved_to(sp)
+        );
+        let src = random_program(vec![body], vec![], 0) + &callee;
+        agree_at_every_budget(&src, &[1, 2], &[true], [0, 1000]);
+    }
+}
+
 /// A guarded run whose returning way is a lone `return` (of the desktop
 /// callee's local): the budget test counts the opening's three steps and
 /// the return's, and a stop at each step of the run agrees.
