@@ -1261,30 +1261,11 @@ fn pointer_accesses_after_the_pointer_changes_agree() {
 /// falls on.
 #[test]
 fn an_inline_run_at_the_stack_end_overflows_where_the_interpreter_does() {
-    let src = |pad: usize| {
-        format!(
-            "function Main.main 0\npush constant 0\nreturn\n\
-         function Main.f 0\n{}push constant 400\ncall Main.r 1\nreturn\n\
-         function Main.r 0\npush argument 0\ncall Main.deep 1\npop temp 0\n\
-         push argument 0\npush constant 1\nsub\ncall Main.r 1\nreturn\n\
-         function Main.deep 0\npush argument 0\n{}{}call Main.z 0\nadd\nreturn\n\
-         function Main.z 0\npush constant 5\nreturn\n",
-            "push constant 0\n".repeat(pad),
-            "push constant 1\n".repeat(9),
-            "add\n".repeat(9)
-        )
-    };
-    // Each level moves SP by 6 words: each alignment of the run's top
-    // with the stack's end.
-    for pad in 0..6 {
-        let (_, exit) = native_call(&src(pad), false);
-        assert!(
-            matches!(&exit, Exit::RuntimeError { message, .. } if message.contains("Stack overflow")),
-            "{exit:?}"
-        );
-        // (About 10,000 steps to the overflow.)
-        agree_at_every_budget(&src(pad), &[], &[false], [0, 9000, 10010]);
-    }
+    overflows_in_main_deep_where_the_interpreter_does(&format!(
+        "push argument 0\n{}{}call Main.z 0\nadd\nreturn\n",
+        "push constant 1\n".repeat(9),
+        "add\n".repeat(9)
+    ));
 }
 
 /// [`an_inline_run_at_the_stack_end_overflows_where_the_interpreter_does`]
@@ -1293,18 +1274,28 @@ fn an_inline_run_at_the_stack_end_overflows_where_the_interpreter_does() {
 /// that way's words above the opening's.
 #[test]
 fn a_guarded_run_at_the_stack_end_overflows_where_the_interpreter_does() {
+    overflows_in_main_deep_where_the_interpreter_does(&format!(
+        "push argument 0\nif-goto MANY\npush constant 0\ncall Main.z 0\nreturn\nlabel MANY\n\
+         push argument 0\n{}{}return\n",
+        "push constant 1\n".repeat(9),
+        "add\n".repeat(9)
+    ));
+}
+
+/// A desktop recursion without end (Main.r, 6 words a level) that calls
+/// Main.deep, of body `deep`, at every level, from each alignment of its
+/// frames with the stack's end: it stops with "Stack overflow", and the
+/// engines agree on the way there.
+fn overflows_in_main_deep_where_the_interpreter_does(deep: &str) {
     let src = |pad: usize| {
         format!(
             "function Main.main 0\npush constant 0\nreturn\n\
          function Main.f 0\n{}push constant 400\ncall Main.r 1\nreturn\n\
          function Main.r 0\npush argument 0\ncall Main.deep 1\npop temp 0\n\
          push argument 0\npush constant 1\nsub\ncall Main.r 1\nreturn\n\
-         function Main.deep 0\npush argument 0\nif-goto MANY\npush constant 0\ncall Main.z 0\n\
-         return\nlabel MANY\npush argument 0\n{}{}return\n\
+         function Main.deep 0\n{deep}\
          function Main.z 0\npush constant 5\nreturn\n",
             "push constant 0\n".repeat(pad),
-            "push constant 1\n".repeat(9),
-            "add\n".repeat(9)
         )
     };
     for pad in 0..6 {
@@ -1313,6 +1304,7 @@ fn a_guarded_run_at_the_stack_end_overflows_where_the_interpreter_does() {
             matches!(&exit, Exit::RuntimeError { message, .. } if message.contains("Stack overflow")),
             "{exit:?}"
         );
+        // (About 10,000 steps to the overflow.)
         agree_at_every_budget(&src(pad), &[], &[false], [0, 9000, 10010]);
     }
 }

@@ -73,7 +73,7 @@ const BUILTIN_REACH: i32 = 6;
 
 /// Stack words an instruction pops, then pushes (calls and returns:
 /// only what the block-entry test must cover).
-fn stack_effect(op: Op) -> (i32, i32) {
+pub(crate) fn stack_effect(op: Op) -> (i32, i32) {
     match op {
         Op::PushConst(_)
         | Op::PushLocal(_)

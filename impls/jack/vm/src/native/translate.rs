@@ -392,34 +392,17 @@ fn fits_inline(op: Op, nargs: u16) -> bool {
     }
 }
 
-/// Whether running `op` again changes nothing: it writes only stack
-/// words (with the same values) and the pointer registers (a method's
-/// `push argument 0; pop pointer 0`). Where a guarded run's branch goes
-/// to the host, the callee runs its opening again.
+/// Whether running `op` again changes nothing: it pushes one word made
+/// from what it reads (a `push`, an arithmetic or logical operation), or
+/// it is a `function` line (zeroed locals) or a `pop pointer` (a method's
+/// `push argument 0; pop pointer 0`). Where a guarded run's branch goes to
+/// the host, the callee runs its opening again.
 fn repeatable(op: Op) -> bool {
-    matches!(
-        op,
-        Op::Function { .. }
-            | Op::PopPtr(_)
-            | Op::PushConst(_)
-            | Op::PushLocal(_)
-            | Op::PushArg(_)
-            | Op::PushThis(_)
-            | Op::PushThisChk(_)
-            | Op::PushThat(_)
-            | Op::PushThatChk(_)
-            | Op::PushAbs(_)
-            | Op::PushPtr(_)
-            | Op::Add
-            | Op::Sub
-            | Op::Neg
-            | Op::Eq
-            | Op::Gt
-            | Op::Lt
-            | Op::And
-            | Op::Or
-            | Op::Not
-    )
+    match op {
+        Op::Function { .. } | Op::PopPtr(_) => true,
+        Op::CallBuiltin { .. } | Op::Multiply | Op::Divide => false,
+        op => blocks::stack_effect(op).1 == 1,
+    }
 }
 
 /// A callee whose code opens with a test and a branch to a `return` (the
