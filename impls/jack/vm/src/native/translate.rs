@@ -2546,13 +2546,6 @@ impl Translator<'_, '_> {
         zeroed: u16,
         blk: &Block,
     ) -> bool {
-        let v = &self.v;
-        let vars = [
-            v.sp, v.lcl, v.arg, v.this, v.that, v.nargs, v.flags, v.steps,
-        ];
-        let callers = inline
-            .branch
-            .map(|_| vars.map(|var| (var, self.b.use_var(var))));
         let f = &self.env.program.functions[call.callee as usize];
         let n = call.n;
         let nargs = self.c16(i64::from(n));
@@ -2611,16 +2604,16 @@ impl Translator<'_, '_> {
         };
         let (from, steps0) = self.ops(&mut s, inline.start, inline.end - 1, steps, blk);
         self.b.set_srcloc(source_loc(inline.end - 1, Part::Op));
-        let goes_on = match (inline.branch, callers) {
-            (Some(branch), Some(callers)) => {
+        let goes_on = match inline.branch {
+            Some(branch) => {
                 // The steps to here, the `if-goto` included.
                 let steps = self
                     .b
                     .ins()
                     .iadd_imm_s(steps0, i64::from(inline.end - from));
-                self.branch_inline(inline, branch, s, steps, blk, &callers)
+                self.branch_inline(inline, branch, s, steps, blk)
             }
-            _ => {
+            None => {
                 self.return_inline(&mut s, inline.end - 1, from, steps0, inline.keeps_frame);
                 false
             }
@@ -2642,8 +2635,9 @@ impl Translator<'_, '_> {
     /// the stack `s` before it, and the step count `steps` after it): each
     /// way to a `return` of `branch` runs inline, as
     /// [`Translator::run_inline`] runs a callee; the other way (if any)
-    /// sets the registers back to the caller's (`callers`) and returns
-    /// true with the builder there, for the call through the host.
+    /// sets the registers back to the caller's, as its call saved them,
+    /// and returns true with the builder there, for the call through the
+    /// host (which sets SP and the step count itself).
     fn branch_inline(
         &mut self,
         inline: Inline,
@@ -2651,7 +2645,6 @@ impl Translator<'_, '_> {
         mut s: Stack,
         steps: Value,
         blk: &Block,
-        callers: &[(Variable, Value)],
     ) -> bool {
         let x = s.pop(self);
         let x = self.exact(x);
@@ -2698,7 +2691,14 @@ impl Translator<'_, '_> {
             return false;
         }
         self.b.switch_to_block(host);
-        for &(var, x) in callers {
+        for (var, x) in [
+            (self.v.lcl, call.lcl),
+            (self.v.arg, call.arg),
+            (self.v.this, call.this),
+            (self.v.that, call.that),
+            (self.v.nargs, call.nargs),
+            (self.v.flags, call.flags),
+        ] {
             self.b.def_var(var, x);
         }
         true
