@@ -1443,11 +1443,7 @@ impl Translator<'_, '_> {
             ok.push(c);
         }
         let (span, code) = held_span(&self.env.code[blk.start as usize..blk.end as usize]);
-        self.stack_span = span.map(|(lo, hi)| {
-            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(lo));
-            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(hi));
-            (lo, hi)
-        });
+        self.set_stack_span(sp0, span);
         if let Some((lo, _)) = self.stack_span {
             // The block's `local` and `argument` words lie below its stack
             // words, so the stack can stay in registers across them (with
@@ -1609,6 +1605,16 @@ impl Translator<'_, '_> {
 
     /// LCL + `d`, a stack depth relative to LCL (below it where code pops
     /// into its frame), as a 32-bit sum: never wrapped to 16 bits.
+    /// Set [`Translator::stack_span`] to `span` (from [`held_span`]),
+    /// relative to SP `sp0`.
+    fn set_stack_span(&mut self, sp0: Value, span: Option<(i32, i32)>) {
+        self.stack_span = span.map(|(lo, hi)| {
+            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(lo));
+            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(hi));
+            (lo, hi)
+        });
+    }
+
     fn lcl_plus(&mut self, d: i32) -> Value {
         let lcl = self.b.use_var(self.v.lcl);
         self.b.ins().iadd_imm_s(lcl, i64::from(d))
@@ -2577,12 +2583,7 @@ impl Translator<'_, '_> {
         let outermost = self.inlined.is_empty();
         self.inlined.push(call);
         let sbase = self.b.ins().iadd_imm_s(p, 2 * (5 + i64::from(zeroed)));
-        let (span, _) = held_span(code);
-        self.stack_span = span.map(|(lo, hi)| {
-            let lo = self.b.ins().iadd_imm_s(sp0, i64::from(lo));
-            let hi = self.b.ins().iadd_imm_s(sp0, i64::from(hi));
-            (lo, hi)
-        });
+        self.set_stack_span(sp0, held_span(code).0);
         let entry = Before {
             pc: inline.start,
             k: 0,
@@ -2671,18 +2672,8 @@ impl Translator<'_, '_> {
             self.ptr_tests = ptr_tests(code);
             self.block_start = from;
             self.flags_known = flags_known;
-            let (span, _) = held_span(&stretch);
-            self.stack_span = span.map(|(lo, hi)| {
-                let lo = self.b.ins().iadd_imm_s(s.sp0, i64::from(lo));
-                let hi = self.b.ins().iadd_imm_s(s.sp0, i64::from(hi));
-                (lo, hi)
-            });
-            let mut leaf_stack = Stack {
-                sp0: s.sp0,
-                base: s.base,
-                depth: s.depth,
-                slots: s.slots.clone(),
-            };
+            self.set_stack_span(s.sp0, held_span(&stretch).0);
+            let mut leaf_stack = s.clone();
             let (from, steps0) = self.ops(&mut leaf_stack, from, end - 1, steps, blk);
             self.b.set_srcloc(source_loc(end - 1, Part::Op));
             self.return_inline(&mut leaf_stack, end - 1, from, steps0, inline.keeps_frame);
@@ -2973,6 +2964,7 @@ struct Slot {
 /// leaves, before a call or return, and before an access that might touch
 /// it (the last value of each word, as the interpreter leaves it); the
 /// block's entry and span tests show the other accesses cannot.
+#[derive(Clone)]
 struct Stack {
     sp0: Value,
     /// The host address of stack word `sp0` (words sp0+d at offset 2d).
