@@ -45,7 +45,7 @@ use super::code_map::{source_loc, Part};
 use super::{builtin, Ctx, Fault, CALLED, CONTINUE, RETURNED};
 use crate::exec::HEAP_START;
 use crate::machine::{Frame, HOST, THAT_OK, THIS_OK};
-use crate::program::{FnId, Op, Program};
+use crate::program::{FnId, Function, Op, Program};
 use crate::timing::{Timing, STACK_BASE};
 use cranelift_codegen::ir::condcodes::IntCC;
 use cranelift_codegen::ir::{
@@ -376,6 +376,16 @@ fn nested_callees(env: &Env<'_>, run: Inline, out: &mut Vec<FnId>) {
     }
 }
 
+/// The locals a call of `f` zeroes: none where the `function` line is a
+/// step (the callee's zeroes and pushes them), else all of them.
+fn zeroed_by_call(timing: Timing, f: &Function) -> u16 {
+    if timing.function_step {
+        0
+    } else {
+        f.n_vars
+    }
+}
+
 /// Whether a call of `callee` with `nargs` arguments runs it inline (see
 /// [`Inline`]).
 fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
@@ -455,11 +465,7 @@ fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
     if leaves.iter().all(Option::is_none) {
         return None;
     }
-    let locals = if env.timing.function_step {
-        0
-    } else {
-        i32::from(f.n_vars)
-    };
+    let locals = i32::from(zeroed_by_call(env.timing, f));
     let steps_of = |ops: &[Op]| ops.iter().map(|op| op.steps()).sum::<u64>();
     let (mut steps, mut size, mut top) = (0u64, prefix.len(), high);
     let mut keeps_frame = keeps_frames(prefix, env.profile);
@@ -497,11 +503,7 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
         .take(MAX_INLINE_OPS)
         .position(|op| *op == Op::Return)?;
     // Where the call zeroes the locals (web), the run starts above them.
-    let locals = if env.timing.function_step {
-        0
-    } else {
-        i32::from(f.n_vars)
-    };
+    let locals = i32::from(zeroed_by_call(env.timing, f));
     if f.n_vars > MAX_INLINE_LOCALS {
         return None;
     }
@@ -1020,13 +1022,7 @@ impl Translator<'_, '_> {
         let lcl = self.b.ins().iadd_imm_s(base, 5);
         let arg = self.b.ins().isub(base, nargs);
         let f = &self.env.program.functions[self.env.id as usize];
-        // Where a call's `function` line is a step, the callee's zeroes
-        // and pushes the locals; else the call has.
-        let locals = if self.env.timing.function_step {
-            0
-        } else {
-            f.n_vars
-        };
+        let locals = zeroed_by_call(self.env.timing, f);
         let sp = self.b.ins().iadd_imm_s(lcl, i64::from(locals));
         let this = self.exact(ptrs);
         let that = self.b.ins().ushr_imm_u(ptrs, 16);
@@ -2211,13 +2207,7 @@ impl Translator<'_, '_> {
     ) {
         let ctx = self.ctx;
         let f = &self.env.program.functions[callee as usize];
-        // Where a call's `function` line is a step, the callee's zeroes
-        // its locals; else the call does.
-        let n_vars = if self.env.timing.function_step {
-            0
-        } else {
-            f.n_vars
-        };
+        let n_vars = zeroed_by_call(self.env.timing, f);
         let entry_flags = f.entry_flags(n);
         if n_vars > MAX_INLINE_LOCALS || n > MAX_COMPILED_ARGS {
             self.exit_before(before);
@@ -2467,8 +2457,10 @@ impl Translator<'_, '_> {
     fn frame_top(&self, callee: FnId, nargs: u16) -> i32 {
         match inline_callee(&self.env, callee, nargs) {
             Some(inline) => inline.top,
-            None if self.env.timing.function_step => 0,
-            None => i32::from(self.env.program.functions[callee as usize].n_vars),
+            None => i32::from(zeroed_by_call(
+                self.env.timing,
+                &self.env.program.functions[callee as usize],
+            )),
         }
     }
 
