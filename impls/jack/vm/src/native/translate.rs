@@ -386,6 +386,15 @@ fn zeroed_by_call(timing: Timing, f: &Function) -> u16 {
     }
 }
 
+/// Where a call of `f` with `nargs` arguments lands (its `function` line,
+/// where that is a step), if the callee may run inline at all: it has a
+/// `function` line, and its arguments and locals are within the limits
+/// that `Translator::call` compiles.
+fn run_start(env: &Env<'_>, f: &Function, nargs: u16) -> Option<u32> {
+    (f.headed && nargs <= MAX_COMPILED_ARGS && f.n_vars <= MAX_INLINE_LOCALS)
+        .then(|| f.start - u32::from(env.timing.function_step))
+}
+
 /// Whether a call of `callee` with `nargs` arguments runs it inline (see
 /// [`Inline`]).
 fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
@@ -424,10 +433,7 @@ fn repeatable(op: Op) -> bool {
 /// through the host, whose callee runs the opening again.
 fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
     let f = &env.program.functions[callee as usize];
-    if !f.headed || nargs > MAX_COMPILED_ARGS || f.n_vars > MAX_INLINE_LOCALS {
-        return None;
-    }
-    let start = f.start - u32::from(env.timing.function_step);
+    let start = run_start(env, f, nargs)?;
     let code = env.code;
     let ops = &code[start as usize..];
     let at = ops
@@ -493,10 +499,10 @@ fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
 /// function being translated).
 fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inline> {
     let f = &env.program.functions[callee as usize];
-    if !f.headed || level > MAX_INLINE_DEPTH || nargs > MAX_COMPILED_ARGS {
+    if level > MAX_INLINE_DEPTH {
         return None;
     }
-    let start = f.start - u32::from(env.timing.function_step);
+    let start = run_start(env, f, nargs)?;
     let ops = &env.code[start as usize..];
     let len = ops
         .iter()
@@ -504,9 +510,6 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
         .position(|op| *op == Op::Return)?;
     // Where the call zeroes the locals (web), the run starts above them.
     let locals = i32::from(zeroed_by_call(env.timing, f));
-    if f.n_vars > MAX_INLINE_LOCALS {
-        return None;
-    }
     let (mut depth, mut top) = (0i32, 0i32);
     let (mut steps, mut size, mut frames) = (0u64, 0usize, 1u32);
     let mut keeps_frame = keeps_frames(&ops[..len], env.profile);
