@@ -256,8 +256,9 @@ fn returns_from_frames_high_in_ram_run_compiled() {
 /// locals (its `function` line tests them): a loop at the bottom of a
 /// recursion near the stack's end, with a call it never makes of a
 /// function of 60 locals (called, not run inline: its opening writes a
-/// static), runs compiled until the recursive call's own frame no longer
-/// fits, one depth before the stack overflows.
+/// static), runs compiled until the recursive call's own frames no longer
+/// fit (two: the call runs its callee's recursive way inline, the call
+/// in it too), up to two depths before the stack overflows.
 #[test]
 fn desktop_calls_leave_a_called_callees_locals_to_its_function_line() {
     // (About 300 calls of Main.g, 6 words each, fill the desktop stack.)
@@ -287,7 +288,7 @@ fn desktop_calls_leave_a_called_callees_locals_to_its_function_line() {
         }
     });
     assert!(overflow.is_some(), "no depth up to 350 overflows the stack");
-    assert!(loop_interpreted.len() <= 1, "{loop_interpreted:?}");
+    assert!(loop_interpreted.len() <= 2, "{loop_interpreted:?}");
 }
 
 /// A block's stack test covers the words the block pops and pushes, not

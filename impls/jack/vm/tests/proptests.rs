@@ -324,7 +324,12 @@ fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
         // two arguments), which compiled callers run inline, calling
         // through the host the other way: Main.ga reads a local, Main.gb
         // sets THAT and reads through it, and its inline way writes a
-        // static.
+        // static. The other ways of Main.r, Main.q, Main.gb and Main.gc
+        // (Fibonacci's shape, on the argument's low three bits) run inline
+        // too, where the call is the caller's own: their calls run as
+        // nested runs (guarded ones with their base case inline), or
+        // through the host from inside the run (Main.gc's call of Main.lp,
+        // whose loop never runs inline).
         "function Main.g 1\npush argument 0\npush argument 1\nadd\npop local 0\npush local 0\nreturn\n\
          function Main.m 1\npush argument 0\npop pointer 0\npush this 0\npush argument 1\nadd\nreturn\n\
          function Main.r 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\nlabel MORE\n\
@@ -348,7 +353,15 @@ fn random_program(body: Vec<String>, labels: Vec<usize>, pad: u16) -> String {
          function Main.gb 0\npush argument 0\npop pointer 1\npush that 0\npush argument 0\neq\n\
          if-goto DONE\npush argument 0\n\
          push constant 1\nsub\ncall Main.gb 1\nreturn\nlabel DONE\npush argument 0\npop static 3\n\
-         push constant 7\nreturn\n"
+         push constant 7\nreturn\n\
+         function Main.gc 0\npush argument 0\npush constant 7\nand\npush constant 2\nlt\n\
+         if-goto BASE\npush argument 0\npush constant 7\nand\npush constant 1\nsub\n\
+         call Main.gc 1\ncall Main.lp 1\npush argument 0\npush constant 7\nand\n\
+         push constant 2\nsub\ncall Main.gc 1\nadd\nreturn\nlabel BASE\npush argument 0\n\
+         return\n\
+         function Main.lp 1\npush argument 0\npush constant 31\nand\npop local 0\nlabel TOP\npush local 0\n\
+         push constant 0\ngt\nnot\nif-goto OUT\npush local 0\npush constant 5\nsub\n\
+         pop local 0\ngoto TOP\nlabel OUT\npush local 0\npush static 2\nadd\nreturn\n"
     )
 }
 
@@ -1011,6 +1024,73 @@ fn a_guarded_run_that_goes_to_the_host_keeps_the_callers_pointers() {
     agree_at_every_budget(&src, &[], &[false, true], 0..24);
 }
 
+/// A guarded run whose two ways both run inline, the first writing an
+/// argument word (`pop argument 0`) and the second reading it: each way
+/// starts from what the opening knew, so the second reads the caller's
+/// argument (1, returned as 1), not the first way's value.
+#[test]
+fn each_way_of_a_guarded_run_starts_from_its_opening() {
+    for (arg, expect) in [(1, 1), (3, 9)] {
+        let src = format!(
+            "function Main.main 0\npush constant 0\nreturn\n\
+             function Main.f 0\npush constant {arg}\ncall Main.h 1\nreturn\n\
+             function Main.h 0\npush argument 0\npush constant 2\nlt\nif-goto SMALL\n\
+             push constant 9\npop argument 0\npush argument 0\nreturn\nlabel SMALL\n\
+             push argument 0\nreturn\n"
+        );
+        for web in [false, true] {
+            let (_, exit) = native_call(&src, web);
+            assert_eq!(exit, Exit::Returned(expect), "{arg} web {web}");
+        }
+        agree_at_every_budget(&src, &[], &[false, true], 0..16);
+    }
+}
+
+/// A recursion in Fibonacci's shape whose other way runs inline, its two
+/// recursive calls nested guarded runs (their base case inline, else a
+/// call through the host from inside the run), with a call of a looping
+/// function through the host between them: the same result, and the
+/// engines agree at every budget of the first 400 steps (stops inside the
+/// run after each call through the host, and in the callees), on both
+/// profiles, and with the loop's function watched.
+#[test]
+fn a_recursions_other_way_inline_agrees_at_every_budget() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\npush constant 6\ncall Main.fib 1\nreturn\n\
+               function Main.fib 0\npush argument 0\npush constant 2\nlt\nif-goto BASE\n\
+               push argument 0\npush constant 1\nsub\ncall Main.fib 1\n\
+               push argument 0\ncall Main.spin 1\nadd\n\
+               push argument 0\npush constant 2\nsub\ncall Main.fib 1\nadd\nreturn\n\
+               label BASE\npush argument 0\nreturn\n\
+               function Main.spin 1\npush argument 0\npop local 0\nlabel TOP\npush local 0\n\
+               if-goto MORE\npush constant 0\nreturn\nlabel MORE\npush local 0\n\
+               push constant 1\nsub\npop local 0\ngoto TOP\n";
+    for web in [false, true] {
+        let (_, exit) = native_call(src, web);
+        assert_eq!(exit, Exit::Returned(8), "web {web}");
+    }
+    agree_at_every_budget(src, &[], &[false, true], 0..400);
+    let program = Program::from_sources(&[("Main.vm", src)]).expect("it loads");
+    let spin = program
+        .functions()
+        .iter()
+        .position(|f| f.name == "Main.spin")
+        .expect("Main.spin");
+    for web in [false, true] {
+        let case = EngineCase {
+            src: src.to_string(),
+            args: vec![],
+            web,
+            budgets: vec![0, 150],
+            hold: None,
+            watched: Some(1u8 << (spin % 7)),
+        };
+        if let Err(e) = engines_agree(&case, Engine::Native, None) {
+            panic!("web {web}: {e}");
+        }
+    }
+}
+
 /// `Main.f` of `src` (a program of its own, not [`random_program`]'s)
 /// called with no arguments on the compiled engine, under the web
 /// profile or the desktop's: the machine after it, and its exit.
@@ -1551,8 +1631,12 @@ fn a_leave_inside_nested_inline_runs_at_the_nesting_bound_agrees() {
 /// Compiled calls nest at most 256 deep on the host's stack: in a
 /// recursion 1,000 deep, every 256th call is left to the interpreter, and
 /// compiled code is entered again above it, so that the host's stack holds
-/// at most 256 compiled frames whatever the VM's depth (depths 200, 256,
-/// 600 and 1,000 interpret 1, 2, 3 and 4 steps).
+/// at most 256 compiled frames whatever the VM's depth. Each compiled call
+/// of Main.r runs its callee's other way inline, the recursive call in it,
+/// so it needs room for two frames: at the first two bounds, which are
+/// also the frame stack's capacity (256, then 512), the call one frame
+/// above the bound goes to the interpreter too (depths 200, 256, 600 and
+/// 1,000 interpret 1, 3, 5 and 6 steps).
 #[test]
 fn compiled_calls_nest_at_most_256_deep() {
     let src = "function Main.main 0\npush constant 0\nreturn\n\
@@ -1568,9 +1652,9 @@ fn compiled_calls_nest_at_most_256_deep() {
     let mut m = Machine::new(program, config);
     let exit = m.call("Main.r", &[1000], None).expect("Main.r exists");
     assert_eq!(exit, Exit::Returned(1000));
-    // The calls 256, 512 and 768 levels down, and the last return, to
-    // the host.
-    assert_eq!(m.steps() - m.compiled_steps(), 4);
+    // The calls 255, 256, 511, 512 and 768 levels down, and the last
+    // return, to the host.
+    assert_eq!(m.steps() - m.compiled_steps(), 6);
 }
 
 /// A one-operand operator (`neg`, `not`) on an empty stack pops below
@@ -1934,7 +2018,7 @@ fn command() -> impl Strategy<Value = String> {
         2 => (0u16..2).prop_map(|p| format!("pop pointer {p}")),
         1 => value.clone().prop_map(|v| format!("pop constant {}", v % 6)),
         4 => prop::sample::select(vec!["add", "sub", "neg", "eq", "gt", "lt", "and", "or", "not"]).prop_map(String::from),
-        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1", "call Main.s 2", "call Main.w 2", "call Main.n 2", "call Main.n 1", "call Main.c 1", "call Main.v 2", "call Main.ga 1", "call Main.ga 2", "call Main.gb 1"]).prop_map(String::from),
+        1 => prop::sample::select(vec!["call Math.multiply 2", "call Math.divide 2", "call Math.abs 1", "call Main.g 1", "call Main.g 2", "call Main.m 1", "call Main.m 2", "call Main.r 1", "call Main.s 2", "call Main.w 2", "call Main.n 2", "call Main.n 1", "call Main.c 1", "call Main.v 2", "call Main.ga 1", "call Main.ga 2", "call Main.gb 1", "call Main.gc 1"]).prop_map(String::from),
         // Built-ins, which compiled code calls through the host: reads and
         // writes of any word, the heap, strings, the screen, an error.
         2 => prop::sample::select(vec![

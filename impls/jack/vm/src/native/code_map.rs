@@ -196,6 +196,12 @@ mod tests {
 
     /// [`runs_inline_in_main`] under `profile`.
     fn runs_inline_under(source: &str, callee: &str, profile: Profile) -> bool {
+        !returns_inline_in_main(source, callee, profile).is_empty()
+    }
+
+    /// The `return`s of `callee` that run inline in `Main.main`'s compiled
+    /// code, as indices from the callee's first instruction.
+    fn returns_inline_in_main(source: &str, callee: &str, profile: Profile) -> Vec<u32> {
         let (program, map) = map_of(source, profile);
         let id = program.function_id(callee).expect("the callee") as usize;
         let start = program.functions[id].start;
@@ -203,11 +209,18 @@ mod tests {
             .functions
             .get(id + 1)
             .map_or(u32::MAX, |next| next.start);
-        map.lines().any(|l| {
-            let cols: Vec<&str> = l.split('\t').collect();
-            let pc: u32 = cols[3].parse().unwrap();
-            cols[0] == "Main.main" && cols[5] == "Return" && (start..end).contains(&pc)
-        })
+        let mut returns: Vec<u32> = map
+            .lines()
+            .filter_map(|l| {
+                let cols: Vec<&str> = l.split('\t').collect();
+                let pc: u32 = cols[3].parse().unwrap();
+                (cols[0] == "Main.main" && cols[5] == "Return" && (start..end).contains(&pc))
+                    .then(|| pc - start)
+            })
+            .collect();
+        returns.sort_unstable();
+        returns.dedup();
+        returns
     }
 
     /// Inline runs go exactly as far as their limits: a chain of one-line
@@ -265,20 +278,23 @@ mod tests {
     /// opening writes a word, leaves one under the condition or reaches
     /// below its own words, nor where the returning way is longer than an
     /// inline run; and up to the argument and local limits of inline runs.
+    /// (The other way here is too long to run inline itself.)
     #[test]
     fn guarded_runs_inline_the_way_that_returns() {
         let taken = |opening: &str, n_vars: usize, base: &str| {
             format!(
                 "function Main.main 0\npush static 0\ncall Main.g 1\nreturn\n\
                  function Main.g {n_vars}\n{opening}if-goto BASE\npush argument 0\n\
-                 push constant 1\nsub\ncall Main.g 1\nreturn\nlabel BASE\npush argument 0\n\
-                 {base}return\n"
+                 push constant 1\nsub\ncall Main.g 1\n{}return\nlabel BASE\n\
+                 push argument 0\n{base}return\n",
+                "neg\n".repeat(32)
             )
         };
         let test = "push argument 0\npush constant 2\nlt\n";
         let fall = "function Main.main 0\npush constant 5\ncall Main.g 1\nreturn\n\
                     function Main.g 0\npush argument 0\nif-goto MORE\npush constant 0\nreturn\n\
-                    label MORE\npush argument 0\npush constant 1\nsub\ncall Main.g 1\nreturn\n";
+                    label MORE\nlabel LOOP\npush argument 0\npush constant 1\nsub\n\
+                    call Main.g 1\ngoto LOOP\n";
         let method = "push argument 0\npop pointer 0\npush this 0\n";
         for profile in [Profile::Desktop, Profile::Web] {
             assert!(runs_inline_under(&taken(test, 0, ""), "Main.g", profile));
@@ -307,7 +323,8 @@ mod tests {
                 + &"push constant 1\n".repeat(n)
                 + &format!(
                     "call Main.g {n}\nreturn\nfunction Main.g 0\npush argument 0\nif-goto BASE\n\
-                     push constant 0\ncall Main.g 1\nreturn\nlabel BASE\npush constant 1\nreturn\n"
+                     label LOOP\npush constant 0\ncall Main.g 1\ngoto LOOP\nlabel BASE\n\
+                     push constant 1\nreturn\n"
                 )
         };
         assert!(runs_inline_in_main(&args(250), "Main.g"));
@@ -318,6 +335,65 @@ mod tests {
         for profile in [Profile::Desktop, Profile::Web] {
             assert!(!runs_inline_under(implicit, "__implicit", profile));
         }
+    }
+
+    /// A recursion's other way runs inline too, where it calls the callee
+    /// itself and the call is the caller's own: its calls are nested runs
+    /// (a guarded callee's base case inline, its own other way not) or
+    /// calls through the host. Not a way whose calls are of other
+    /// functions only, nor one past the limits of inline runs: its
+    /// `return` within 32 instructions, 96 translated with its nested runs
+    /// (desktop, `function` lines included: 11 of the way, 7 of the nested
+    /// Main.g's opening and base case, and 3 + m of each of three runs of
+    /// Main.big).
+    #[test]
+    fn guarded_runs_inline_a_recursions_other_way() {
+        let rec = |way: &str| {
+            format!(
+                "function Main.main 0\npush constant 5\ncall Main.g 1\nreturn\n\
+                 function Main.g 0\npush argument 0\npush constant 2\nlt\nif-goto BASE\n\
+                 {way}return\nlabel BASE\npush argument 0\nreturn\n\
+                 function Main.k 0\npush argument 0\npush constant 2\nlt\nif-goto BASE\n\
+                 push argument 0\npush constant 1\nsub\ncall Main.k 1\nreturn\nlabel BASE\n\
+                 push argument 0\nreturn\nfunction Main.spin 1\npush argument 0\npop local 0\nlabel L\n\
+                 push local 0\npush constant 1\nsub\npop local 0\npush local 0\nif-goto L\n\
+                 push constant 0\nreturn\n"
+            )
+        };
+        let inline =
+            |source: &str, callee: &str| returns_inline_in_main(source, callee, Profile::Desktop);
+        let down = "push argument 0\npush constant 1\nsub\n";
+        // Main.g's way of c instructions returns at 4 + c, its base case
+        // 2 later.
+        let g = format!("{down}call Main.g 1\n");
+        assert_eq!(inline(&rec(&g), "Main.g"), [8, 10]);
+        let host = format!("{down}call Main.spin 1\ncall Main.g 1\n");
+        assert_eq!(inline(&rec(&host), "Main.g"), [9, 11]);
+        assert!(inline(&rec(&host), "Main.spin").is_empty());
+        let nested = format!("{down}call Main.k 1\n{down}call Main.g 1\nadd\n");
+        assert_eq!(inline(&rec(&nested), "Main.g"), [13, 15]);
+        // Main.k: its opening and base case (at 10) inline, not its way (8).
+        assert_eq!(inline(&rec(&nested), "Main.k"), [10]);
+        let others = format!("{down}call Main.k 1\n");
+        assert_eq!(inline(&rec(&others), "Main.g"), [10]);
+        for profile in [Profile::Desktop, Profile::Web] {
+            assert_eq!(returns_inline_in_main(&rec(&g), "Main.g", profile), [8, 10]);
+        }
+        // The way's `return` is its 32nd instruction at most.
+        let long = |n: usize| rec(&format!("{down}{}call Main.g 1\n", "neg\n".repeat(n)));
+        assert_eq!(inline(&long(27), "Main.g"), [35, 37]);
+        assert_eq!(inline(&long(28), "Main.g"), [38]);
+        let total = |m: usize| {
+            let big = format!(
+                "function Main.big 0\npush constant 1\n{}return\n",
+                "neg\n".repeat(m)
+            );
+            let calls = "call Main.big 0\npop temp 0\n".repeat(3);
+            let way = format!("{calls}{down}call Main.g 1\n");
+            rec(&way) + &big
+        };
+        assert_eq!(inline(&total(23), "Main.big"), [24]);
+        assert!(inline(&total(24), "Main.big").is_empty());
     }
 
     /// The host code bytes of the map's instruction stretches (part `op`),

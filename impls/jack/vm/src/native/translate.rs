@@ -293,12 +293,34 @@ struct Inline {
 }
 
 /// The two ways out of a guarded run's `if-goto` (not taken, taken): the
-/// instructions up to and including a `return` that run inline (`start`,
-/// `end` past the `return`), or None where the call goes through the
-/// host instead.
+/// instructions up to and including a `return` that run inline, or None
+/// where the call goes through the host instead. Where the call is the
+/// caller's own, a recursion's other way may run inline too, its calls
+/// nested runs or calls through the host from inside the run
+/// ([`stretch`]).
 #[derive(Clone, Copy, Debug)]
 struct Branch {
-    leaves: [Option<(u32, u32)>; 2],
+    leaves: [Option<Way>; 2],
+}
+
+/// A way out of a guarded run's `if-goto` that runs inline: `goto`s
+/// (`jumps` of them, a step each: the desktop's wasted step before a
+/// label that follows another), then the instructions from `start` up to
+/// and including a `return` (`end` is past it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Way {
+    start: u32,
+    end: u32,
+    jumps: u64,
+}
+
+/// Where the caller's code goes on after a run
+/// ([`Translator::run_inline`]): after its return, or with the call
+/// through the host still to make (a guarded run's way there), then on at
+/// `join` where the run's other ways meet (a run nested in another).
+enum RunEnd {
+    Returned,
+    Host(Option<ir::Block>),
 }
 
 /// Whether no instruction of `ops` (the body of an inline run) can write
@@ -363,14 +385,19 @@ const MAX_INLINE_DEPTH: u32 = 8;
 /// instructions.
 const MAX_INLINE_TOTAL: usize = 96;
 
-/// The callees of the calls nested in inline run `run`, at every level.
+/// The callees of the calls nested in inline run `run` (a guarded run's
+/// ways included), at every level.
 fn nested_callees(env: &Env<'_>, run: Inline, out: &mut Vec<FnId>) {
-    for &op in &env.code[run.start as usize..run.end as usize] {
-        if let Op::Call { callee, nargs, .. } = op {
-            let callee = FnId::from(callee);
-            out.push(callee);
-            if let Some(inner) = inline_callee(env, callee, nargs) {
-                nested_callees(env, inner, out);
+    let ways = run.branch.map_or([None; 2], |b| b.leaves);
+    let ways = ways.into_iter().flatten().map(|w| (w.start, w.end));
+    for (start, end) in std::iter::once((run.start, run.end)).chain(ways) {
+        for &op in &env.code[start as usize..end as usize] {
+            if let Op::Call { callee, nargs, .. } = op {
+                let callee = FnId::from(callee);
+                out.push(callee);
+                if let Some(inner) = inline_callee(env, callee, nargs, false) {
+                    nested_callees(env, inner, out);
+                }
             }
         }
     }
@@ -396,9 +423,10 @@ fn run_start(env: &Env<'_>, f: &Function, nargs: u16) -> Option<u32> {
 }
 
 /// Whether a call of `callee` with `nargs` arguments runs it inline (see
-/// [`Inline`]).
-fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
-    inline_run(env, callee, nargs, 1).or_else(|| guarded_run(env, callee, nargs))
+/// [`Inline`]); `first` where the call is the translated function's own,
+/// not nested in a run (only there may a guarded run's ways hold calls).
+fn inline_callee(env: &Env<'_>, callee: FnId, nargs: u16, first: bool) -> Option<Inline> {
+    inline_run(env, callee, nargs, 1).or_else(|| guarded_run(env, callee, nargs, first))
 }
 
 /// Whether instruction `op` of a callee called with `nargs` arguments
@@ -429,9 +457,12 @@ fn repeatable(op: Op) -> bool {
 /// The opening instructions up to the `if-goto` are [`repeatable`], and
 /// leave nothing on the stack but the condition; each way out of the branch
 /// that reaches a `return` within [`MAX_INLINE_OPS`] straight
-/// instructions runs inline, and the other (if any) makes the call
+/// instructions (after the desktop's `goto` to a label) runs inline, and
+/// so, at a call's `first` level, does a way with calls in it, one of them
+/// of the callee itself ([`stretch`]: a recursion's other case, `return
+/// fib(k - 1) + fib(k - 2);`); the other way (if any) makes the call
 /// through the host, whose callee runs the opening again.
-fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
+fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16, first: bool) -> Option<Inline> {
     let f = &env.program.functions[callee as usize];
     let start = run_start(env, f, nargs)?;
     let code = env.code;
@@ -453,35 +484,60 @@ fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
     if low < 0 || blocks::net_depth(prefix) != locals_pushed {
         return None;
     }
-    let leaf = |from: u32| -> Option<(u32, u32)> {
+    let way = |mut from: u32| -> Option<(Way, Stretch)> {
+        let mut jumps = 0;
+        while let Some(&Op::Goto(t)) = code.get(from as usize) {
+            if jumps == 2 {
+                return None;
+            }
+            (from, jumps) = (t, jumps + 1);
+        }
         let rest = code.get(from as usize..)?;
         let len = rest
             .iter()
             .take(MAX_INLINE_OPS)
             .position(|&op| op == Op::Return)?;
         let body = &rest[..=len];
-        if !body[..len].iter().all(|&op| fits_inline(op, nargs)) {
-            return None;
-        }
-        let (low, _) = blocks::depth_range(body);
-        (locals_pushed + low >= 0).then_some((from, from + len as u32 + 1))
+        let straight = || stretch(env, body, nargs, locals_pushed, |_, _| None);
+        let with_calls = || {
+            stretch(env, body, nargs, locals_pushed, |c, n| {
+                Some(inline_callee(env, c, n, false))
+            })
+            .filter(|w| w.size <= MAX_INLINE_TOTAL)
+        };
+        // (Calls in a way pay where the callee calls itself: each call
+        // of a recursion then runs two of its levels. Elsewhere they only
+        // move a call through the host into the caller's larger code.)
+        let recursive = body
+            .iter()
+            .any(|&op| matches!(op, Op::Call { callee: c, .. } if FnId::from(c) == callee));
+        let w = straight().or_else(|| (first && recursive).then(with_calls).flatten())?;
+        let end = from + len as u32 + 1;
+        let steps = w.steps + jumps;
+        Some((
+            Way {
+                start: from,
+                end,
+                jumps,
+            },
+            Stretch { steps, ..w },
+        ))
     };
     let branch_at = start + at as u32;
-    let leaves = [leaf(branch_at + 1), leaf(target)];
-    if leaves.iter().all(Option::is_none) {
+    let ways = [branch_at + 1, target].map(way);
+    if ways.iter().all(Option::is_none) {
         return None;
     }
     let locals = i32::from(zeroed_by_call(env.timing, f));
-    let steps_of = |ops: &[Op]| ops.iter().map(|op| op.steps()).sum::<u64>();
-    let (mut steps, mut size, mut top) = (0u64, prefix.len(), high);
+    let opening_steps = prefix.iter().map(|op| op.steps()).sum::<u64>();
+    let (mut steps, mut size, mut top, mut frames) = (0u64, prefix.len(), high, 1);
     let mut keeps_frame = keeps_frames(prefix, env.profile);
-    for &(from, end) in leaves.iter().flatten() {
-        let body = &code[from as usize..end as usize];
-        let (_, leaf_high) = blocks::depth_range(body);
-        top = top.max(locals_pushed + leaf_high);
-        steps = steps.max(steps_of(prefix) + steps_of(body));
-        size += body.len();
-        keeps_frame &= keeps_frames(body, env.profile);
+    for (_, w) in ways.iter().flatten() {
+        top = top.max(w.top);
+        steps = steps.max(opening_steps + w.steps);
+        size += w.size;
+        frames = frames.max(w.frames);
+        keeps_frame &= w.keeps_frame;
     }
     Some(Inline {
         start,
@@ -489,33 +545,47 @@ fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16) -> Option<Inline> {
         steps,
         top: locals + top,
         size,
-        frames: 1,
+        frames,
         keeps_frame,
-        branch: Some(Branch { leaves }),
+        branch: Some(Branch {
+            leaves: ways.map(|w| w.map(|(way, _)| way)),
+        }),
     })
 }
 
-/// [`inline_callee`] for a run nested `level` deep (1: called from the
-/// function being translated).
-fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inline> {
-    let f = &env.program.functions[callee as usize];
-    if level > MAX_INLINE_DEPTH {
-        return None;
-    }
-    let start = run_start(env, f, nargs)?;
-    let ops = &env.code[start as usize..];
-    let len = ops
-        .iter()
-        .take(MAX_INLINE_OPS)
-        .position(|op| *op == Op::Return)?;
-    // Where the call zeroes the locals (web), the run starts above them.
-    let locals = i32::from(zeroed_by_call(env.timing, f));
-    let (mut depth, mut top) = (0i32, 0i32);
-    let (mut steps, mut size, mut frames) = (0u64, 0usize, 1u32);
-    let mut keeps_frame = keeps_frames(&ops[..len], env.profile);
+/// What a run's stretch of code needs: its steps (its nested runs'
+/// included, one for a call through the host), the highest depth it
+/// reaches above the callee's LCL (nested frames included), the
+/// instructions translated, the most frames it makes at once (its own
+/// included), and whether it keeps its frame (see [`Inline::keeps_frame`]).
+#[derive(Clone, Copy, Debug)]
+struct Stretch {
+    steps: u64,
+    top: i32,
+    size: usize,
+    frames: u32,
+    keeps_frame: bool,
+}
+
+/// The [`Stretch`] of `body`, a callee's straight instructions (called with
+/// `nargs` arguments) up to and including a `return`, entered `depth`
+/// words above its LCL; each call in it is made as `nested` says: None, the
+/// run cannot hold it; Some(Some(run)), a nested run; Some(None), a call
+/// through the host from inside the run (which then tests the budget for
+/// the rest, [`steps_to_return`]).
+fn stretch(
+    env: &Env<'_>,
+    body: &[Op],
+    nargs: u16,
+    mut depth: i32,
+    nested: impl Fn(FnId, u16) -> Option<Option<Inline>>,
+) -> Option<Stretch> {
+    let (mut top, mut steps, mut size, mut frames) = (depth, 0u64, 0usize, 1u32);
+    let len = body.len() - 1;
+    let mut keeps_frame = keeps_frames(&body[..len], env.profile);
     let mut from = 0;
-    // The stretches between nested calls, each call's run, the return.
-    for (k, op) in ops[..=len].iter().enumerate() {
+    // The stretches between nested calls, each call, the return.
+    for (k, op) in body.iter().enumerate() {
         let fits = match *op {
             Op::Call { .. } | Op::Return => true,
             op => fits_inline(op, nargs),
@@ -533,37 +603,98 @@ fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inl
         else {
             continue;
         };
-        let (low, high) = blocks::depth_range(&ops[from..k]);
+        let (low, high) = blocks::depth_range(&body[from..k]);
         if depth + low < 0 {
             return None;
         }
         top = top.max(depth + high);
-        depth += blocks::net_depth(&ops[from..k]);
-        let run = inline_run(env, FnId::from(inner), n, level + 1)?;
+        depth += blocks::net_depth(&body[from..k]);
         if depth < i32::from(n) {
             return None;
         }
-        // The nested frame: 5 saved words above SP, then its run.
-        top = top.max(depth + 5 + run.top);
+        let inner = FnId::from(inner);
+        // The nested frame: 5 saved words above SP, then its run or the
+        // locals the call zeroes.
+        let (inner_top, inner_frames) = match nested(inner, n)? {
+            Some(run) => {
+                steps += run.steps;
+                size += run.size;
+                let host_way = run.branch.is_some_and(|b| b.leaves.contains(&None));
+                keeps_frame &= run.keeps_frame && (!host_way || env.frames_intact);
+                (run.top, run.frames)
+            }
+            None => {
+                // The callee's compiled code may write this run's frame
+                // unless none can.
+                keeps_frame &= env.frames_intact;
+                let f = &env.program.functions[inner as usize];
+                (i32::from(zeroed_by_call(env.timing, f)), 1)
+            }
+        };
+        top = top.max(depth + 5 + inner_top);
         depth += 1 - i32::from(n);
-        steps += run.steps;
-        size += run.size;
-        keeps_frame &= run.keeps_frame;
-        frames = frames.max(1 + run.frames);
+        frames = frames.max(1 + inner_frames);
         from = k + 1;
     }
-    let (low, high) = blocks::depth_range(&ops[from..=len]);
-    if depth + low < 0 || size > MAX_INLINE_TOTAL {
+    let (low, high) = blocks::depth_range(&body[from..]);
+    if depth + low < 0 {
         return None;
     }
-    Some(Inline {
-        start,
-        end: start + len as u32 + 1,
+    Some(Stretch {
         steps,
-        top: locals + top.max(depth + high),
+        top: top.max(depth + high),
         size,
         frames,
         keeps_frame,
+    })
+}
+
+/// The steps from `from`, in a guarded run's way with calls, up to and
+/// including its `return`, its nested runs' included: what must be left
+/// under the budget when a call through the host from inside the run
+/// returns before `from`.
+fn steps_to_return(env: &Env<'_>, from: u32) -> u64 {
+    let mut steps = 0;
+    for &op in &env.code[from as usize..] {
+        steps += op.steps();
+        match op {
+            Op::Return => break,
+            Op::Call { callee, nargs, .. } => {
+                let run = inline_callee(env, FnId::from(callee), nargs, false);
+                steps += run.map_or(0, |r| r.steps);
+            }
+            _ => {}
+        }
+    }
+    steps
+}
+
+/// [`inline_callee`] for a run nested `level` deep (1: called from the
+/// function being translated).
+fn inline_run(env: &Env<'_>, callee: FnId, nargs: u16, level: u32) -> Option<Inline> {
+    let f = &env.program.functions[callee as usize];
+    if level > MAX_INLINE_DEPTH {
+        return None;
+    }
+    let start = run_start(env, f, nargs)?;
+    let ops = &env.code[start as usize..];
+    let len = ops
+        .iter()
+        .take(MAX_INLINE_OPS)
+        .position(|op| *op == Op::Return)?;
+    let run = stretch(env, &ops[..=len], nargs, 0, |c, n| {
+        inline_run(env, c, n, level + 1).map(Some)
+    })?;
+    // Where the call zeroes the locals (web), the run starts above them.
+    let locals = i32::from(zeroed_by_call(env.timing, f));
+    (run.size <= MAX_INLINE_TOTAL).then_some(Inline {
+        start,
+        end: start + len as u32 + 1,
+        steps: run.steps,
+        top: locals + run.top,
+        size: run.size,
+        frames: run.frames,
+        keeps_frame: run.keeps_frame,
         branch: None,
     })
 }
@@ -2208,10 +2339,8 @@ impl Translator<'_, '_> {
         before: &Before,
         blk: &Block,
     ) {
-        let ctx = self.ctx;
         let f = &self.env.program.functions[callee as usize];
         let n_vars = zeroed_by_call(self.env.timing, f);
-        let entry_flags = f.entry_flags(n);
         if n_vars > MAX_INLINE_LOCALS || n > MAX_COMPILED_ARGS {
             self.exit_before(before);
             return;
@@ -2223,7 +2352,7 @@ impl Translator<'_, '_> {
             Some(outer) => self.b.ins().iadd_imm_s(outer.frames_len, 1),
             None => self.frames_len(),
         };
-        let inline = inline_callee(&self.env, callee, n);
+        let inline = inline_callee(&self.env, callee, n, nested.is_none());
         // Room in the frame stack and native nesting bounded (no room if
         // calls must not run compiled) for the call's frame, and those of
         // the runs nested in it (tested by the outermost call), the callee
@@ -2300,28 +2429,82 @@ impl Translator<'_, '_> {
             None => blk.steps,
         };
         let steps = self.b.ins().iadd_imm_s(before.steps0, charged as i64);
-        if let Some(inline) = inline {
-            let args = (0..i32::from(n))
-                .map(|i| s.known(s.depth - i32::from(n) + i))
-                .collect();
-            self.inline_args.push(args);
-            let goes_on = self.run_inline(call, inline, base, p, steps, n_vars, blk);
-            self.inline_args.pop();
-            if nested.is_some() {
-                s.depth += 1 - i32::from(n);
+        let end = match inline {
+            Some(inline) => {
+                let args = (0..i32::from(n))
+                    .map(|i| s.known(s.depth - i32::from(n) + i))
+                    .collect();
+                self.inline_args.push(args);
+                let end = self.run_inline(call, inline, base, p, steps, n_vars, blk);
+                self.inline_args.pop();
+                end
             }
-            if !goes_on {
-                return;
-            }
-            // A guarded run's branch that goes through the host: the
-            // call as below, its frame already written.
+            None => RunEnd::Host(None),
+        };
+        if nested.is_some() {
+            s.depth += 1 - i32::from(n);
         }
-        assert!(nested.is_none(), "inline_run runs every nested call inline");
-        // The frame stack grows by the call's entry, which is written only
-        // if the callee leaves compiled code (below): a return into this
-        // code needs none of it.
-        let len1 = self.b.ins().iadd_imm_s(len, 1);
+        let RunEnd::Host(join) = end else {
+            return;
+        };
+        // The call through the host (a guarded run's way there goes on
+        // here, its frame already written).
+        let Some(steps) = self.host_call(call, base, p, steps) else {
+            self.jump_to(before.pc + 1);
+            return;
+        };
+        // Inside a run: it goes on after the call, with what compiled code
+        // knows of the run's frame reset as after a nested run, and a
+        // budget test of the rest of the run.
+        self.flags_known &= !(in_range(true) | in_range(false));
+        for args in &mut self.inline_args {
+            args.fill(None);
+        }
+        let ok = self.fits(steps, steps_to_return(&self.env, before.pc + 1));
+        let after = Before {
+            pc: before.pc + 1,
+            k: 0,
+            depth: s.depth,
+            steps0: steps,
+            sp0: s.sp0,
+            base: s.base,
+            pending: Vec::new(),
+        };
+        self.guard(ok, &after);
+        if let Some(join) = join {
+            self.b.ins().jump(join, NONE);
+            self.b.switch_to_block(join);
+        }
+    }
+
+    /// The call `site` through the host, its frame written at SP `base`
+    /// (host address `p`), from step count `steps` (the call's included):
+    /// the frame stack grows by the call's entry, which is written (with
+    /// those of the runs the call is nested in) only if the callee leaves
+    /// compiled code, for a return into this code needs none of it. Where it returns here, in
+    /// compiled code: SP is its ARG + 1, the registers are the frame's
+    /// words in RAM (which the callee may have written, unless no compiled
+    /// code can: then they are the caller's own), nargs and flags are the
+    /// caller's. Returns None from the function's own code (the block
+    /// ends); inside a run, the step count after the call, with the
+    /// builder where the run goes on.
+    fn host_call(&mut self, site: CallSite, base: Value, p: Value, steps: Value) -> Option<Value> {
+        let CallSite { callee, n, ret, .. } = site;
+        let f = &self.env.program.functions[callee as usize];
+        let entry_flags = f.entry_flags(n);
+        let len1 = self.b.ins().iadd_imm_s(site.frames_len, 1);
         self.set_frames_len(len1);
+        // Desktop: R13 and R14 as a nested run's return left them, before
+        // the callee's own returns write them.
+        self.write_return_registers();
+        self.return_registers = None;
+        // The frame stack's length where this function's code runs (the
+        // outermost run's entry index), kept across the call in a slot.
+        let own_len = self
+            .inlined
+            .first()
+            .map_or(site.frames_len, |c| c.frames_len);
+        self.b.ins().stack_store(T64, own_len, self.slots, SLOT_LEN);
 
         // The callee's registers go as arguments (`native::Entry`).
         let this = self.b.use_var(self.v.this);
@@ -2331,10 +2514,7 @@ impl Translator<'_, '_> {
         let nargs_flags = self.c32(i64::from(n) | i64::from(entry_flags) << 16);
         let func = (self.env.callee)(self.b.func, callee);
         let called = self.c32(i64::from(CALLED | u32::from(ret)));
-        self.b
-            .ins()
-            .stack_store(T64, call.frames_len, self.slots, SLOT_LEN);
-        let site = call;
+        let ctx = self.ctx;
         let call = self
             .b
             .ins()
@@ -2350,20 +2530,27 @@ impl Translator<'_, '_> {
         self.b.switch_to_block(out);
         self.b.set_cold_block(out);
         // The callee left compiled code: the state is in the context, and
-        // the call's frame stack entry and the held locals go to memory.
-        let frames_len = self.b.ins().stack_load(T64, T64, self.slots, SLOT_LEN);
-        self.write_frame_entry(self.env.id, &CallSite { frames_len, ..site });
+        // the frame stack entries of the runs around the call and of the
+        // call itself, and the held locals, go to memory.
+        let own_len = self.b.ins().stack_load(T64, T64, self.slots, SLOT_LEN);
+        let mut me = self.env.id;
+        for (i, call) in self.inlined.clone().into_iter().chain([site]).enumerate() {
+            let frames_len = self.b.ins().iadd_imm_s(own_len, i as i64);
+            self.write_frame_entry(me, &CallSite { frames_len, ..call });
+            me = call.callee;
+        }
         self.store_held();
         self.b.ins().return_(&[code, steps]);
 
-        // It returned here, all in compiled code: SP is its ARG + 1, the
-        // registers are the frame's words in RAM (which the callee may have
-        // written, unless no compiled code can: then they are this
-        // function's own), nargs and flags are this function's own.
         self.b.switch_to_block(back);
         self.b.def_var(self.v.steps, steps);
         let sp = self.b.ins().iadd_imm_s(base, 1 - i64::from(n));
         self.b.def_var(self.v.sp, sp);
+        if !self.inlined.is_empty() {
+            // The callee's return left the length at the call's entry.
+            let own_len = self.b.ins().stack_load(T64, T64, self.slots, SLOT_LEN);
+            self.set_frames_len(own_len);
+        }
         if !self.env.frames_intact {
             let (lcl, arg) = (self.b.use_var(self.v.lcl), self.b.use_var(self.v.arg));
             let mut restored = Vec::new();
@@ -2377,9 +2564,9 @@ impl Translator<'_, '_> {
                 self.b.def_var(var, x);
                 restored.push(x);
             }
-            self.same_frame_or_leave(restored[0], restored[1], lcl, arg, before.pc + 1);
+            self.same_frame_or_leave(restored[0], restored[1], lcl, arg, site.ret_pc);
         }
-        self.jump_to(before.pc + 1);
+        (!self.inlined.is_empty()).then_some(steps)
     }
 
     /// After a call returned in compiled code with LCL and ARG `restored`
@@ -2458,7 +2645,7 @@ impl Translator<'_, '_> {
     /// the callee's LCL: its locals where the call zeroes them, the whole
     /// run of a callee run inline.
     fn frame_top(&self, callee: FnId, nargs: u16) -> i32 {
-        match inline_callee(&self.env, callee, nargs) {
+        match inline_callee(&self.env, callee, nargs, true) {
             Some(inline) => inline.top,
             None => i32::from(zeroed_by_call(
                 self.env.timing,
@@ -2533,9 +2720,7 @@ impl Translator<'_, '_> {
     /// instructions translated as a block of its own (leaving compiled code
     /// anywhere in it pushes its frame stack entry first), then its return.
     /// The outermost run tests the budget for its whole run, nested runs
-    /// included. Returns whether the caller's code goes on with the call
-    /// through the host (a guarded run's other branch), the registers its
-    /// own again.
+    /// included. Returns where the caller's code goes on (see [`RunEnd`]).
     #[allow(clippy::too_many_arguments)]
     fn run_inline(
         &mut self,
@@ -2546,7 +2731,7 @@ impl Translator<'_, '_> {
         steps: Value,
         zeroed: u16,
         blk: &Block,
-    ) -> bool {
+    ) -> RunEnd {
         let f = &self.env.program.functions[call.callee as usize];
         let n = call.n;
         let nargs = self.c16(i64::from(n));
@@ -2600,7 +2785,7 @@ impl Translator<'_, '_> {
         };
         let (from, steps0) = self.ops(&mut s, inline.start, inline.end - 1, steps, blk);
         self.b.set_srcloc(source_loc(inline.end - 1, Part::Op));
-        let goes_on = match inline.branch {
+        let end = match inline.branch {
             Some(branch) => {
                 // The steps to here, the `if-goto` included.
                 let steps = self
@@ -2611,7 +2796,7 @@ impl Translator<'_, '_> {
             }
             None => {
                 self.return_inline(&mut s, inline.end - 1, from, steps0, inline.keeps_frame);
-                false
+                RunEnd::Returned
             }
         };
         (
@@ -2624,7 +2809,7 @@ impl Translator<'_, '_> {
         // The registers come back from the frame, which the run may have
         // written: no `pop pointer` test of the caller's holds for them.
         self.flags_known &= !(in_range(true) | in_range(false));
-        goes_on
+        end
     }
 
     /// The `if-goto` that ends the opening of guarded run `inline` (with
@@ -2632,8 +2817,9 @@ impl Translator<'_, '_> {
     /// way to a `return` of `branch` runs inline, as
     /// [`Translator::run_inline`] runs a callee; the other way (if any)
     /// sets the registers back to the caller's, as its call saved them,
-    /// and returns true with the builder there, for the call through the
-    /// host (which sets SP and the step count itself).
+    /// and returns [`RunEnd::Host`] with the builder there, for the call
+    /// through the host (which sets SP and the step count itself). Nested
+    /// in a run, the ways meet again after the call.
     fn branch_inline(
         &mut self,
         inline: Inline,
@@ -2641,22 +2827,36 @@ impl Translator<'_, '_> {
         mut s: Stack,
         steps: Value,
         blk: &Block,
-    ) -> bool {
+    ) -> RunEnd {
         let x = s.pop(self);
         let x = self.exact(x);
         // Each way pushes the run's frame again, and its return pops it.
         let call = self.inlined.pop().expect("an inline run");
+        let join = (!self.inlined.is_empty()).then(|| self.b.create_block());
         let host = self.b.create_block();
         let ways = branch.leaves.map(|leaf| match leaf {
             Some(_) => self.b.create_block(),
             None => host,
         });
         self.b.ins().brif(x, ways[1], NONE, ways[0], NONE);
+        // What compiled code knows here, for each way alike.
         let flags_known = self.flags_known;
+        let args = self.inline_args.clone();
+        let pending = self.return_registers;
         let opening_code = &self.env.code[inline.start as usize..inline.end as usize];
         for (leaf, way) in branch.leaves.into_iter().zip(ways) {
-            let Some((from, end)) = leaf else { continue };
+            let Some(Way {
+                start: from,
+                end,
+                jumps,
+            }) = leaf
+            else {
+                continue;
+            };
             self.b.switch_to_block(way);
+            self.inline_args.clone_from(&args);
+            self.return_registers = pending;
+            let steps = self.b.ins().iadd_imm_s(steps, jumps as i64);
             self.inlined.push(call);
             let code = &self.env.code[from as usize..end as usize];
             // The opening and this way as one stretch of code: the words
@@ -2672,10 +2872,26 @@ impl Translator<'_, '_> {
             let (from, steps0) = self.ops(&mut leaf_stack, from, end - 1, steps, blk);
             self.b.set_srcloc(source_loc(end - 1, Part::Op));
             self.return_inline(&mut leaf_stack, end - 1, from, steps0, inline.keeps_frame);
+            if let Some(join) = join {
+                // (Desktop: R13 and R14 as this way's return leaves them.)
+                self.write_return_registers();
+                self.return_registers = None;
+                self.b.ins().jump(join, NONE);
+            }
         }
         if !branch.leaves.contains(&None) {
-            return false;
+            if let Some(join) = join {
+                self.b.switch_to_block(join);
+                // (Where the ways meet, the argument words of the runs
+                // around this one are read again.)
+                for args in &mut self.inline_args {
+                    args.fill(None);
+                }
+            }
+            return RunEnd::Returned;
         }
+        self.inline_args = args;
+        self.return_registers = pending;
         self.b.switch_to_block(host);
         for (var, x) in [
             (self.v.lcl, call.lcl),
@@ -2687,7 +2903,7 @@ impl Translator<'_, '_> {
         ] {
             self.b.def_var(var, x);
         }
-        true
+        RunEnd::Host(join)
     }
 
     /// The `return` (at `pc`) of the innermost callee run inline, which
