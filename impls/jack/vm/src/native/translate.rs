@@ -457,11 +457,11 @@ fn repeatable(op: Op) -> bool {
 /// The opening instructions up to the `if-goto` are [`repeatable`], and
 /// leave nothing on the stack but the condition; each way out of the branch
 /// that reaches a `return` within [`MAX_INLINE_OPS`] straight
-/// instructions (after the desktop's `goto` to a label) runs inline, and
-/// so, at a call's `first` level, does a way with calls in it, one of them
-/// of the callee itself ([`stretch`]: a recursion's other case, `return
-/// fib(k - 1) + fib(k - 2);`); the other way (if any) makes the call
-/// through the host, whose callee runs the opening again.
+/// instructions runs inline, and so, at a call's `first` level, does a way
+/// with calls in it, one of them of the callee itself ([`stretch`]: a
+/// recursion's other case, `return fib(k - 1) + fib(k - 2);`, after the
+/// desktop's `goto` to a label if any); the other way (if any) makes the
+/// call through the host, whose callee runs the opening again.
 fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16, first: bool) -> Option<Inline> {
     let f = &env.program.functions[callee as usize];
     let start = run_start(env, f, nargs)?;
@@ -507,11 +507,14 @@ fn guarded_run(env: &Env<'_>, callee: FnId, nargs: u16, first: bool) -> Option<I
         };
         // (Calls in a way pay where the callee calls itself: each call
         // of a recursion then runs two of its levels. Elsewhere they only
-        // move a call through the host into the caller's larger code.)
+        // move a call through the host into the caller's larger code. A
+        // straight way after a `goto` is left alone: it is the way around
+        // an `if` statement's body, mostly the less taken.)
         let recursive = body
             .iter()
             .any(|&op| matches!(op, Op::Call { callee: c, .. } if FnId::from(c) == callee));
-        let w = straight().or_else(|| (first && recursive).then(with_calls).flatten())?;
+        let w = if jumps == 0 { straight() } else { None }
+            .or_else(|| (first && recursive).then(with_calls).flatten())?;
         let end = from + len as u32 + 1;
         let steps = w.steps + jumps;
         Some((
