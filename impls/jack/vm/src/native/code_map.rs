@@ -379,6 +379,27 @@ mod tests {
         for profile in [Profile::Desktop, Profile::Web] {
             assert_eq!(returns_inline_in_main(&rec(&g), "Main.g", profile), [8, 10]);
         }
+        // Reached through `goto`s (the desktop's wasted step before a label
+        // that follows another; the program's own): the recursive way runs
+        // inline after up to two; a straight way so reached does not.
+        let after = |gotos: &str| {
+            format!(
+                "function Main.main 0\npush constant 5\ncall Main.g 1\nreturn\n\
+                 function Main.g 0\npush argument 0\npush constant 2\nlt\nnot\n\
+                 if-goto MORE\npush argument 0\nreturn\nlabel MORE\n{gotos}{g}return\n"
+            )
+        };
+        assert_eq!(inline(&after("label GO\n"), "Main.g"), [6, 11]);
+        let two = "goto A\nlabel A\ngoto B\nlabel B\n";
+        assert_eq!(inline(&after(two), "Main.g"), [6, 13]);
+        let three = "goto A\nlabel A\ngoto B\nlabel B\ngoto C\nlabel C\n";
+        assert_eq!(inline(&after(three), "Main.g"), [6]);
+        let base_after = format!(
+            "function Main.main 0\npush constant 5\ncall Main.g 1\nreturn\n\
+             function Main.g 0\npush argument 0\npush constant 2\nlt\nif-goto BASE\n\
+             {g}return\nlabel BASE\nlabel B2\npush argument 0\nreturn\n"
+        );
+        assert_eq!(inline(&base_after, "Main.g"), [8]);
         // The way's `return` is its 32nd instruction at most.
         let long = |n: usize| rec(&format!("{down}{}call Main.g 1\n", "neg\n".repeat(n)));
         assert_eq!(inline(&long(27), "Main.g"), [35, 37]);
