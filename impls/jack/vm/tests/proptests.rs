@@ -1100,6 +1100,40 @@ fn a_recursions_other_way_inline_agrees_at_every_budget() {
     }
 }
 
+/// Web: a recursion's other way run inline whose nested guarded runs go
+/// the host's way, and one of those callees (Main.g, its loop) writes the
+/// saved THAT of the run's frame through a pointer (RAM[266]: Main.f's
+/// frame from 256, its argument, then the run's saved words): the run's
+/// return takes THAT from that word, as the interpreter does (1234), not
+/// from what the call saved.
+#[test]
+fn a_callee_through_the_host_may_write_the_frame_of_the_run_around_it() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\npush constant 2\ncall Main.r 1\npop temp 0\npush pointer 1\n\
+               return\n\
+               function Main.r 0\npush argument 0\nif-goto MORE\npush constant 5\nreturn\n\
+               label MORE\npush argument 0\npush constant 1\nsub\ncall Main.r 1\ncall Main.g 1\n\
+               return\n\
+               function Main.g 0\npush argument 0\nif-goto WRITE\npush constant 5\nreturn\n\
+               label WRITE\npush constant 266\npop pointer 1\npush constant 1234\npop that 0\n\
+               label LOOP\npush constant 0\n\
+               if-goto LOOP\npush constant 6\nreturn\n";
+    // The same write by callees called through the host themselves (no
+    // guarded runs: Main.h writes before its first test, and Main.r's
+    // base case holds a loop, so that only its other way runs inline).
+    let direct = src.replace("call Main.g 1", "call Main.h 1").replace(
+        "if-goto MORE\npush constant 5",
+        "if-goto MORE\nlabel BASE\npush constant 0\nif-goto BASE\npush constant 5",
+    )
+        + "function Main.h 0\nlabel LOOP\npush constant 266\npop pointer 1\npush constant 1234\n\
+           pop that 0\npush constant 0\nif-goto LOOP\npush argument 0\nreturn\n";
+    for src in [src, direct.as_str()] {
+        let (_, exit) = native_call(src, true);
+        assert_eq!(exit, Exit::Returned(1234));
+        agree_at_every_budget(src, &[], &[true], 0..80);
+    }
+}
+
 /// `Main.f` of `src` (a program of its own, not [`random_program`]'s)
 /// called with no arguments on the compiled engine, under the web
 /// profile or the desktop's: the machine after it, and its exit.
