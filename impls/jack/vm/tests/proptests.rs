@@ -1055,7 +1055,8 @@ fn each_way_of_a_guarded_run_starts_from_its_opening() {
 /// steps (stops inside the run after each call through the host, and in
 /// the callees), on both profiles, and with the loop's function watched;
 /// and so do they on fib(2) without the loop, whose way runs wholly
-/// inline.
+/// inline, and on a way whose call through the host is followed at once
+/// by a nested run.
 #[test]
 fn a_recursions_other_way_inline_agrees_at_every_budget() {
     let src = "function Main.main 0\npush constant 0\nreturn\n\
@@ -1079,6 +1080,18 @@ fn a_recursions_other_way_inline_agrees_at_every_budget() {
         .replace("push constant 6", "push constant 2")
         .replace("push argument 0\ncall Main.spin 1\nadd\n", "");
     agree_at_every_budget(&pure, &[], &[false, true], 0..40);
+    // A call through the host followed at once by a nested guarded run
+    // that returns inline: the budget test after the first covers the
+    // second's call, its run and the way's return.
+    let tail = "function Main.main 0\npush constant 0\nreturn\n\
+                function Main.f 0\npush constant 3\ncall Main.r 1\nreturn\n\
+                function Main.r 0\npush argument 0\npush constant 2\nlt\nif-goto BASE\n\
+                push argument 0\npush constant 1\nsub\ncall Main.r 1\ncall Main.z 1\nreturn\n\
+                label BASE\npush argument 0\nreturn\n\
+                function Main.z 0\npush argument 0\npush constant 100\ngt\nif-goto BIG\n\
+                push argument 0\npush constant 1\nadd\nreturn\nlabel BIG\nlabel L\n\
+                push constant 0\nif-goto L\npush constant 0\nreturn\n";
+    agree_at_every_budget(tail, &[], &[false, true], 0..60);
     let program = Program::from_sources(&[("Main.vm", src)]).expect("it loads");
     let spin = program
         .functions()
