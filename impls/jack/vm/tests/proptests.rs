@@ -1051,8 +1051,8 @@ fn each_way_of_a_guarded_run_starts_from_its_opening() {
 /// call through the host from inside the run), with a call of a looping
 /// function through the host between them, and the way reached on the
 /// desktop through the wasted step of a label followed by another: the
-/// same result, and the engines agree at every budget of the first 400
-/// steps (stops inside the run after each call through the host, and in
+/// same result, and the engines agree at every budget of the whole run
+/// of fib(3) (stops inside the run after each call through the host, and in
 /// the callees), on both profiles, and with the loop's function watched;
 /// and so do they on fib(2) without the loop, whose way runs wholly
 /// inline, and on a way whose call through the host is followed at once
@@ -1060,7 +1060,7 @@ fn each_way_of_a_guarded_run_starts_from_its_opening() {
 #[test]
 fn a_recursions_other_way_inline_agrees_at_every_budget() {
     let src = "function Main.main 0\npush constant 0\nreturn\n\
-               function Main.f 0\npush constant 6\ncall Main.fib 1\nreturn\n\
+               function Main.f 0\npush constant 3\ncall Main.fib 1\nreturn\n\
                function Main.fib 0\npush argument 0\npush constant 2\nlt\nnot\nif-goto MORE\n\
                push argument 0\nreturn\nlabel MORE\nlabel REST\n\
                push argument 0\npush constant 1\nsub\ncall Main.fib 1\n\
@@ -1070,10 +1070,11 @@ fn a_recursions_other_way_inline_agrees_at_every_budget() {
                if-goto MORE\npush constant 0\nreturn\nlabel MORE\npush local 0\n\
                push constant 1\nsub\npop local 0\ngoto TOP\n";
     for web in [false, true] {
-        let (_, exit) = native_call(src, web);
-        assert_eq!(exit, Exit::Returned(8), "web {web}");
+        let (m, exit) = native_call(src, web);
+        assert_eq!(exit, Exit::Returned(2), "web {web}");
+        assert!(m.steps() < 130, "the budgets below cover the whole run");
     }
-    agree_at_every_budget(src, &[], &[false, true], 0..400);
+    agree_at_every_budget(src, &[], &[false, true], 0..130);
     // fib(2) without the loop: its whole way runs inline, under the one
     // budget test of its call, which counts the wasted step.
     let pure = src
