@@ -1308,11 +1308,16 @@ impl Translator<'_, '_> {
     /// the runs it is nested in, on the frame stack).
     fn leave_with(&mut self, code: Value, pc: Value) {
         self.write_return_registers();
-        let mut me = self.env.id;
-        for call in self.inlined.clone() {
-            self.push_frame_entry(me, &call);
-            me = call.callee;
+        let calls = self.inlined.clone();
+        if let Some(first) = calls.first() {
+            self.write_frame_entries(&calls, first.frames_len);
+            let len = self
+                .b
+                .ins()
+                .iadd_imm_s(first.frames_len, calls.len() as i64);
+            self.set_frames_len(len);
         }
+        let me = calls.last().map_or(self.env.id, |call| call.callee);
         let me = self.c32(i64::from(me));
         let args = [
             BlockArg::Value(code),
@@ -2536,12 +2541,8 @@ impl Translator<'_, '_> {
         // the frame stack entries of the runs around the call and of the
         // call itself, and the held locals, go to memory.
         let own_len = self.b.ins().stack_load(T64, T64, self.slots, SLOT_LEN);
-        let mut me = self.env.id;
-        for (i, call) in self.inlined.clone().into_iter().chain([site]).enumerate() {
-            let frames_len = self.b.ins().iadd_imm_s(own_len, i as i64);
-            self.write_frame_entry(me, &CallSite { frames_len, ..call });
-            me = call.callee;
-        }
+        let calls: Vec<CallSite> = self.inlined.iter().copied().chain([site]).collect();
+        self.write_frame_entries(&calls, own_len);
         self.store_held();
         self.b.ins().return_(&[code, steps]);
 
@@ -2657,12 +2658,23 @@ impl Translator<'_, '_> {
         }
     }
 
-    /// Push the frame stack entry of a call from `caller` at index
-    /// `call.frames_len`.
-    fn push_frame_entry(&mut self, caller: FnId, call: &CallSite) {
-        self.write_frame_entry(caller, call);
-        let len1 = self.b.ins().iadd_imm_s(call.frames_len, 1);
-        self.set_frames_len(len1);
+    /// Write the frame stack entries of `calls`, compiled calls each made
+    /// by the callee of the one before (the first by this function), at
+    /// indices `first`, `first + 1`, ... (their own `frames_len` values,
+    /// which a call through the host may have reloaded from its slot).
+    fn write_frame_entries(&mut self, calls: &[CallSite], first: Value) {
+        let mut caller = self.env.id;
+        for (i, call) in calls.iter().enumerate() {
+            let frames_len = self.b.ins().iadd_imm_s(first, i as i64);
+            self.write_frame_entry(
+                caller,
+                &CallSite {
+                    frames_len,
+                    ..*call
+                },
+            );
+            caller = call.callee;
+        }
     }
 
     /// Whether the entry's `which` (a block index, or [`CALLED`] | RET
