@@ -1050,49 +1050,58 @@ fn each_way_of_a_guarded_run_starts_from_its_opening() {
 /// recursive calls nested guarded runs (their base case inline, else a
 /// call through the host from inside the run), with a call of a looping
 /// function through the host between them, and the way reached on the
-/// desktop through the wasted step of a label followed by another: the
-/// same result, and the engines agree at every budget of the whole run
-/// of fib(3) (stops inside the run after each call through the host, and in
-/// the callees), on both profiles, and with the loop's function watched;
-/// and so do they on fib(2) without the loop, whose way runs wholly
-/// inline, and on a way whose call through the host is followed at once
-/// by a nested run.
+/// desktop through the wasted step of a label followed by another:
+/// `Main.f` returns fib(3).
+const FIB_WITH_A_LOOP: &str = "function Main.main 0\npush constant 0\nreturn\n\
+    function Main.f 0\npush constant 3\ncall Main.fib 1\nreturn\n\
+    function Main.fib 0\npush argument 0\npush constant 2\nlt\nnot\nif-goto MORE\n\
+    push argument 0\nreturn\nlabel MORE\nlabel REST\n\
+    push argument 0\npush constant 1\nsub\ncall Main.fib 1\n\
+    push argument 0\ncall Main.spin 1\nadd\n\
+    push argument 0\npush constant 2\nsub\ncall Main.fib 1\nadd\nreturn\n\
+    function Main.spin 1\npush argument 0\npop local 0\nlabel TOP\npush local 0\n\
+    if-goto MORE\npush constant 0\nreturn\nlabel MORE\npush local 0\n\
+    push constant 1\nsub\npop local 0\ngoto TOP\n";
+
+/// [`FIB_WITH_A_LOOP`] for fib(2), without the loop: its whole way runs
+/// inline, under the one budget test of its call, which counts the
+/// wasted step.
+fn fib_wholly_inline() -> String {
+    let pure = FIB_WITH_A_LOOP
+        .replace("push constant 3", "push constant 2")
+        .replace("push argument 0\ncall Main.spin 1\nadd\n", "");
+    assert_eq!(native_call(&pure, false).1, Exit::Returned(1), "fib(2)");
+    pure
+}
+
+/// A recursion's way whose call through the host (Main.z, a loop where
+/// its argument is over 100) is followed at once by a nested guarded run
+/// that returns inline: the budget test after the first covers the
+/// second's call, its run and the way's return.
+const A_HOST_CALL_THEN_A_RUN: &str = "function Main.main 0\npush constant 0\nreturn\n\
+    function Main.f 0\npush constant 3\ncall Main.r 1\nreturn\n\
+    function Main.r 0\npush argument 0\npush constant 2\nlt\nif-goto BASE\n\
+    push argument 0\npush constant 1\nsub\ncall Main.r 1\ncall Main.z 1\nreturn\n\
+    label BASE\npush argument 0\nreturn\n\
+    function Main.z 0\npush argument 0\npush constant 100\ngt\nif-goto BIG\n\
+    push argument 0\npush constant 1\nadd\nreturn\nlabel BIG\nlabel L\n\
+    push constant 0\nif-goto L\npush constant 0\nreturn\n";
+
+/// The engines agree at every budget of [`FIB_WITH_A_LOOP`]'s whole run
+/// (stops inside the run after each call through the host, and in the
+/// callees), on both profiles, and with the loop's function watched; and
+/// so do they on [`fib_wholly_inline`] and [`A_HOST_CALL_THEN_A_RUN`].
 #[test]
 fn a_recursions_other_way_inline_agrees_at_every_budget() {
-    let src = "function Main.main 0\npush constant 0\nreturn\n\
-               function Main.f 0\npush constant 3\ncall Main.fib 1\nreturn\n\
-               function Main.fib 0\npush argument 0\npush constant 2\nlt\nnot\nif-goto MORE\n\
-               push argument 0\nreturn\nlabel MORE\nlabel REST\n\
-               push argument 0\npush constant 1\nsub\ncall Main.fib 1\n\
-               push argument 0\ncall Main.spin 1\nadd\n\
-               push argument 0\npush constant 2\nsub\ncall Main.fib 1\nadd\nreturn\n\
-               function Main.spin 1\npush argument 0\npop local 0\nlabel TOP\npush local 0\n\
-               if-goto MORE\npush constant 0\nreturn\nlabel MORE\npush local 0\n\
-               push constant 1\nsub\npop local 0\ngoto TOP\n";
+    let src = FIB_WITH_A_LOOP;
     for web in [false, true] {
         let (m, exit) = native_call(src, web);
         assert_eq!(exit, Exit::Returned(2), "web {web}");
         assert!(m.steps() < 130, "the budgets below cover the whole run");
     }
     agree_at_every_budget(src, &[], &[false, true], 0..130);
-    // fib(2) without the loop: its whole way runs inline, under the one
-    // budget test of its call, which counts the wasted step.
-    let pure = src
-        .replace("push constant 6", "push constant 2")
-        .replace("push argument 0\ncall Main.spin 1\nadd\n", "");
-    agree_at_every_budget(&pure, &[], &[false, true], 0..40);
-    // A call through the host followed at once by a nested guarded run
-    // that returns inline: the budget test after the first covers the
-    // second's call, its run and the way's return.
-    let tail = "function Main.main 0\npush constant 0\nreturn\n\
-                function Main.f 0\npush constant 3\ncall Main.r 1\nreturn\n\
-                function Main.r 0\npush argument 0\npush constant 2\nlt\nif-goto BASE\n\
-                push argument 0\npush constant 1\nsub\ncall Main.r 1\ncall Main.z 1\nreturn\n\
-                label BASE\npush argument 0\nreturn\n\
-                function Main.z 0\npush argument 0\npush constant 100\ngt\nif-goto BIG\n\
-                push argument 0\npush constant 1\nadd\nreturn\nlabel BIG\nlabel L\n\
-                push constant 0\nif-goto L\npush constant 0\nreturn\n";
-    agree_at_every_budget(tail, &[], &[false, true], 0..60);
+    agree_at_every_budget(&fib_wholly_inline(), &[], &[false, true], 0..40);
+    agree_at_every_budget(A_HOST_CALL_THEN_A_RUN, &[], &[false, true], 0..60);
     let program = Program::from_sources(&[("Main.vm", src)]).expect("it loads");
     let spin = program
         .functions()
@@ -1110,6 +1119,29 @@ fn a_recursions_other_way_inline_agrees_at_every_budget() {
         };
         if let Err(e) = engines_agree(&case, Engine::Native, None) {
             panic!("web {web}: {e}");
+        }
+    }
+}
+
+/// The budget tests of a recursion's run count its steps exactly, not
+/// more: under a budget of the whole run's steps, compiled code runs as
+/// many of them as it does with no budget (a test that counted more would
+/// leave for the interpreter near the end).
+#[test]
+fn a_budget_that_covers_a_run_exactly_keeps_it_compiled() {
+    let interpreted = |src: &str, web, budget| {
+        let (program, config) = loaded(src, web, Engine::Native);
+        let mut m = Machine::new(program, config);
+        let exit = m.call("Main.f", &[], budget).expect("Main.f exists");
+        (exit, m.steps(), m.steps() - m.compiled_steps())
+    };
+    let wholly_inline = fib_wholly_inline();
+    for src in [FIB_WITH_A_LOOP, &wholly_inline, A_HOST_CALL_THEN_A_RUN] {
+        for web in [false, true] {
+            let (exit, steps, free) = interpreted(src, web, None);
+            assert!(matches!(exit, Exit::Returned(_)), "{exit}");
+            let exact = interpreted(src, web, Some(steps));
+            assert_eq!(exact, (exit, steps, free), "web {web}\n{src}");
         }
     }
 }
@@ -1146,6 +1178,27 @@ fn a_callee_through_the_host_may_write_the_frame_of_the_run_around_it() {
         assert_eq!(exit, Exit::Returned(1234));
         agree_at_every_budget(src, &[], &[true], 0..80);
     }
+}
+
+/// Desktop: a recursion's other way run inline sets THAT with `pop
+/// pointer 1` (tested there to lie in the desktop's range), then calls
+/// Main.g (its loop) through the host, which writes the saved THAT of its
+/// frame (a pop below its LCL, then a push) below the range: after the
+/// call, the run's `push that 0` tests THAT again, as the interpreter
+/// does, and stops with its error rather than read RAM[100].
+#[test]
+fn a_pointer_a_run_tested_is_tested_again_after_a_call_through_the_host() {
+    let src = "function Main.main 0\npush constant 0\nreturn\n\
+               function Main.f 0\npush constant 2\ncall Main.r 1\nreturn\n\
+               function Main.r 0\npush argument 0\nif-goto MORE\npush constant 5\nreturn\n\
+               label MORE\npush constant 3000\npop pointer 1\n\
+               push constant 7\ncall Main.g 1\npop temp 0\npush that 0\n\
+               push argument 0\npush constant 1\nsub\ncall Main.r 1\nadd\nreturn\n\
+               function Main.g 0\nlabel LOOP\npush constant 0\nif-goto LOOP\n\
+               pop temp 0\npush constant 100\npush constant 0\nreturn\n";
+    let (_, exit) = native_call(src, false);
+    assert!(matches!(exit, Exit::RuntimeError { .. }), "{exit}");
+    agree_at_every_budget(src, &[], &[false], 0..90);
 }
 
 /// `Main.f` of `src` (a program of its own, not [`random_program`]'s)
