@@ -1130,9 +1130,7 @@ fn a_recursions_other_way_inline_agrees_at_every_budget() {
 #[test]
 fn a_budget_that_covers_a_run_exactly_keeps_it_compiled() {
     let interpreted = |src: &str, web, budget| {
-        let (program, config) = loaded(src, web, Engine::Native);
-        let mut m = Machine::new(program, config);
-        let exit = m.call("Main.f", &[], budget).expect("Main.f exists");
+        let (m, exit) = native_call_within(src, web, budget);
         (exit, m.steps(), m.steps() - m.compiled_steps())
     };
     let wholly_inline = fib_wholly_inline();
@@ -1205,9 +1203,14 @@ fn a_pointer_a_run_tested_is_tested_again_after_a_call_through_the_host() {
 /// called with no arguments on the compiled engine, under the web
 /// profile or the desktop's: the machine after it, and its exit.
 fn native_call(src: &str, web: bool) -> (Machine, Exit) {
+    native_call_within(src, web, None)
+}
+
+/// [`native_call`] under `budget` steps (None: no budget).
+fn native_call_within(src: &str, web: bool, budget: Option<u64>) -> (Machine, Exit) {
     let (program, config) = loaded(src, web, Engine::Native);
     let mut m = Machine::new(program, config);
-    let exit = m.call("Main.f", &[], None).expect("Main.f exists");
+    let exit = m.call("Main.f", &[], budget).expect("Main.f exists");
     (m, exit)
 }
 
